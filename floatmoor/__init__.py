@@ -1,0 +1,13 @@
+"""floatmoor: coupled floater and mooring analysis in time and frequency domain."""
+
+from importlib.metadata import PackageNotFoundError, version as _version
+
+from .core.errors import ConvergenceError, FloatmoorError, FloatmoorWarning, NumericalError, SceneError
+
+try:
+    __version__ = _version("floatmoor")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = "0.0.0+unknown"
+
+__all__ = ["__version__", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorError",
+           "FloatmoorWarning"]

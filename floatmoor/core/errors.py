@@ -1,0 +1,123 @@
+"""Errors and warnings raised by floatmoor.
+
+Two kinds of failure matter to a mooring engineer:
+
+* :class:`SceneError` -- a mistake in an input file.  It names the file, the key path inside
+  it (``environment.waves.hs``), what was expected and what was found, so the user can fix the
+  file without reading a traceback.  The CLI prints it and exits with status 2.
+* :class:`NumericalError` -- a run that went wrong (NaN, exploding state, no convergence).  It
+  names the simulated time, the line or degree of freedom concerned and a likely remedy.
+"""
+
+from __future__ import annotations
+
+import os
+
+__all__ = ["FloatmoorError", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorWarning"]
+
+
+class FloatmoorError(Exception):
+    """Base class of every error floatmoor raises on purpose."""
+
+
+def _short(value, limit: int = 80) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+class SceneError(FloatmoorError, ValueError):
+    """A mistake in a scene, vessel, metocean or line-type file.
+
+    Parameters
+    ----------
+    file:
+        Path of the file holding the mistake (``None`` for a scene built in Python).
+    key:
+        Dotted key path inside the file, e.g. ``"environment.waves.hs"`` or
+        ``"mooring.lines[3].segments[0].length"``.  Empty for the file as a whole.
+    expected:
+        What the key should hold, in words ("a number > 0", "one of: jonswap, ...").
+    found:
+        What was found.  Use :data:`SceneError.MISSING` for a missing key.
+    hint:
+        Optional advice appended to the message.
+    """
+
+    MISSING = object()
+
+    def __init__(self, file, key: str, expected: str, found=MISSING, hint: str | None = None):
+        self.file = None if file is None else os.fspath(file)
+        self.key = key
+        self.expected = expected
+        self.found = found
+        self.hint = hint
+        super().__init__(self._message())
+
+    def _message(self) -> str:
+        where = self.file if self.file is not None else "<scene>"
+        if self.key:
+            where += f": {self.key}"
+        if self.found is SceneError.MISSING:
+            found = "nothing (the key is missing)"
+        else:
+            found = _short(self.found)
+        msg = f"{where}: expected {self.expected}, found {found}"
+        if self.hint:
+            msg += f" ({self.hint})"
+        return msg
+
+    def __reduce__(self):  # keep the error picklable across worker processes
+        return (_rebuild_scene_error, (self.file, self.key, self.expected,
+                                       None if self.found is SceneError.MISSING else self.found,
+                                       self.found is SceneError.MISSING, self.hint))
+
+
+def _rebuild_scene_error(file, key, expected, found, missing, hint):
+    return SceneError(file, key, expected, SceneError.MISSING if missing else found, hint)
+
+
+class NumericalError(FloatmoorError, RuntimeError):
+    """A numerical failure during a run.
+
+    Parameters
+    ----------
+    what:
+        What went wrong ("NaN in the state", "no convergence after 50 iterations").
+    time:
+        Simulated time in s at which it happened, if in a time loop.
+    where:
+        The DOF, line or model concerned ("surge", "line 7", "catenary").
+    remedy:
+        A likely remedy ("reduce dt", "add damping in yaw", ...).
+    """
+
+    def __init__(self, what: str, *, time: float | None = None, where: str | None = None,
+                 remedy: str | None = None):
+        self.what = what
+        self.time = time
+        self.where = where
+        self.remedy = remedy
+        parts = [what]
+        if time is not None:
+            parts.append(f"at t = {time:.3f} s")
+        if where:
+            parts.append(f"in {where}")
+        msg = " ".join(parts)
+        if remedy:
+            msg += f". Likely remedy: {remedy}"
+        super().__init__(msg)
+
+    def __reduce__(self):
+        return (_rebuild_numerical_error, (type(self), self.what, self.time, self.where, self.remedy))
+
+
+def _rebuild_numerical_error(cls, what, time, where, remedy):
+    return cls(what, time=time, where=where, remedy=remedy)
+
+
+class ConvergenceError(NumericalError):
+    """An iterative solver (catenary, equilibrium, stochastic linearisation) did not converge."""
+
+
+class FloatmoorWarning(UserWarning):
+    """Warnings about questionable but usable input or results."""
