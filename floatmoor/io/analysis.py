@@ -1,0 +1,155 @@
+"""The ``analysis:`` section of a scene: simulation length, time step, start-up and seeds.
+
+```yaml
+analysis: {duration: 10800.0, dt: 0.1, transient: 1200.0, ramp: 100.0, seeds: [1, 20]}
+```
+
+Every key is optional; the defaults are a 3-hour storm (10800 s, DNV-OS-E301's short-term
+duration) at dt = 0.1 s, no transient window, no ramp, seed 1.
+
+``seeds`` takes one of (see :func:`parse_seeds`):
+
+* an integer: that one seed, ``seeds: 7``;
+* a list of exactly two integers ``[first, last]``: the inclusive range, ``seeds: [1, 20]`` is
+  the 20 seeds 1, 2, ..., 20;
+* a string in the same syntax as the command line ``--seeds``: ranges and single seeds separated
+  by commas, ``seeds: "1-20"``, ``seeds: "3,7,11"``, ``seeds: "1-5,9"``.
+
+A list of any other length is refused (``[3, 7]`` would otherwise mean something different from
+``[3, 7, 11]``); write an explicit list as a string.
+"""
+
+from __future__ import annotations
+
+import re
+import warnings
+from dataclasses import dataclass
+
+from ..core.config import Node
+from ..core.errors import FloatmoorWarning, SceneError
+
+__all__ = ["AnalysisSpec", "parse_analysis", "parse_seeds", "seeds_from_text", "ANALYSIS_KEYS"]
+
+ANALYSIS_KEYS = ("duration", "dt", "transient", "ramp", "seeds")
+
+MAX_SEED = 2**32 - 1
+"""Largest seed accepted (numpy's SeedSequence takes any non-negative integer; we keep seeds to
+32 bits so that they print and store everywhere)."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class AnalysisSpec:
+    """Time-domain settings: ``duration`` (s, the simulated length including the transient),
+    ``dt`` (s), ``transient`` (s removed from the start before statistics), ``ramp`` (s of
+    smooth start of the loads) and ``seeds`` (tuple of ints, one realisation each)."""
+
+    duration: float = 10800.0
+    dt: float = 0.1
+    transient: float = 0.0
+    ramp: float = 0.0
+    seeds: tuple[int, ...] = (1,)
+
+
+def parse_analysis(node: Node) -> AnalysisSpec:
+    """Read an ``analysis:`` mapping into an :class:`AnalysisSpec`.
+
+    Refused: duration <= 0, dt <= 0, dt >= duration, transient < 0 or >= duration, ramp < 0 or
+    >= duration, bad seeds.  Warned: a ramp longer than the transient (the statistics would
+    include the ramp-up), fewer than 1000 steps, and a statistics window (duration - transient)
+    shorter than one hour.
+    """
+    node.reject_unknown(ANALYSIS_KEYS)
+    d = AnalysisSpec()
+    duration = node.float("duration", d.duration, gt=0.0, unit="s")
+    dt = node.float("dt", d.dt, gt=0.0, lt=duration, unit="s")
+    transient = node.float("transient", d.transient, ge=0.0, lt=duration, unit="s")
+    ramp = node.float("ramp", d.ramp, ge=0.0, lt=duration, unit="s")
+    seeds = parse_seeds(node, "seeds", d.seeds)
+    if ramp > transient:
+        _warn(node, "ramp", f"the ramp ({ramp:g} s) is longer than the transient window "
+              f"({transient:g} s): the statistics include the ramp-up")
+    if duration / dt < 1000.0:
+        _warn(node, "dt", f"only {duration / dt:.0f} time steps in {duration:g} s")
+    if duration - transient < 3600.0:
+        _warn(node, "duration", f"the statistics window (duration - transient = "
+              f"{duration - transient:g} s) is shorter than one hour; extreme values from it "
+              "are not those of a 3-hour storm")
+    return AnalysisSpec(duration=duration, dt=dt, transient=transient, ramp=ramp, seeds=seeds)
+
+
+def parse_seeds(node: Node, key: str, default=SceneError.MISSING) -> tuple[int, ...]:
+    """Read seeds (an int, ``[first, last]`` inclusive, or a string ``"1-20"``/``"3,7,11"``)."""
+    expected = ('an integer seed, [first, last] (an inclusive range), or a string such as '
+                '"1-20" or "3,7,11"')
+    if key not in node:
+        if default is SceneError.MISSING:
+            raise node.error(key, expected)
+        return tuple(default)
+    value = node.raw(key)
+    if isinstance(value, bool):
+        raise node.error(key, expected, value)
+    if isinstance(value, int):
+        seeds = (value,)
+    elif isinstance(value, list):
+        if len(value) != 2 or any(isinstance(v, bool) or not isinstance(v, int) for v in value):
+            hint = ("a two-item list is a range [first, last]; write other lists as a string, "
+                    f'e.g. "{",".join(str(v) for v in value)}"' if value else None)
+            raise node.error(key, expected, value, hint)
+        first, last = value
+        if last < first:
+            raise node.error(key, f"[first, last] with last >= first", value)
+        seeds = tuple(range(first, last + 1))
+    elif isinstance(value, str):
+        try:
+            seeds = seeds_from_text(value)
+        except ValueError as exc:
+            raise node.error(key, expected, value, str(exc)) from None
+    else:
+        raise node.error(key, expected, value)
+    for s in seeds:
+        if not 0 <= s <= MAX_SEED:
+            raise node.error(key, f"seeds between 0 and {MAX_SEED}", value)
+    return seeds
+
+
+_TOKEN = re.compile(r"^\s*(\d+)\s*(?:-\s*(\d+)\s*)?$")
+
+
+def seeds_from_text(text: str) -> tuple[int, ...]:
+    """Parse ``"1-20"``, ``"3,7,11"`` or ``"1-5,9"`` into a tuple of seeds (inclusive ranges).
+
+    Raises ValueError on anything else (empty text, a descending range, a repeated seed).
+    """
+    seeds: list[int] = []
+    if not text.strip():
+        raise ValueError("no seeds given")
+    for part in text.split(","):
+        m = _TOKEN.match(part)
+        if m is None:
+            raise ValueError(f"cannot read {part.strip()!r} as a seed or a range first-last")
+        first = int(m.group(1))
+        last = int(m.group(2)) if m.group(2) is not None else first
+        if last < first:
+            raise ValueError(f"the range {first}-{last} runs backwards")
+        seeds.extend(range(first, last + 1))
+    if len(set(seeds)) != len(seeds):
+        raise ValueError("a seed is repeated")
+    return tuple(seeds)
+
+
+def _warn(node: Node, key: str, message: str) -> None:
+    warnings.warn(f"{node.file}: {node.key(key)}: {message}", FloatmoorWarning, stacklevel=4)
+
+
+def describe_analysis(a: AnalysisSpec) -> list[str]:
+    """Lines describing the analysis settings."""
+    n = len(a.seeds)
+    if n == 1:
+        seeds = f"seed {a.seeds[0]}"
+    elif a.seeds == tuple(range(a.seeds[0], a.seeds[0] + n)):
+        seeds = f"{n} seeds {a.seeds[0]}-{a.seeds[-1]}"
+    else:
+        seeds = f"{n} seeds " + ", ".join(str(s) for s in a.seeds)
+    return [f"analysis: duration {a.duration:g} s ({a.duration / 3600.0:.3g} h), dt {a.dt:g} s "
+            f"({round(a.duration / a.dt)} steps), transient {a.transient:g} s, ramp {a.ramp:g} s",
+            f"          statistics over {a.duration - a.transient:g} s; {seeds}"]
