@@ -1,0 +1,521 @@
+"""Mooring line design checks by DNV-OS-E301 (ULS and ALS, partial safety factor format).
+
+Source of every factor here
+---------------------------
+DNV-OS-E301 "Position Mooring", **October 2008 edition** -- the edition cited by seed
+``002_783d33d2c304eef8.txt`` (Wang 2016, reference "Veritas, D. N. (2008). Offshore standard
+dnv-os-e301: Position mooring", used in its chapter 3).  Clauses: Ch.2 Sec.2 (mooring system
+analysis): characteristic line tensions, characteristic capacity, and the partial safety
+factors for the ULS and the ALS.  The numbers are those the seed reproduces:
+
+* design equation, seed eq. 3.4: ``S_C - T_C-mean gamma_mean - T_C-dyn gamma_dyn >= 0``
+  (identical for ULS and ALS, seed section 3.4.2);
+* ULS factors, seed table 3.1; ALS factors, seed table 3.2 (consequence class 1 or 2, dynamic or
+  quasi-static analysis of the WF tension).  In the quasi-static rows the standard prints one
+  value across both columns; it is applied to both the mean and the dynamic tension here
+  (``gamma_mean = gamma_dyn``), i.e. to the total characteristic tension;
+* remark 1 under table 3.1 (ULS only): "If T_C-mean > 2/3 T_C-dyn, when applying a dynamic
+  analysis in consequence class 1, then a common value of 1.3 shall be applied as the partial
+  factor instead of the separate static and dynamic safety factors".  Note the strict ``>``, and
+  that, as written, the rule *lowers* the design tension when 2/3 < T_C-mean / T_C-dyn < 1
+  (1.3 (T_m + T_d) < 1.1 T_m + 1.5 T_d there).  ``common_factor_rule="as_written"`` (default)
+  applies it literally; ``"conservative"`` uses the larger of the two design tensions;
+* remark 2 under table 3.1: single point moorings without redundancy, for which the ALS is not
+  applicable, may be accepted with the ULS factors increased by a factor 1.2
+  (``single_point_mooring=True``);
+* characteristic strength of the main body of a line, ``S_C = 0.95 S_mbs`` (DNV-OS-E301
+  Ch.2 Sec.2, characteristic capacity, for chain, steel wire rope and fibre rope when no
+  further statistical strength data are available; the seed's section 3.2 explains why the
+  strength of a long line is below the average component strength but gives no number).
+  The factor is a parameter (``strength_factor``).
+
+The simple safety factor ``SF = S_MBS / T_C`` (seed eq. 3.3) is what MIMOSA prints in figure 5.9
+(e.g. line 7: 8500 kN / 4762.9 kN = 1.78).
+
+Characteristic tensions from time-domain seeds follow seed section 5.4.4: the 3-hour maxima of
+the seeds are fitted with a Gumbel distribution and its 90 % fractile is the characteristic
+tension ``T_C``; ``T_C-mean`` is the mean tension (averaged over the seeds) and
+``T_C-dyn = T_C - T_C-mean``.  The fractile is a parameter (``p``; ``p = 1/e`` is the most
+probable maximum).
+
+The clause lettering inside Ch.2 Sec.2 is not repeated here because it was not verified against
+the text of the 2008 edition; the factors were checked against the seed's tables.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from ..core.errors import SceneError
+from .extremes import gumbel_fit
+
+__all__ = [
+    "STANDARD", "EDITION", "SOURCE", "ULS_FACTORS", "ALS_FACTORS", "COMMON_FACTOR",
+    "COMMON_FACTOR_RATIO", "STRENGTH_FACTOR", "SPM_FACTOR", "PartialFactors", "partial_factors",
+    "characteristic_strength", "design_tension", "simple_safety_factor", "line_check",
+    "check_lines", "characteristic_tensions", "factors_table",
+]
+
+STANDARD = "DNV-OS-E301"
+EDITION = "DNV-OS-E301 Position Mooring, October 2008"
+SOURCE = (
+    "DNV-OS-E301 Position Mooring, October 2008 edition, Ch.2 Sec.2 (characteristic capacity "
+    "S_C = 0.95 S_mbs; partial safety factors for ULS and ALS), as reproduced in seed "
+    "002_783d33d2c304eef8 (Wang 2016) eq. 3.4, tables 3.1 and 3.2 and the remarks under "
+    "table 3.1; characteristic tension = 90 % Gumbel fractile of 20 seed maxima (seed "
+    "section 5.4.4)")
+"""A sentence a report can print: where the factors and the method come from."""
+
+ANALYSES = ("dynamic", "quasi-static")
+LIMIT_STATES = ("ULS", "ALS")
+
+# (consequence class, analysis of WF tension) -> (gamma_mean, gamma_dyn)
+ULS_FACTORS = {
+    (1, "dynamic"): (1.10, 1.50),
+    (2, "dynamic"): (1.40, 2.10),
+    (1, "quasi-static"): (1.70, 1.70),
+    (2, "quasi-static"): (2.50, 2.50),
+}
+"""Seed table 3.1 (DNV-OS-E301 2008, ULS)."""
+
+ALS_FACTORS = {
+    (1, "dynamic"): (1.00, 1.10),
+    (2, "dynamic"): (1.00, 1.25),
+    (1, "quasi-static"): (1.10, 1.10),
+    (2, "quasi-static"): (1.35, 1.35),
+}
+"""Seed table 3.2 (DNV-OS-E301 2008, ALS)."""
+
+COMMON_FACTOR = 1.3
+"""Common ULS factor for consequence class 1, dynamic analysis, when T_C-mean > 2/3 T_C-dyn."""
+COMMON_FACTOR_RATIO = 2.0 / 3.0
+STRENGTH_FACTOR = 0.95
+"""S_C = 0.95 S_mbs."""
+SPM_FACTOR = 1.2
+"""Increase of the ULS factors for single point moorings without redundancy."""
+
+
+def _bad(key, expected, found):
+    return SceneError(None, key, expected, found)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PartialFactors:
+    """Partial safety factors of one limit state, consequence class and analysis type.
+
+    Attributes
+    ----------
+    limit_state : str
+        ``"ULS"`` or ``"ALS"``.
+    consequence_class : int
+        1 or 2.
+    analysis : str
+        ``"dynamic"`` or ``"quasi-static"`` (analysis of the WF tension).
+    gamma_mean, gamma_dyn : float
+        Factors on the characteristic mean and dynamic tension (table values, before the
+        common-factor remark, which depends on the tensions).
+    single_point_mooring : bool
+        Whether the 1.2 increase for single point moorings without redundancy is included.
+    """
+
+    limit_state: str
+    consequence_class: int
+    analysis: str
+    gamma_mean: float
+    gamma_dyn: float
+    single_point_mooring: bool = False
+
+    @property
+    def source(self) -> str:
+        table = "3.1 (ULS)" if self.limit_state == "ULS" else "3.2 (ALS)"
+        text = f"{EDITION}, Ch.2 Sec.2; seed 002 table {table}"
+        if self.single_point_mooring:
+            text += ", increased by 1.2 for a single point mooring (remark under table 3.1)"
+        return text
+
+    @property
+    def common_factor_possible(self) -> bool:
+        """Whether the common factor 1.3 of the remark under table 3.1 can apply."""
+        return (self.limit_state == "ULS" and self.consequence_class == 1
+                and self.analysis == "dynamic" and not self.single_point_mooring)
+
+
+def partial_factors(limit_state: str = "ULS", consequence_class: int = 2,
+                    analysis: str = "dynamic", *, single_point_mooring: bool = False
+                    ) -> PartialFactors:
+    """Partial safety factors from seed tables 3.1 (ULS) and 3.2 (ALS).
+
+    Parameters
+    ----------
+    limit_state : str
+        ``"ULS"`` or ``"ALS"`` (case-insensitive).
+    consequence_class : int
+        1 or 2.
+    analysis : str
+        ``"dynamic"`` or ``"quasi-static"`` (type of analysis of the WF tension).
+    single_point_mooring : bool
+        Single point mooring without redundancy: ULS factors x 1.2, ALS not applicable.
+
+    Returns
+    -------
+    PartialFactors
+    """
+    ls = str(limit_state).upper()
+    if ls not in LIMIT_STATES:
+        raise _bad("limit_state", "one of: ULS, ALS", limit_state)
+    if consequence_class not in (1, 2) or isinstance(consequence_class, bool):
+        raise _bad("consequence_class", "1 or 2 (DNV-OS-E301 ULS/ALS consequence classes)",
+                   consequence_class)
+    an = str(analysis).lower().replace("_", "-").replace(" ", "-")
+    if an == "quasistatic":
+        an = "quasi-static"
+    if an not in ANALYSES:
+        raise _bad("analysis", "one of: dynamic, quasi-static", analysis)
+    if single_point_mooring and ls == "ALS":
+        raise _bad("limit_state", "ULS only for a single point mooring without redundancy "
+                   "(the ALS is not applicable; remark under seed table 3.1)", limit_state)
+    gm, gd = (ULS_FACTORS if ls == "ULS" else ALS_FACTORS)[(int(consequence_class), an)]
+    if single_point_mooring:
+        gm, gd = gm * SPM_FACTOR, gd * SPM_FACTOR
+    return PartialFactors(limit_state=ls, consequence_class=int(consequence_class), analysis=an,
+                          gamma_mean=gm, gamma_dyn=gd, single_point_mooring=bool(single_point_mooring))
+
+
+def characteristic_strength(mbs, strength_factor: float = STRENGTH_FACTOR):
+    """Characteristic strength ``S_C = 0.95 S_mbs`` of the main body of a line.
+
+    Parameters
+    ----------
+    mbs : float or array_like
+        Minimum breaking strength in N.
+    strength_factor : float
+        0.95 by DNV-OS-E301 (chain, steel wire rope; fibre rope without further test data).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        S_C in N.
+    """
+    s = np.asarray(mbs, dtype=float)
+    if np.any(~np.isfinite(s)) or np.any(s <= 0):
+        raise _bad("mbs", "a minimum breaking strength > 0 in N", mbs)
+    if not (0 < strength_factor <= 1):
+        raise _bad("strength_factor", "a factor in (0, 1]", strength_factor)
+    out = strength_factor * s
+    return float(out) if out.ndim == 0 else out
+
+
+def design_tension(t_mean, t_dyn, factors: PartialFactors, *,
+                   common_factor_rule: str = "as_written"):
+    """Design tension ``T_C-mean gamma_mean + T_C-dyn gamma_dyn`` with the common-factor remark.
+
+    Parameters
+    ----------
+    t_mean, t_dyn : float or array_like
+        Characteristic mean and dynamic tension in N.
+    factors : PartialFactors
+        From :func:`partial_factors`.
+    common_factor_rule : str
+        ``"as_written"``: where ``t_mean > 2/3 t_dyn`` in ULS, consequence class 1, dynamic
+        analysis, use 1.3 on both components instead of the table factors.
+        ``"conservative"``: there, the larger of the two design tensions.
+
+    Returns
+    -------
+    dict
+        ``design_tension`` (N), ``gamma_mean``, ``gamma_dyn`` (the factors used) and
+        ``common_factor_applied`` (bool), arrays of the broadcast shape.
+    """
+    if common_factor_rule not in ("as_written", "conservative"):
+        raise _bad("common_factor_rule", "'as_written' or 'conservative'", common_factor_rule)
+    tm = np.asarray(t_mean, dtype=float)
+    td = np.asarray(t_dyn, dtype=float)
+    tm, td = np.broadcast_arrays(tm, td)
+    gm = np.full(tm.shape, factors.gamma_mean)
+    gd = np.full(tm.shape, factors.gamma_dyn)
+    applied = np.zeros(tm.shape, bool)
+    if factors.common_factor_possible:
+        applied = tm > COMMON_FACTOR_RATIO * td
+        if common_factor_rule == "conservative":
+            common = COMMON_FACTOR * (tm + td)
+            table = factors.gamma_mean * tm + factors.gamma_dyn * td
+            applied &= common > table
+        gm = np.where(applied, COMMON_FACTOR, gm)
+        gd = np.where(applied, COMMON_FACTOR, gd)
+    return {"design_tension": gm * tm + gd * td, "gamma_mean": gm, "gamma_dyn": gd,
+            "common_factor_applied": applied}
+
+
+def simple_safety_factor(mbs, t_max):
+    """Simple safety factor ``S_MBS / T_max`` (seed eq. 3.3, MIMOSA's column in figure 5.9).
+
+    Parameters
+    ----------
+    mbs : float or array_like
+        Minimum breaking strength (any force unit).
+    t_max : float or array_like
+        Maximum (characteristic) tension in the same unit.
+    """
+    m = np.asarray(mbs, dtype=float)
+    t = np.asarray(t_max, dtype=float)
+    if np.any(~np.isfinite(t)) or np.any(t <= 0):
+        raise _bad("t_max", "a maximum tension > 0", t_max)
+    if np.any(~np.isfinite(m)) or np.any(m <= 0):
+        raise _bad("mbs", "a minimum breaking strength > 0", mbs)
+    out = m / t
+    return float(out) if out.ndim == 0 else out
+
+
+def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_class: int = 2,
+               analysis: str = "dynamic", strength_factor: float = STRENGTH_FACTOR,
+               single_point_mooring: bool = False, common_factor_rule: str = "as_written") -> dict:
+    """ULS or ALS check of one or more lines (arrays broadcast).
+
+    Parameters
+    ----------
+    t_mean : float or array_like
+        Characteristic mean tension T_C-mean in N.
+    t_max : float or array_like
+        Characteristic (maximum) tension T_C in N; T_C-dyn = T_C - T_C-mean.
+    mbs : float or array_like
+        Minimum breaking strength S_mbs in N.
+    limit_state, consequence_class, analysis, single_point_mooring
+        See :func:`partial_factors`.
+    strength_factor : float
+        S_C / S_mbs (0.95).
+    common_factor_rule : str
+        See :func:`design_tension`.
+
+    Returns
+    -------
+    dict
+        ``t_c_mean``, ``t_c_dyn``, ``t_c``, ``s_mbs``, ``s_c`` (N), ``gamma_mean``,
+        ``gamma_dyn``, ``common_factor_applied``, ``design_tension`` (N), ``margin``
+        (``S_C - design tension``, eq. 3.4, N), ``utilisation`` (design tension / S_C),
+        ``passed`` (eq. 3.4 satisfied), ``safety_factor`` (S_mbs / T_C), and ``factors``.
+    """
+    f = partial_factors(limit_state, consequence_class, analysis,
+                        single_point_mooring=single_point_mooring)
+    tm = np.asarray(t_mean, dtype=float)
+    tc = np.asarray(t_max, dtype=float)
+    if np.any(~np.isfinite(tm)) or np.any(tm < 0):
+        raise _bad("t_mean", "characteristic mean tensions >= 0 in N", t_mean)
+    if np.any(~np.isfinite(tc)):
+        raise _bad("t_max", "finite characteristic tensions in N", t_max)
+    if np.any(tc < tm):
+        raise _bad("t_max", "characteristic tensions >= the mean tensions", t_max)
+    sc = np.asarray(characteristic_strength(mbs, strength_factor))
+    td = tc - tm
+    d = design_tension(tm, td, f, common_factor_rule=common_factor_rule)
+    tm, td, tc, smbs, sc = np.broadcast_arrays(tm, td, tc, np.asarray(mbs, float), sc)
+    u = d["design_tension"] / sc
+    return {"t_c_mean": tm, "t_c_dyn": td, "t_c": tc, "s_mbs": smbs, "s_c": sc,
+            "gamma_mean": d["gamma_mean"], "gamma_dyn": d["gamma_dyn"],
+            "common_factor_applied": d["common_factor_applied"],
+            "design_tension": d["design_tension"], "margin": sc - d["design_tension"],
+            "utilisation": u, "passed": u <= 1.0,
+            "safety_factor": smbs / tc, "factors": f}
+
+
+_COLUMNS = {
+    "t_c_mean": ("N", "characteristic mean tension T_C-mean"),
+    "t_c_dyn": ("N", "characteristic dynamic tension T_C-dyn = T_C - T_C-mean"),
+    "t_c": ("N", "characteristic tension T_C"),
+    "s_mbs": ("N", "minimum breaking strength S_mbs"),
+    "s_c": ("N", "characteristic strength S_C"),
+    "gamma_mean": ("1", "partial safety factor on T_C-mean"),
+    "gamma_dyn": ("1", "partial safety factor on T_C-dyn"),
+    "common_factor_applied": ("1", "common factor 1.3 applied (remark under table 3.1)"),
+    "design_tension": ("N", "design tension T_C-mean gamma_mean + T_C-dyn gamma_dyn"),
+    "margin": ("N", "S_C - design tension (eq. 3.4, >= 0 required)"),
+    "utilisation": ("1", "utilisation, design tension / S_C"),
+    "passed": ("1", "design equation satisfied"),
+    "checked": ("1", "line checked in this limit state (false: failed or not analysed)"),
+    "safety_factor": ("1", "simple safety factor S_mbs / T_C"),
+    "governing": ("1", "governing line of the limit state (largest utilisation)"),
+}
+
+
+def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
+                consequence_class: int = 2, analysis: str = "dynamic",
+                strength_factor: float = STRENGTH_FACTOR, single_point_mooring: bool = False,
+                common_factor_rule: str = "as_written") -> xr.Dataset:
+    """ULS (and ALS) design check of every line, with the governing line.
+
+    Parameters
+    ----------
+    lines : sequence
+        Line names or numbers (the ``line`` coordinate).
+    mbs : float or array_like
+        Minimum breaking strength per line in N (scalar: same for all).
+    uls_mean, uls_max : array_like
+        Characteristic mean tension and characteristic tension per line, intact system, in N.
+    als_mean, als_max : array_like, optional
+        The same with one line failed (worst over the failure cases analysed).  NaN marks a line
+        not checked (e.g. the failed line itself).
+    consequence_class, analysis, strength_factor, single_point_mooring, common_factor_rule
+        See :func:`line_check`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``(limit_state, line)``; every column of :func:`line_check` plus ``checked`` and
+        ``governing``, each with ``units`` and ``long_name``; ``governing_line(limit_state)``;
+        attributes ``standard``, ``source``, ``consequence_class``, ``analysis``,
+        ``governing_line``, ``governing_limit_state``, ``max_utilisation`` and ``all_passed``.
+    """
+    lines = list(lines)
+    nl = len(lines)
+    if nl == 0:
+        raise _bad("lines", "at least one line", lines)
+    if len(set(map(str, lines))) != nl:
+        raise _bad("lines", "distinct line names", lines)
+    cases = [("ULS", uls_mean, uls_max)]
+    if (als_mean is None) != (als_max is None):
+        raise _bad("als_max" if als_max is None else "als_mean",
+                   "both ALS mean and ALS characteristic tensions, or neither", None)
+    if als_mean is not None:
+        cases.append(("ALS", als_mean, als_max))
+    mbs_arr = np.broadcast_to(np.asarray(mbs, dtype=float), (nl,))
+    columns = {k: [] for k in _COLUMNS if k != "governing"}
+    sources = []
+    for ls, tm, tc in cases:
+        tm = np.asarray(tm, dtype=float)
+        tc = np.asarray(tc, dtype=float)
+        for key, arr in (("mean", tm), ("max", tc)):
+            if arr.shape != (nl,):
+                raise _bad(f"{ls.lower()}_{key}", f"{nl} values (one per line)",
+                           f"shape {arr.shape}")
+        checked = np.isfinite(tm) & np.isfinite(tc)
+        if ls == "ULS" and not checked.all():
+            raise _bad("uls_max", "finite ULS tensions for every line (the intact system)",
+                       "NaN")
+        r = line_check(np.where(checked, tm, 0.0), np.where(checked, tc, 1.0), mbs_arr,
+                       limit_state=ls, consequence_class=consequence_class, analysis=analysis,
+                       strength_factor=strength_factor,
+                       single_point_mooring=single_point_mooring,
+                       common_factor_rule=common_factor_rule)
+        sources.append(r.pop("factors").source)
+        for k in columns:
+            if k == "checked":
+                columns[k].append(checked)
+                continue
+            v = np.asarray(r[k])
+            if v.dtype == bool:
+                v = v & checked
+            elif k not in ("s_mbs", "s_c"):
+                v = np.where(checked, v, np.nan)
+            columns[k].append(v)
+    states = [c[0] for c in cases]
+    ds = xr.Dataset(coords={"limit_state": ("limit_state", states), "line": ("line", lines)})
+    for k, vals in columns.items():
+        unit, long = _COLUMNS[k]
+        ds[k] = xr.DataArray(np.stack(vals), dims=("limit_state", "line"),
+                             attrs={"units": unit, "long_name": long})
+    u = ds["utilisation"].values
+    gov = np.zeros(u.shape, bool)
+    gov_names = []
+    for i in range(len(states)):
+        if np.any(np.isfinite(u[i])):
+            j = int(np.nanargmax(u[i]))
+            gov[i, j] = True
+            gov_names.append(str(lines[j]))
+        else:
+            gov_names.append("")
+    ds["governing"] = xr.DataArray(gov, dims=("limit_state", "line"),
+                                   attrs={"units": "1", "long_name": _COLUMNS["governing"][1]})
+    ds["governing_line"] = xr.DataArray(np.array(gov_names, dtype=object), dims=("limit_state",),
+                                        attrs={"long_name": "governing line per limit state"})
+    i, j = np.unravel_index(np.nanargmax(u), u.shape)
+    ds.attrs.update({
+        "standard": STANDARD, "edition": EDITION, "source": SOURCE,
+        "factor_sources": " | ".join(sources),
+        "consequence_class": int(consequence_class), "analysis": str(analysis),
+        "strength_factor": float(strength_factor),
+        "common_factor_rule": common_factor_rule,
+        "single_point_mooring": int(bool(single_point_mooring)),
+        "governing_line": str(lines[j]), "governing_limit_state": states[i],
+        "max_utilisation": float(u[i, j]),
+        "all_passed": int(bool(np.all(ds["passed"].values | ~ds["checked"].values))),
+    })
+    return ds
+
+
+def characteristic_tensions(seed_max, seed_mean, *, p: float = 0.9, method: str = "mle"
+                            ) -> xr.Dataset:
+    """Characteristic tensions per line from time-domain seeds (seed section 5.4.4).
+
+    Parameters
+    ----------
+    seed_max : xarray.DataArray
+        Per-seed maximum tension, dims ``(seed, line)``, in N (e.g. ``line_tension_max`` of
+        :func:`~floatmoor.post.per_seed_statistics`).
+    seed_mean : xarray.DataArray
+        Per-seed mean tension, dims ``(seed, line)``, in N.
+    p : float
+        Gumbel fractile taken as the characteristic tension (0.9 as the seed; ``1/e`` for
+        the most probable maximum).
+    method : str
+        Gumbel fit method, ``"mle"`` or ``"moments"``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Per line: ``t_c_mean`` (mean over seeds), ``t_c`` (Gumbel fractile p), ``t_c_dyn``,
+        ``gumbel_loc``, ``gumbel_scale``, ``gumbel_mpm``, ``gumbel_p90``, ``t_c_se``
+        (asymptotic standard error of t_c), ``max_observed``, in N.
+    """
+    for key, da in (("seed_max", seed_max), ("seed_mean", seed_mean)):
+        if not isinstance(da, xr.DataArray) or set(da.dims) != {"seed", "line"}:
+            raise _bad(key, "a DataArray with dims (seed, line)",
+                       getattr(da, "dims", type(da).__name__))
+    seed_max = seed_max.transpose("seed", "line")
+    seed_mean = seed_mean.transpose("seed", "line")
+    lines = seed_max["line"].values if "line" in seed_max.coords else np.arange(seed_max.shape[1])
+    out = {k: [] for k in ("t_c_mean", "t_c", "gumbel_loc", "gumbel_scale", "gumbel_mpm",
+                           "gumbel_p90", "t_c_se", "max_observed")}
+    for j in range(seed_max.shape[1]):
+        fit = gumbel_fit(seed_max.values[:, j], method=method)
+        out["t_c_mean"].append(float(np.mean(seed_mean.values[:, j])))
+        out["t_c"].append(float(fit.fractile(p)))
+        out["gumbel_loc"].append(fit.loc)
+        out["gumbel_scale"].append(fit.scale)
+        out["gumbel_mpm"].append(fit.mpm)
+        out["gumbel_p90"].append(fit.p90)
+        out["t_c_se"].append(float(fit.fractile_se(p)))
+        out["max_observed"].append(float(np.max(seed_max.values[:, j])))
+    unit = str(seed_max.attrs.get("units", "N"))
+    longs = {
+        "t_c_mean": "characteristic mean tension (mean over seeds)",
+        "t_c": f"characteristic tension (Gumbel {p:.3g} fractile of seed maxima)",
+        "t_c_dyn": "characteristic dynamic tension T_C - T_C-mean",
+        "gumbel_loc": "Gumbel location of seed maxima",
+        "gumbel_scale": "Gumbel scale of seed maxima",
+        "gumbel_mpm": "Gumbel most probable maximum",
+        "gumbel_p90": "Gumbel 90 % fractile of seed maxima",
+        "t_c_se": "asymptotic standard error of the characteristic tension",
+        "max_observed": "largest observed seed maximum",
+    }
+    ds = xr.Dataset(coords={"line": ("line", lines)})
+    for k, v in out.items():
+        ds[k] = xr.DataArray(np.asarray(v), dims=("line",),
+                             attrs={"units": unit, "long_name": longs[k]})
+    ds["t_c_dyn"] = xr.DataArray(ds["t_c"].values - ds["t_c_mean"].values, dims=("line",),
+                                 attrs={"units": unit, "long_name": longs["t_c_dyn"]})
+    ds.attrs.update({"fractile": float(p), "gumbel_method": method,
+                     "n_seeds": int(seed_max.shape[0]), "source": SOURCE})
+    return ds
+
+
+def factors_table() -> list[dict]:
+    """All table factors as rows (limit state, class, analysis, gamma_mean, gamma_dyn) for a
+    report."""
+    rows = []
+    for ls, table in (("ULS", ULS_FACTORS), ("ALS", ALS_FACTORS)):
+        for (cc, an), (gm, gd) in table.items():
+            rows.append({"limit_state": ls, "consequence_class": cc, "analysis": an,
+                         "gamma_mean": gm, "gamma_dyn": gd})
+    return rows
