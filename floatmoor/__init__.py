@@ -10,4 +10,12 @@ except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
 
 __all__ = ["__version__", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorError",
-           "FloatmoorWarning"]
+           "FloatmoorWarning", "load_scene"]
+
+
+def __getattr__(name):
+    # Lazy: `import floatmoor` stays light; `floatmoor.load_scene` imports the scene reader.
+    if name == "load_scene":
+        from .io.scene import load_scene
+        return load_scene
+    raise AttributeError(f"module 'floatmoor' has no attribute {name!r}")

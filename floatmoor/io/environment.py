@@ -318,6 +318,14 @@ def environment_models(env: Environment) -> list[str]:
     return out
 
 
+def _rule_gamma_text(hs: float, tp: float) -> str:
+    # DNV-RP-C205 sec. 3.5.5.5, as floatmoor.metocean.spectra.dnv_gamma (not imported here: it
+    # pulls in numba and `floatmoor check` must start fast; a test checks they agree).
+    r = tp / math.sqrt(hs)
+    gamma = 5.0 if r <= 3.6 else (math.exp(5.75 - 1.15 * r) if r < 5.0 else 1.0)
+    return f"{gamma:.3g} from the DNV-RP-C205 rule (Tp/sqrt(Hs) = {r:.3g})"
+
+
 def describe_environment(env: Environment, *, water_depth: float | None = None,
                          gravity: float = GRAVITY) -> list[str]:
     """Lines describing each environment model and its parameters (angles in degrees)."""
@@ -328,8 +336,7 @@ def describe_environment(env: Environment, *, water_depth: float | None = None,
     if w is None:
         lines.append("  waves: none")
     else:
-        gamma = ("DNV-RP-C205 rule, Tp/sqrt(Hs) = "
-                 f"{w.tp / math.sqrt(w.hs):.3g}" if w.gamma is None else f"{w.gamma:g}")
+        gamma = f"{w.gamma:g}" if w.gamma is not None else _rule_gamma_text(w.hs, w.tp)
         text = f"  waves: {w.spectrum}  Hs {w.hs:g} m  Tp {w.tp:g} s"
         if w.spectrum == "jonswap":
             text += f"  gamma {gamma}"

@@ -129,7 +129,9 @@ def test_active_models_and_describe_list_everything(tmp_path):
     text = scene.describe()
     for piece in ["floatel-like-100yr-head-seas", "100-year storm, head seas",
                   "water depth 150 m", f"vessel: {vessel}", f"mooring: {mooring}",
-                  "jonswap  Hs 16 m  Tp 18.2 s", "heading 30 deg", "DNV-RP-C205 rule",
+                  "jonswap  Hs 16 m  Tp 18.2 s", "heading 30 deg",
+                  # DNV-RP-C205 rule by hand: exp(5.75 - 1.15 * 18.2 / sqrt(16)) = 1.678
+                  "gamma 1.68 from the DNV-RP-C205 rule",
                   "U10 36 m/s", "0.94 m/s at z = -50 m", "duration 10800 s", "dt 0.1 s",
                   "transient 1200 s", "ramp 100 s", "20 seeds 1-20",
                   "models: waves:jonswap, wind:npd, current:piecewise_linear, mooring"]:
@@ -230,3 +232,17 @@ def test_peak_wavelength_limits():
     for tp, d in [(18.2, 150.0), (10.0, 20.0), (25.0, 50.0)]:
         k = 2 * math.pi / peak_wavelength(tp, d)
         assert g * k * math.tanh(k * d) == pytest.approx((2 * math.pi / tp) ** 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("hs, tp", [(16.0, 12.0), (16.0, 18.2), (4.0, 25.0)])
+def test_described_gamma_agrees_with_the_metocean_rule(tmp_path, hs, tp):
+    # describe() evaluates the DNV rule itself (to keep numba out of `floatmoor check`); it must
+    # print the value floatmoor.metocean.spectra.dnv_gamma uses.
+    spectra = pytest.importorskip("floatmoor.metocean.spectra")
+    from floatmoor.io.environment import _rule_gamma_text
+    assert _rule_gamma_text(hs, tp).startswith(f"{spectra.dnv_gamma(hs, tp):.3g} ")
+
+
+def test_load_scene_is_exported_at_the_top_level():
+    import floatmoor
+    assert floatmoor.load_scene is load_scene

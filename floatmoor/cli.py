@@ -1,0 +1,177 @@
+"""The ``floatmoor`` command.
+
+``floatmoor check SCENE.yaml``        validate a scene and print what it would build
+``floatmoor environment SCENE.yaml``  realise the scene's environment and print its statistics
+
+Exit status: 0 success, 2 a mistake in an input file (:class:`~floatmoor.SceneError`, printed
+as ``floatmoor: error: <message>`` without a traceback) or on the command line, 3 a numerical
+failure (:class:`~floatmoor.NumericalError`), 130 interrupted (Ctrl-C).
+
+Adding a subcommand
+-------------------
+Write ``add_arguments(parser)`` and ``run(args) -> int`` (import heavy modules inside ``run``
+so that ``floatmoor --help`` and ``floatmoor check`` stay fast), and add one :class:`Command`
+to :data:`COMMANDS`.  The functions may live in any module: ``Command`` takes them directly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+from . import __version__
+from .core.errors import FloatmoorWarning, NumericalError, SceneError
+
+__all__ = ["main", "Command", "COMMANDS", "build_parser", "UsageError"]
+
+EXIT_OK = 0
+EXIT_SCENE_ERROR = 2
+EXIT_NUMERICAL_ERROR = 3
+EXIT_INTERRUPTED = 130
+
+
+class UsageError(Exception):
+    """A command-line mistake found after parsing (printed like a SceneError, exit status 2)."""
+
+
+@dataclass(frozen=True)
+class Command:
+    """A subcommand: its name, one-line help, and the functions adding its arguments and
+    running it (returning the exit status)."""
+
+    name: str
+    help: str
+    add_arguments: Callable[[argparse.ArgumentParser], None]
+    run: Callable[[argparse.Namespace], int]
+    description: str | None = None
+
+
+# -- argument types -------------------------------------------------------------------------------
+def positive_float(text: str) -> float:
+    """An argparse type: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
+    if not (value > 0.0 and value < float("inf")):
+        raise argparse.ArgumentTypeError(f"expected a number > 0, found {text}")
+    return value
+
+
+def seed_int(text: str) -> int:
+    """An argparse type: a seed, an integer >= 0."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer seed, found {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected a seed >= 0, found {text}")
+    return value
+
+
+# -- check ----------------------------------------------------------------------------------------
+def _check_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", metavar="SCENE.yaml", help="the scene file")
+
+
+def _check_run(args: argparse.Namespace) -> int:
+    from .io.scene import load_scene
+
+    scene = load_scene(args.scene)
+    print(scene.describe())
+    print(f"{args.scene}: OK")
+    return EXIT_OK
+
+
+# -- environment ----------------------------------------------------------------------------------
+def _environment_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", metavar="SCENE.yaml", help="the scene file")
+    p.add_argument("--seed", type=seed_int, default=None,
+                   help="seed of the realisation (default: the scene's first seed)")
+    p.add_argument("--duration", type=positive_float, default=None, metavar="S",
+                   help="length of the realisation in s (default: the scene's analysis.duration)")
+    p.add_argument("--dt", type=positive_float, default=None, metavar="S",
+                   help="time step in s (default: the scene's analysis.dt)")
+
+
+def _environment_run(args: argparse.Namespace) -> int:
+    from .io.scene import load_scene
+
+    scene = load_scene(args.scene)
+    duration = scene.analysis.duration if args.duration is None else args.duration
+    dt = scene.analysis.dt if args.dt is None else args.dt
+    seed = scene.analysis.seeds[0] if args.seed is None else args.seed
+    if dt >= duration:
+        raise UsageError(f"the time step --dt {dt:g} s must be shorter than the duration "
+                         f"{duration:g} s")
+    from .metocean.summary import environment_summary, format_summary
+
+    summary = environment_summary(scene.environment, water_depth=scene.site.water_depth,
+                                  duration=duration, dt=dt, seed=seed)
+    print(f"scene: {scene.name}  [{scene.file}]")
+    print(format_summary(summary))
+    return EXIT_OK
+
+
+COMMANDS: list[Command] = [
+    Command("check", "validate a scene and print what it would build",
+            _check_arguments, _check_run),
+    Command("environment", "realise the scene's waves, wind and current and print statistics",
+            _environment_arguments, _environment_run),
+]
+"""The subcommands, in the order ``--help`` lists them."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``floatmoor`` command."""
+    parser = argparse.ArgumentParser(
+        prog="floatmoor",
+        description="Coupled floater and mooring analysis in time and frequency domain.",
+        epilog="Exit status: 0 ok, 2 input error, 3 numerical failure, 130 interrupted.")
+    parser.add_argument("--version", action="version", version=f"floatmoor {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    for cmd in COMMANDS:
+        p = sub.add_parser(cmd.name, help=cmd.help, description=cmd.description or cmd.help)
+        cmd.add_arguments(p)
+        p.set_defaults(_run=cmd.run)
+    return parser
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """Print FloatmoorWarnings as ``floatmoor: warning: ...`` (no source line)."""
+    stream = sys.stderr if file is None else file
+    if issubclass(category, FloatmoorWarning):
+        stream.write(f"floatmoor: warning: {message}\n")
+    else:
+        stream.write(warnings.formatwarning(message, category, filename, lineno, line))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``floatmoor`` command with ``argv`` (default ``sys.argv[1:]``); return the exit
+    status."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a command-line mistake (status 2)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        warnings.simplefilter("default", FloatmoorWarning)
+        try:
+            return int(args._run(args))
+        except (SceneError, UsageError) as exc:
+            print(f"floatmoor: error: {exc}", file=sys.stderr)
+            return EXIT_SCENE_ERROR
+        except NumericalError as exc:
+            print(f"floatmoor: numerical error: {exc}", file=sys.stderr)
+            return EXIT_NUMERICAL_ERROR
+        except KeyboardInterrupt:
+            return EXIT_INTERRUPTED
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,57 @@
+"""The example scenes in scenes/ load and validate (the README and `floatmoor check` use them)."""
+
+import shutil
+import warnings
+from pathlib import Path
+
+import pytest
+import yaml
+
+from floatmoor.cli import main
+from floatmoor.io import load_scene
+
+from .helpers import ENVIRONMENT
+
+REPO = Path(__file__).resolve().parents[2]
+SCENES = sorted((REPO / "scenes").glob("*.yaml"))
+HEIDRUN = REPO / "metocean" / "heidrun_100yr.yaml"
+
+
+def test_the_examples_are_there():
+    names = {p.name for p in SCENES}
+    assert {"floatel_100yr.yaml", "metocean_demo.yaml"} <= names
+
+
+@pytest.mark.parametrize("path", SCENES, ids=[p.name for p in SCENES])
+def test_example_scene_checks_without_warnings(path, capsys):
+    if not HEIDRUN.exists():
+        pytest.skip("metocean/heidrun_100yr.yaml not in this tree")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene = load_scene(path)
+    assert scene.environment.name == "heidrun-100yr"
+    w = scene.environment.waves
+    # seed 002 section 5.2: Hs 16 m, Tp 18.2 s JONSWAP; wind 36 m/s; current 0.94 m/s; head seas
+    assert (w.spectrum, w.hs, w.tp, w.heading) == ("jonswap", 16.0, 18.2, 0.0)
+    assert scene.environment.wind.u10 == 36.0
+    assert scene.environment.current.speed[0] == 0.94
+    assert scene.site.water_depth == 150.0
+    assert main(["check", str(path)]) == 0
+    assert capsys.readouterr().out.rstrip().endswith(": OK")
+
+
+def test_floatel_scene_with_a_local_environment_copy(tmp_path):
+    # The example scene's relative reference works from any folder holding the same layout.
+    (tmp_path / "scenes").mkdir()
+    (tmp_path / "metocean").mkdir()
+    scene_file = tmp_path / "scenes" / "floatel_100yr.yaml"
+    data = yaml.safe_load((REPO / "scenes" / "floatel_100yr.yaml").read_text())
+    for key in ("vessel", "mooring"):   # tested in the repo test above when present
+        data.pop(key, None)
+    scene_file.write_text(yaml.safe_dump(data))
+    (tmp_path / "metocean" / "heidrun_100yr.yaml").write_text(yaml.safe_dump(ENVIRONMENT))
+    scene = load_scene(scene_file)
+    a = scene.analysis
+    # 12000 s with a 1200 s transient leaves the 3-hour window of seed 002 (SIMO runs of 12000 s)
+    assert (a.duration, a.transient, a.duration - a.transient) == (12000.0, 1200.0, 10800.0)
+    assert a.seeds == tuple(range(1, 21))
