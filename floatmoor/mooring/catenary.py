@@ -507,9 +507,14 @@ class CatenaryResult:
 def _raise_status(status, what):
     if status == -4:
         raise ValueError(f"invalid catenary input: {what}")
+    if status in (-2, -3):
+        remedy = ("add weight or shorten the buoyant part so that it stays suspended; a lazy-wave "
+                  "shape whose buoyant part touches the seabed is not modelled")
+    else:
+        remedy = ("check the line length against the anchor-fairlead distance, EA and submerged "
+                  "weight; give a warm start (hf0, vf0)")
     raise ConvergenceError(f"catenary: {STATUS_MESSAGES.get(status, status)}", where=what,
-                           remedy="check the line length against the anchor-fairlead distance, "
-                                  "EA and submerged weight; give a warm start (hf0, vf0)")
+                           remedy=remedy)
 
 
 def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) -> CatenaryResult:
