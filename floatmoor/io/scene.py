@@ -21,7 +21,8 @@ Adding a section (``forces:``, ``frequency_domain:``, ``post:``, ...)
 Write ``parse_x(scene_node, key, parsed) -> XSpec`` (and optionally ``describe`` and ``models``
 functions) in a sibling module, add a field ``x: XSpec | None = None`` to :class:`Scene` and one
 :class:`Section` entry to :data:`SECTIONS` below.  The allowed top-level keys, the parsing order,
-``Scene.describe()`` and ``Scene.active_models()`` all follow from :data:`SECTIONS`.
+``Scene.describe()`` and ``Scene.active_models()`` all follow from :data:`SECTIONS`.  Checks
+that involve several sections go in :data:`floatmoor.io.checks.SCENE_CHECKS`.
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from ..core.config import Node
 from ..core.errors import SceneError
 from ..metocean.config import Environment
 from .analysis import AnalysisSpec, describe_analysis, parse_analysis
+from .checks import SCENE_CHECKS
 from .environment import describe_environment, environment_models, parse_environment
 from .site import SiteSpec, parse_site
 
@@ -235,4 +237,7 @@ def load_scene(path: str | os.PathLike) -> Scene:
         if s.required and s.key not in node:
             raise node.error(s.key, f"the {s.key} section (a mapping; it is required)")
         parsed[s.field] = s.parse(node, s.key, parsed)
-    return Scene(name=name, description=description, file=node.file, **parsed)
+    scene = Scene(name=name, description=description, file=node.file, **parsed)
+    for check in SCENE_CHECKS:
+        check(scene)
+    return scene

@@ -73,10 +73,10 @@ def test_optional_wave_settings(tmp_path):
     scene_path, _ = write_case(tmp_path, {}, {
         "waves.gamma": 3.3, "waves.spreading": "cos2s", "waves.spreading_s": 6.0,
         "waves.n_directions": 11, "waves.random_amplitudes": True,
-        "waves.discretisation": {"omega_min": 0.2, "omega_max": 2.5, "n_frequencies": 400}})
+        "waves.discretisation": {"omega_min": 0.2, "omega_max": 2.5, "n_frequencies": 4000}})
     w = load_quietly(scene_path).environment.waves
     assert (w.gamma, w.spreading, w.spreading_s, w.n_directions) == (3.3, "cos2s", 6.0, 11)
-    assert (w.omega_min, w.omega_max, w.n_frequencies) == (0.2, 2.5, 400)
+    assert (w.omega_min, w.omega_max, w.n_frequencies) == (0.2, 2.5, 4000)
     assert w.random_amplitudes is True
 
 
@@ -192,6 +192,15 @@ WARNING_CASES = [
     ("ramp longer than transient", {"analysis.ramp": 2000.0}, {}, "include the ramp-up"),
     ("short statistics window", {"analysis.duration": 1800.0, "analysis.transient": 100.0},
      {}, "shorter than one hour"),
+    # dt 1 s with Tp 18.2 s: 18.2 steps per peak period < 20
+    ("coarse dt", {"analysis.dt": 1.0}, {}, "steps per peak period"),
+    # omega_max 4 rad/s needs dt <= pi/4 = 0.785 s; dt 0.8 s (22.75 steps per Tp) is above it
+    ("dt above Nyquist", {"analysis.dt": 0.8}, {"waves.discretisation": {"omega_max": 4.0}},
+     "Nyquist"),
+    # 400 bins over 0.2-2.5 rad/s: domega = 0.00575, 2 pi/domega = 1093 s < 10800 s
+    ("discretisation repeats", {}, {"waves.discretisation": {"omega_min": 0.2, "omega_max": 2.5,
+                                                             "n_frequencies": 400}},
+     "repeat every 2 pi/domega = 1093 s"),
     # 20 m depth, Hs 10 m: 1.86 Hs = 18.6 m > 0.78 d = 15.6 m (depth-limited breaking)
     ("depth-limited breaking", {"site.water_depth": 20.0},
      {"waves.hs": 10.0, "waves.tp": 16.0, "current": DELETE}, "depth-limited"),
@@ -246,3 +255,12 @@ def test_described_gamma_agrees_with_the_metocean_rule(tmp_path, hs, tp):
 def test_load_scene_is_exported_at_the_top_level():
     import floatmoor
     assert floatmoor.load_scene is load_scene
+
+
+def test_scene_pickles_for_worker_processes(tmp_path):
+    # `floatmoor run` sends scenes to worker processes (issue 5): a round trip keeps it equal.
+    import pickle
+    scene_path, _ = write_case(tmp_path, {"mooring": {"lines": []}})
+    scene = load_quietly(scene_path)
+    again = pickle.loads(pickle.dumps(scene))
+    assert again == scene and again.file == scene.file
