@@ -410,7 +410,7 @@ def statistics(data, *, start: float | None = None, end: float | None = None,
                    (start, end))
     i0, i1 = int(idx[0]), int(idx[-1]) + 1
 
-    out = xr.Dataset()
+    data_vars, all_coords = {}, {}
     for name in _time_variables(ds, variables):
         da = ds[name].transpose(..., "time")
         if not np.all(np.isfinite(da.values)):
@@ -425,10 +425,12 @@ def statistics(data, *, start: float | None = None, end: float | None = None,
         label = str(da.attrs.get("long_name", name))
         for stat, values in stats.items():
             template, sunit = STATISTICS[stat]
-            out[f"{name}_{stat}"] = xr.DataArray(
-                values, dims=other, coords=coords,
-                attrs={"units": unit if sunit is None else sunit,
-                       "long_name": template.format(label)})
+            data_vars[f"{name}_{stat}"] = xr.Variable(
+                other, values, attrs={"units": unit if sunit is None else sunit,
+                                      "long_name": template.format(label)})
+            for d, c in coords.items():
+                all_coords.setdefault(d, c)
+    out = xr.Dataset(data_vars, coords=all_coords)
     out.attrs.update({
         "window_start_s": float(t[i0]), "window_end_s": float(t[i1 - 1]),
         "cutoff_hz": float(cutoff),
