@@ -75,6 +75,9 @@ def seed_int(text: str) -> int:
 # -- check ----------------------------------------------------------------------------------------
 def _check_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", metavar="SCENE.yaml", help="the scene file")
+    p.add_argument("--quick", action="store_true",
+                   help="validate the scene and its environment only; do not read the vessel "
+                        "file and its hydrodynamic database")
 
 
 def _check_run(args: argparse.Namespace) -> int:
@@ -82,8 +85,29 @@ def _check_run(args: argparse.Namespace) -> int:
 
     scene = load_scene(args.scene)
     print(scene.describe())
+    if not args.quick:
+        for line in _read_references(scene):
+            print(line)
     print(f"{args.scene}: OK")
     return EXIT_OK
+
+
+def _read_references(scene) -> list[str]:
+    """Read the files the scene refers to with their own readers (a mistake in them is a
+    SceneError naming that file); return lines describing what was read."""
+    lines = []
+    if scene.vessel is not None:
+        try:
+            from .hydro import load_vessel
+        except ImportError:  # pragma: no cover - the hydro layer ships load_vessel
+            lines.append("vessel file: not read (floatmoor.hydro.load_vessel is not available)")
+        else:
+            v = load_vessel(scene.vessel)
+            sizes = ", ".join(f"{n} {k}" for k, n in v.database.sizes.items()
+                              if k in ("omega", "wave_direction"))
+            lines.append(f"vessel file read: {v.name}, mass {v.mass:.6g} kg, database "
+                         f"{v.database_path} ({sizes}), {len(v.fairleads)} fairleads")
+    return lines
 
 
 # -- environment ----------------------------------------------------------------------------------

@@ -178,3 +178,31 @@ def test_environment_scene_error_exits_2(tmp_path, capsys):
     assert main(["environment", str(scene_path)]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"floatmoor: error: {env_path}: waves.tp")
+
+
+# -- check reads the referenced vessel file --------------------------------------------------------
+def test_check_reads_the_vessel_file_and_names_its_mistakes(tmp_path, capsys):
+    pytest.importorskip("floatmoor.hydro.vessel")
+    (tmp_path / "vessels").mkdir()
+    vessel = tmp_path / "vessels" / "vessel.yaml"
+    vessel.write_text("name: broken\nmass: -1.0\ncentre_of_gravity: [0, 0, 0]\n"
+                      "inertia_cg: [1, 1, 1]\ndatabase: db.nc\n")
+    scene_path, _ = write_case(tmp_path, {"vessel": "../vessels/vessel.yaml"})
+    assert main(["check", str(scene_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"floatmoor: error: {vessel}: mass: expected a number > 0")
+    # --quick validates the scene only
+    assert main(["check", "--quick", str(scene_path)]) == 0
+    assert f"vessel: {vessel}" in capsys.readouterr().out
+
+
+def test_check_reads_a_real_vessel(tmp_path, capsys):
+    pytest.importorskip("floatmoor.hydro.vessel")
+    from .io.test_example_scenes import REPO
+    vessel = REPO / "vessels" / "oc3_hywind" / "vessel.yaml"
+    if not vessel.exists():
+        pytest.skip("vessels/oc3_hywind not in this tree")
+    scene_path, _ = write_case(tmp_path, {"vessel": str(vessel.parent), "site.water_depth": 320.0})
+    assert main(["check", str(scene_path)]) == 0
+    out = capsys.readouterr().out
+    assert f"vessel: {vessel}" in out and "vessel file read: oc3_hywind" in out

@@ -4,7 +4,8 @@
 name: floatel-like-100yr-head-seas
 description: optional free text
 site: {water_depth: 150.0, water_density: 1025.0}   # gravity, air_density optional
-vessel: ../vessels/floatel_like/vessel.yaml          # relative to this file; must exist
+vessel: ../vessels/floatel_like/vessel.yaml          # relative to this file; must exist (or
+                                                     # the folder holding vessel.yaml)
 environment: ../metocean/heidrun_100yr.yaml          # a file, or the same mapping inline
 mooring: ../vessels/floatel_like/mooring.yaml        # a file, or a mapping inline
 analysis: {duration: 10800.0, dt: 0.1, transient: 1200.0, ramp: 100.0, seeds: [1, 20]}
@@ -55,8 +56,11 @@ def _parse_vessel(node: Node, key: str, parsed: Mapping[str, Any]) -> Path | Non
     if key not in node:
         return None
     path = node.path_value(key)
-    if path.is_dir():
-        raise node.error(key, "a path to a vessel file (not a folder)", node.raw(key))
+    if path.is_dir():  # a vessel folder holds vessel.yaml (as floatmoor.hydro.load_vessel reads)
+        if not (path / "vessel.yaml").is_file():
+            raise node.error(key, "a vessel file, or a folder holding vessel.yaml",
+                             node.raw(key), f"{path / 'vessel.yaml'} does not exist")
+        path = path / "vessel.yaml"
     return path
 
 

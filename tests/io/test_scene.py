@@ -264,3 +264,10 @@ def test_scene_pickles_for_worker_processes(tmp_path):
     scene = load_quietly(scene_path)
     again = pickle.loads(pickle.dumps(scene))
     assert again == scene and again.file == scene.file
+
+
+def test_vessel_may_be_given_as_its_folder(tmp_path):
+    (tmp_path / "vessels" / "semi").mkdir(parents=True)
+    (tmp_path / "vessels" / "semi" / "vessel.yaml").write_text("name: semi\n")
+    scene_path, _ = write_case(tmp_path, {"vessel": "../vessels/semi"})
+    assert load_quietly(scene_path).vessel == tmp_path / "vessels" / "semi" / "vessel.yaml"

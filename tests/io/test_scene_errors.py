@@ -150,8 +150,8 @@ CASES = [
      "existing file", "../vessels/nope/vessel.yaml"),
     ("missing mooring file", {"mooring": "../vessels/nope/mooring.yaml"}, {}, "scene",
      "mooring", "existing file", "../vessels/nope/mooring.yaml"),
-    ("vessel is a folder", {"vessel": "../metocean"}, {}, "scene", "vessel", "not a folder",
-     "../metocean"),
+    ("vessel folder without vessel.yaml", {"vessel": "../metocean"}, {}, "scene", "vessel",
+     "folder holding vessel.yaml", "../metocean"),
     ("empty name", {"name": " "}, {}, "scene", "name", "non-empty", " "),
 ]
 
