@@ -35,7 +35,6 @@ from __future__ import annotations
 import math
 import os
 import warnings
-from pathlib import Path
 
 from ..core.config import Node
 from ..core.constants import GRAVITY

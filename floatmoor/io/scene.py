@@ -34,7 +34,6 @@ from pathlib import Path
 from typing import Any, Callable, Mapping
 
 from ..core.config import Node
-from ..core.errors import SceneError
 from ..metocean.config import Environment
 from .analysis import AnalysisSpec, describe_analysis, parse_analysis
 from .checks import SCENE_CHECKS

@@ -1,6 +1,5 @@
 """The example scenes in scenes/ load and validate (the README and `floatmoor check` use them)."""
 
-import shutil
 import warnings
 from pathlib import Path
 

@@ -14,7 +14,7 @@ from floatmoor.io.environment import peak_wavelength
 from floatmoor.io.scene import SECTIONS, scene_keys
 from floatmoor.metocean.config import CurrentSpec, Environment, WaveSpec, WindSpec
 
-from .helpers import DELETE, ENVIRONMENT, SCENE, write_case
+from .helpers import DELETE, ENVIRONMENT, write_case
 
 
 def load_quietly(path):
