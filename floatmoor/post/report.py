@@ -1,0 +1,480 @@
+"""Design report from time-domain seeds: self-contained HTML, Markdown, CSV and netCDF summary.
+
+:func:`build_report` takes the per-seed result Datasets of one sea state (the simulator's format:
+``motion(time, dof)`` in m / rad, ``line_tension(time, line)`` in N, attributes ``seed`` and
+``scene``) and writes
+
+* ``report.html`` -- opens in a browser with no network: CSS inline, plots as base64 PNG;
+* ``report.md`` -- the same tables in Markdown (plots as separate PNG files beside it);
+* ``summary.csv`` -- one row per line and limit state;
+* ``summary.nc`` -- the per-line check Dataset and the statistics.
+
+Method (seed ``002_783d33d2c304eef8.txt`` section 5.4.4 and chapter 3): per seed, statistics in
+the window; per line, a Gumbel fit of the seed maxima; the characteristic tension is its 90 %
+fractile; the design check is DNV-OS-E301 eq. 3.4 with the partial factors of
+:mod:`floatmoor.post.dnv_os_e301`.  Plots need matplotlib (optional); without it the report has
+tables only and says so.
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import html
+import io
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..core.errors import SceneError
+from . import dnv_os_e301 as dnv
+from .extremes import gumbel_fit
+from .timeseries import DEFAULT_CUTOFF_HZ, per_seed_statistics, window
+
+__all__ = ["ReportFiles", "build_report", "summarise"]
+
+_KN = 1e-3
+
+
+def _bad(key, expected, found):
+    return SceneError(None, key, expected, found)
+
+
+@dataclass(frozen=True)
+class ReportFiles:
+    """Paths written by :func:`build_report` and the summary Datasets."""
+
+    html: Path
+    markdown: Path
+    csv: Path
+    netcdf: Path
+    checks: xr.Dataset
+    statistics: xr.Dataset
+    characteristic: xr.Dataset
+
+
+def _version() -> str:
+    try:
+        from .. import __version__
+        return str(__version__)
+    except Exception:  # pragma: no cover
+        return "unknown"
+
+
+def _check_results(results, key):
+    results = list(results)
+    if not results:
+        raise _bad(key, "at least one per-seed result Dataset", "none")
+    for i, ds in enumerate(results):
+        if not isinstance(ds, xr.Dataset):
+            raise _bad(f"{key}[{i}]", "an xarray Dataset", type(ds).__name__)
+        if "line_tension" not in ds:
+            raise _bad(f"{key}[{i}]", "a 'line_tension(time, line)' variable",
+                       list(map(str, ds.data_vars)))
+        unit = ds["line_tension"].attrs.get("units", "N")
+        if unit != "N":
+            raise _bad(f"{key}[{i}].line_tension.units", "'N'", unit)
+    if len(results) < 3:
+        raise _bad(key, "results of at least 3 seeds for a Gumbel fit (the seed uses 20)",
+                   len(results))
+    return results
+
+
+def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Dataset] | None = None,
+              failed_lines: Sequence | None = None, consequence_class: int = 2,
+              analysis: str = "dynamic", start: float | None = None, end: float | None = None,
+              cutoff: float = DEFAULT_CUTOFF_HZ, p: float = 0.9, method: str = "mle"):
+    """Statistics, characteristic tensions and design checks of a set of seeds.
+
+    Parameters
+    ----------
+    results : sequence of xarray.Dataset
+        Intact-system seeds (``line_tension`` in N, optional ``motion``).
+    mbs : float or array_like
+        Minimum breaking strength per line in N.
+    als_results : sequence of xarray.Dataset, optional
+        Seeds with one line failed (ALS); the failed line(s) are excluded from the ALS check.
+    failed_lines : sequence, optional
+        Names of the failed lines in ``als_results`` (default: the results' ``failed_lines``
+        attribute, else lines whose tension is zero throughout).
+    consequence_class, analysis : see :func:`floatmoor.post.dnv_os_e301.partial_factors`.
+    start, end : float, optional
+        Statistics window in s.
+    cutoff : float
+        LF/WF cut-off in Hz.
+    p : float
+        Gumbel fractile of the characteristic tension (0.9).
+    method : str
+        Gumbel fit method.
+
+    Returns
+    -------
+    (checks, statistics, characteristic) : tuple of xarray.Dataset
+        :func:`~floatmoor.post.dnv_os_e301.check_lines` output; per-seed statistics; the ULS
+        characteristic tensions (:func:`~floatmoor.post.dnv_os_e301.characteristic_tensions`).
+    """
+    results = _check_results(results, "results")
+    stats = per_seed_statistics(results, start=start, end=end, cutoff=cutoff)
+    ct = dnv.characteristic_tensions(stats["line_tension_max"], stats["line_tension_mean"],
+                                     p=p, method=method)
+    lines = list(ct["line"].values)
+    als_mean = als_max = None
+    if als_results is not None:
+        als_results = _check_results(als_results, "als_results")
+        astats = per_seed_statistics(als_results, start=start, end=end, cutoff=cutoff,
+                                     variables=["line_tension"])
+        if list(astats["line"].values) != lines:
+            raise _bad("als_results", f"the same lines as the intact results {lines}",
+                       list(astats["line"].values))
+        if failed_lines is None:
+            attr = als_results[0].attrs.get("failed_lines")
+            if attr is not None:
+                failed_lines = list(np.atleast_1d(attr))
+            else:
+                dead = np.all(astats["line_tension_max"].values <= 0.0, axis=0)
+                failed_lines = [ln for ln, d in zip(lines, dead) if d]
+        failed = {str(f) for f in failed_lines}
+        if not failed <= {str(ln) for ln in lines}:
+            raise _bad("failed_lines", f"names of lines among {lines}", sorted(failed))
+        alive = np.array([str(ln) not in failed for ln in lines])
+        sub_max = astats["line_tension_max"].isel(line=np.flatnonzero(alive))
+        sub_mean = astats["line_tension_mean"].isel(line=np.flatnonzero(alive))
+        act = dnv.characteristic_tensions(sub_max, sub_mean, p=p, method=method)
+        als_mean = np.full(len(lines), np.nan)
+        als_max = np.full(len(lines), np.nan)
+        als_mean[alive] = act["t_c_mean"].values
+        als_max[alive] = act["t_c"].values
+    checks = dnv.check_lines(lines, mbs, uls_mean=ct["t_c_mean"].values, uls_max=ct["t_c"].values,
+                             als_mean=als_mean, als_max=als_max,
+                             consequence_class=consequence_class, analysis=analysis)
+    checks.attrs["gumbel_fractile"] = float(p)
+    checks.attrs["gumbel_method"] = method
+    checks.attrs["n_seeds"] = len(results)
+    if als_results is not None:
+        checks.attrs["failed_lines"] = ", ".join(sorted(failed))
+    return checks, stats, ct
+
+
+# -- rendering helpers --------------------------------------------------------------------------
+
+_CSS = """
+body{font-family:system-ui,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;max-width:1200px;color:#222}
+h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}
+table{border-collapse:collapse;margin:0.6em 0;font-size:0.9em}
+th,td{border:1px solid #bbb;padding:3px 7px;text-align:right}
+th{background:#eef}td.name,th.name{text-align:left}
+tr.governing td{background:#ffe08a;font-weight:bold}
+td.fail{color:#b00;font-weight:bold}td.pass{color:#070}
+.meta td{text-align:left}figure{display:inline-block;margin:0.5em}figcaption{font-size:0.85em}
+.note{font-size:0.85em;color:#555}
+"""
+
+
+def _fmt(v, digits=1):
+    if isinstance(v, (bool, np.bool_)):
+        return "yes" if v else "no"
+    if v is None or (isinstance(v, (float, np.floating)) and not np.isfinite(v)):
+        return "n/a"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, np.floating)):
+        return f"{v:.{digits}f}"
+    return str(v)
+
+
+class _Table:
+    """A table rendered to HTML and Markdown from the same rows."""
+
+    def __init__(self, table_id, caption, header, rows, *, highlight=None, status_col=None):
+        self.id, self.caption, self.header, self.rows = table_id, caption, header, rows
+        self.highlight = highlight or [False] * len(rows)
+        self.status_col = status_col
+
+    def html(self):
+        out = [f'<table id="{self.id}"><caption>{html.escape(self.caption)}</caption><thead><tr>']
+        out += [f'<th class="{"name" if i == 0 else ""}">{html.escape(h)}</th>'
+                for i, h in enumerate(self.header)]
+        out.append("</tr></thead><tbody>")
+        for row, hl in zip(self.rows, self.highlight):
+            out.append('<tr class="governing">' if hl else "<tr>")
+            for i, cell in enumerate(row):
+                cls = "name" if i == 0 else ""
+                if i == self.status_col:
+                    cls = {"PASS": "pass", "FAIL": "fail"}.get(cell, "")
+                out.append(f'<td class="{cls}">{html.escape(cell)}</td>')
+            out.append("</tr>")
+        out.append("</tbody></table>")
+        return "".join(out)
+
+    def markdown(self):
+        lines = [f"**{self.caption}**", "", "| " + " | ".join(self.header) + " |",
+                 "|" + "|".join(["---"] * len(self.header)) + "|"]
+        for row, hl in zip(self.rows, self.highlight):
+            cells = [f"**{c}**" if hl else c for c in row]
+            lines.append("| " + " | ".join(cells) + " |")
+        return "\n".join(lines) + "\n"
+
+
+def _line_table(checks, ct, stats, ls):
+    c = checks.sel(limit_state=ls)
+    header = ["line", "mean [kN]", "std [kN]", "max obs. [kN]", "Gumbel MPM [kN]",
+              "Gumbel 90% [kN]", "T_C-mean [kN]", "T_C-dyn [kN]", "T_C [kN]", "S_C [kN]",
+              "gamma_mean", "gamma_dyn", "design T [kN]", "utilisation", "check",
+              "SF = MBS/T_C"]
+    rows, hl = [], []
+    std = stats["line_tension_std"].mean("seed") if ls == "ULS" else None
+    for j, line in enumerate(c["line"].values):
+        checked = bool(c["checked"].values[j])
+        row = [str(line)]
+        if ls == "ULS":
+            row += [_fmt(ct["t_c_mean"].values[j] * _KN), _fmt(float(std.values[j]) * _KN),
+                    _fmt(ct["max_observed"].values[j] * _KN), _fmt(ct["gumbel_mpm"].values[j] * _KN),
+                    _fmt(ct["gumbel_p90"].values[j] * _KN)]
+        else:
+            row += ["", "", "", "", ""]
+        row += [_fmt(c["t_c_mean"].values[j] * _KN), _fmt(c["t_c_dyn"].values[j] * _KN),
+                _fmt(c["t_c"].values[j] * _KN), _fmt(c["s_c"].values[j] * _KN),
+                _fmt(c["gamma_mean"].values[j], 2), _fmt(c["gamma_dyn"].values[j], 2),
+                _fmt(c["design_tension"].values[j] * _KN), _fmt(c["utilisation"].values[j], 3),
+                ("PASS" if c["passed"].values[j] else "FAIL") if checked else "failed line",
+                _fmt(c["safety_factor"].values[j], 2)]
+        if bool(c["common_factor_applied"].values[j]):
+            row[11] += " (common 1.3)"
+        rows.append(row)
+        hl.append(bool(c["governing"].values[j]))
+    caption = (f"{ls}: per-line tensions and DNV-OS-E301 check (consequence class "
+               f"{checks.attrs['consequence_class']}, {checks.attrs['analysis']} analysis); "
+               f"governing line {c['governing_line'].item()} highlighted")
+    return _Table(f"lines_{ls.lower()}", caption, header, rows, highlight=hl, status_col=14)
+
+
+def _motion_table(stats):
+    if "motion_mean" not in stats:
+        return None
+    header = ["DOF", "unit", "mean", "std", "max", "min", "LF max", "WF sig", "Gumbel 90% of max"]
+    rows = []
+    for j, dof in enumerate(stats["dof"].values):
+        mx = stats["motion_max"].values[:, j]
+        unit = stats["motion_mean"].attrs.get("units", "")
+        try:
+            g90 = _fmt(gumbel_fit(mx).p90, 3) if np.ptp(mx) > 0 else "n/a"
+        except SceneError:
+            g90 = "n/a"
+        rows.append([str(dof), unit] + [
+            _fmt(float(stats[f"motion_{k}"].values[:, j].mean()), 3)
+            for k in ("mean", "std")] + [
+            _fmt(float(np.max(stats["motion_max"].values[:, j])), 3),
+            _fmt(float(np.min(stats["motion_min"].values[:, j])), 3),
+            _fmt(float(stats["motion_lf_max"].values[:, j].mean()), 3),
+            _fmt(float(stats["motion_wf_sig"].values[:, j].mean()), 3), g90])
+    return _Table("offsets", "Motions: mean over seeds of mean, std, LF max (mean included) and "
+                  "WF significant value; max/min over all seeds; Gumbel 90 % value of the seed "
+                  "maxima", header, rows)
+
+
+def _png(fig) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
+    return buf.getvalue()
+
+
+def _plots(results, checks, ct, stats, start, end):
+    """Return list of (name, caption, png bytes); empty if matplotlib is missing."""
+    try:
+        from matplotlib.figure import Figure     # no pyplot: no global state, no backend switch
+    except ImportError:
+        return []
+
+    def subplots(figsize):
+        fig = Figure(figsize=figsize)
+        return fig, fig.subplots()
+
+    out = []
+    gov = checks["governing_line"].sel(limit_state="ULS").item()
+    first = window(results[0], start, end)
+    # 1. governing line time series
+    fig, ax = subplots((9, 3))
+    tl = first["line_tension"].sel(line=_line_key(first, gov))
+    ax.plot(first["time"].values, tl.values * _KN, lw=0.6)
+    ax.axhline(float(ct["t_c"].sel(line=_line_key(ct, gov))) * _KN, color="C3", ls="--",
+               label="T_C (Gumbel 90 %)")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("tension [kN]")
+    ax.set_title(f"line {gov}, seed {results[0].attrs.get('seed', 0)}")
+    ax.legend(fontsize="small")
+    out.append(("timeseries_governing", f"Tension time series of the governing line {gov}",
+                _png(fig)))
+    # 2. Gumbel plot of the governing line
+    fit = gumbel_fit(stats["line_tension_max"].sel(line=_line_key(stats, gov)).values * _KN,
+                     method=checks.attrs.get("gumbel_method", "mle"))
+    fig, ax = subplots((5.5, 4))
+    fit.plot(ax, label="seed maxima", unit="kN")
+    ax.set_title(f"Gumbel plot, line {gov}")
+    out.append(("gumbel_governing", f"Gumbel probability plot of the seed maxima of line {gov}",
+                _png(fig)))
+    # 3. tension per line
+    c = checks.sel(limit_state="ULS")
+    x = np.arange(c.sizes["line"])
+    fig, ax = subplots((8, 3.5))
+    ax.plot(x, c["t_c_mean"].values * _KN, "o-", label="T_C-mean")
+    ax.plot(x, c["t_c"].values * _KN, "s-", label="T_C (ULS)")
+    ax.plot(x, c["design_tension"].values * _KN, "^-", label="design tension (ULS)")
+    if "ALS" in checks["limit_state"].values:
+        ax.plot(x, checks.sel(limit_state="ALS")["t_c"].values * _KN, "v--", label="T_C (ALS)")
+    ax.plot(x, c["s_c"].values * _KN, "k:", label="S_C")
+    ax.set_xticks(x, [str(v) for v in c["line"].values])
+    ax.set_xlabel("line")
+    ax.set_ylabel("tension [kN]")
+    ax.legend(fontsize="small")
+    out.append(("tension_per_line", "Characteristic and design tension per line against S_C",
+                _png(fig)))
+    # 4. offset
+    if "motion" in first:
+        fig, ax = subplots((9, 3))
+        m = first["motion"]
+        for dof in ("surge", "sway"):
+            if "dof" in m.coords and dof in m["dof"].values:
+                ax.plot(first["time"].values, m.sel(dof=dof).values, lw=0.6, label=dof)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel(f"offset [{m.attrs.get('units', 'm')}]")
+        ax.legend(fontsize="small")
+        ax.set_title(f"horizontal offset, seed {results[0].attrs.get('seed', 0)}")
+        out.append(("offset", "Horizontal offset time series", _png(fig)))
+    return out
+
+
+def _line_key(ds, name):
+    for v in ds["line"].values:
+        if str(v) == str(name):
+            return v
+    raise KeyError(name)
+
+
+def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
+                 als_results: Sequence[xr.Dataset] | None = None,
+                 failed_lines: Sequence | None = None, consequence_class: int = 2,
+                 analysis: str = "dynamic", start: float | None = None, end: float | None = None,
+                 cutoff: float = DEFAULT_CUTOFF_HZ, p: float = 0.9, method: str = "mle",
+                 title: str | None = None, plots: bool = True) -> ReportFiles:
+    """Write the DNV-OS-E301 report of a set of seeds (HTML, Markdown, CSV, netCDF).
+
+    Parameters
+    ----------
+    results : sequence of xarray.Dataset
+        Per-seed intact results (``line_tension(time, line)`` in N, ``motion(time, dof)``).
+    mbs : float or array_like
+        Minimum breaking strength per line in N.
+    out_dir : path
+        Output folder (created).
+    als_results, failed_lines, consequence_class, analysis, start, end, cutoff, p, method
+        As :func:`summarise`.
+    title : str, optional
+        Report title (default from the ``scene`` attribute).
+    plots : bool
+        Embed plots (needs matplotlib; skipped with a note when missing).
+
+    Returns
+    -------
+    ReportFiles
+    """
+    results = _check_results(results, "results")
+    checks, stats, ct = summarise(results, mbs, als_results=als_results,
+                                  failed_lines=failed_lines,
+                                  consequence_class=consequence_class, analysis=analysis,
+                                  start=start, end=end, cutoff=cutoff, p=p, method=method)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    scene = str(results[0].attrs.get("scene", "unnamed scene"))
+    title = title or f"Mooring design report: {scene}"
+    seeds = [int(s) for s in stats["seed"].values]
+    meta = [
+        ("scene", scene),
+        ("software", f"floatmoor {_version()}"),
+        ("generated", _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")),
+        ("standard", dnv.SOURCE),
+        ("consequence class", str(consequence_class)),
+        ("analysis of WF tension", analysis),
+        ("seeds", f"{len(seeds)}: {', '.join(map(str, seeds))}"),
+        ("statistics window", f"{stats.attrs['window_start_s']:g} - {stats.attrs['window_end_s']:g} s"),
+        ("LF/WF cut-off", f"{stats.attrs['cutoff_hz']:.5f} Hz ({stats.attrs['filter']})"),
+        ("characteristic tension", f"Gumbel ({method}) {p:g} fractile of the seed maxima"),
+        ("governing", f"line {checks.attrs['governing_line']} in {checks.attrs['governing_limit_state']}, "
+                      f"utilisation {checks.attrs['max_utilisation']:.3f}"),
+        ("verdict", "all lines pass" if checks.attrs["all_passed"] else "at least one line FAILS"),
+    ]
+    if "failed_lines" in checks.attrs:
+        meta.append(("ALS failed line(s)", checks.attrs["failed_lines"]))
+    tables = [_line_table(checks, ct, stats, ls) for ls in checks["limit_state"].values]
+    mt = _motion_table(stats)
+    if mt is not None:
+        tables.append(mt)
+    figs = _plots(results, checks, ct, stats, start, end) if plots else []
+
+    # HTML
+    parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+             f"<title>{html.escape(title)}</title><style>{_CSS}</style></head><body>",
+             f"<h1>{html.escape(title)}</h1>", '<table class="meta" id="meta"><tbody>']
+    parts += [f"<tr><th class='name'>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
+              for k, v in meta]
+    parts.append("</tbody></table>")
+    for t in tables:
+        parts.append(f"<h2>{html.escape(t.caption.split(':')[0])}</h2>")
+        parts.append(t.html())
+    parts.append("<h2>Plots</h2>")
+    if figs:
+        for name, caption, png in figs:
+            b64 = base64.b64encode(png).decode("ascii")
+            parts.append(f'<figure id="fig_{name}"><img alt="{html.escape(caption)}" '
+                         f'src="data:image/png;base64,{b64}"><figcaption>{html.escape(caption)}'
+                         "</figcaption></figure>")
+    else:
+        parts.append("<p class='note'>No plots: matplotlib is not installed "
+                     "(pip install floatmoor[plot]).</p>")
+    parts.append(f"<p class='note'>{html.escape(dnv.SOURCE)}.</p></body></html>")
+    html_path = out / "report.html"
+    html_path.write_text("".join(parts), encoding="utf-8")
+
+    # Markdown (+ PNG files)
+    md = [f"# {title}", ""] + [f"- **{k}**: {v}" for k, v in meta] + [""]
+    for t in tables:
+        md += [t.markdown(), ""]
+    for name, caption, png in figs:
+        (out / f"{name}.png").write_bytes(png)
+        md.append(f"![{caption}]({name}.png)")
+    md_path = out / "report.md"
+    md_path.write_text("\n".join(md) + "\n", encoding="utf-8")
+
+    # CSV
+    cols = ["t_c_mean", "t_c_dyn", "t_c", "s_mbs", "s_c", "gamma_mean", "gamma_dyn",
+            "common_factor_applied", "design_tension", "margin", "utilisation", "checked",
+            "passed", "safety_factor", "governing"]
+    rows = ["limit_state,line," + ",".join(f"{c}[{checks[c].attrs['units']}]" for c in cols)]
+    for ls in checks["limit_state"].values:
+        c = checks.sel(limit_state=ls)
+        for j, line in enumerate(c["line"].values):
+            vals = []
+            for col in cols:
+                v = c[col].values[j]
+                vals.append(str(int(v)) if isinstance(v, (bool, np.bool_)) else repr(float(v)))
+            rows.append(f"{ls},{line}," + ",".join(vals))
+    csv_path = out / "summary.csv"
+    csv_path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+
+    # netCDF
+    nc = checks.copy()
+    nc["governing_line"] = nc["governing_line"].astype(str)
+    for name in ("passed", "checked", "governing", "common_factor_applied"):
+        nc[name] = nc[name].astype(np.int8)
+    for name, var in ct.data_vars.items():
+        nc[f"uls_{name}"] = var
+    for name, var in stats.data_vars.items():
+        nc[f"seed_{name}"] = var
+    nc.attrs["scene"] = scene
+    nc.attrs["software"] = f"floatmoor {_version()}"
+    nc_path = out / "summary.nc"
+    nc.to_netcdf(nc_path)
+    return ReportFiles(html=html_path, markdown=md_path, csv=csv_path, netcdf=nc_path,
+                       checks=checks, statistics=stats, characteristic=ct)
