@@ -24,10 +24,11 @@ factors for the ULS and the ALS.  The numbers are those the seed reproduces:
   applicable, may be accepted with the ULS factors increased by a factor 1.2
   (``single_point_mooring=True``);
 * characteristic strength of the main body of a line, ``S_C = 0.95 S_mbs`` (DNV-OS-E301
-  Ch.2 Sec.2, characteristic capacity, for chain, steel wire rope and fibre rope when no
-  further statistical strength data are available; the seed's section 3.2 explains why the
-  strength of a long line is below the average component strength but gives no number).
-  The factor is a parameter (``strength_factor``).
+  Ch.2 Sec.2, characteristic capacity, for a line of new chain or steel wire rope components
+  whose strength statistics are not documented; the seed's section 3.2 explains why the
+  strength of a long line is below the average component strength but gives no number, and
+  the 2008 text for fibre rope was not checked here).  The factor is a parameter
+  (``strength_factor``).
 
 The simple safety factor ``SF = S_MBS / T_C`` (seed eq. 3.3) is what MIMOSA prints in figure 5.9
 (e.g. line 7: 8500 kN / 4762.9 kN = 1.78).
@@ -138,7 +139,11 @@ class PartialFactors:
 
     @property
     def common_factor_possible(self) -> bool:
-        """Whether the common factor 1.3 of the remark under table 3.1 can apply."""
+        """Whether the common factor 1.3 of the remark under table 3.1 can apply.
+
+        Not combined with the single-point-mooring increase: the seed does not say how the two
+        remarks combine, so a single point mooring keeps its 1.2 x table factors.
+        """
         return (self.limit_state == "ULS" and self.consequence_class == 1
                 and self.analysis == "dynamic" and not self.single_point_mooring)
 

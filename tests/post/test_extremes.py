@@ -1,7 +1,6 @@
 """Extreme-value statistics against scipy, closed forms, hand computations and Monte Carlo."""
 
 import math
-import warnings
 
 import numpy as np
 import pytest
