@@ -3,3 +3,7 @@
 from .catenary import CatenaryResult, LineSolution, catenary, line_profile, solve_line
 
 __all__ = ["catenary", "CatenaryResult", "solve_line", "LineSolution", "line_profile"]
+from .line_types import LineType, LineTypeLibrary, default_library  # noqa: E402
+from .system import LineDef, MooringSystem, Segment  # noqa: E402
+
+__all__ += ["LineType", "LineTypeLibrary", "default_library", "LineDef", "MooringSystem", "Segment"]
