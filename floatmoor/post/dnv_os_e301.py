@@ -66,8 +66,8 @@ SOURCE = (
     "DNV-OS-E301 Position Mooring, October 2008 edition, Ch.2 Sec.2 (characteristic capacity "
     "S_C = 0.95 S_mbs; partial safety factors for ULS and ALS), as reproduced in seed "
     "002_783d33d2c304eef8 (Wang 2016) eq. 3.4, tables 3.1 and 3.2 and the remarks under "
-    "table 3.1; characteristic tension = 90 % Gumbel fractile of 20 seed maxima (seed "
-    "section 5.4.4)")
+    "table 3.1; the seed's practice for the characteristic tension is the 90 % Gumbel "
+    "fractile of the 3-hour maxima of 20 seeds (section 5.4.4)")
 """A sentence a report can print: where the factors and the method come from."""
 
 ANALYSES = ("dynamic", "quasi-static")
