@@ -1,0 +1,113 @@
+"""Database form, netCDF round trip and validator."""
+
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from floatmoor.core.errors import FloatmoorWarning, SceneError
+from floatmoor.hydro import (DatabaseError, load_database, make_database, save_database,
+                             validate_database)
+
+
+def _toy(n=5, nb=3, seed=0):
+    rng = np.random.default_rng(seed)
+    w = np.linspace(0.2, 1.0, n)
+    A = rng.normal(size=(n, 6, 6))
+    A = A + np.swapaxes(A, 1, 2) + 10 * np.eye(6)
+    B = np.abs(rng.normal(size=(n, 6, 6)))
+    B = B + np.swapaxes(B, 1, 2)
+    X = rng.normal(size=(n, nb, 6)) + 1j * rng.normal(size=(n, nb, 6))
+    D = rng.normal(size=(n, nb, 6))
+    return make_database(w, np.radians(np.linspace(0, 90, nb)), added_mass=A, radiation_damping=B,
+                         excitation_force=X, infinite_frequency_added_mass=A[-1],
+                         hydrostatic_stiffness=np.diag([0, 0, 1e6, 1e8, 1e8, 0.0]),
+                         mean_drift_force=D, source="toy")
+
+
+def test_every_variable_has_units_and_long_name():
+    ds = _toy()
+    for name in list(ds.data_vars) + ["omega", "wave_direction"]:
+        assert ds[name].attrs.get("units"), name
+        assert ds[name].attrs.get("long_name"), name
+    assert ds.attrs["phase_convention"] == "exp(+i omega t)"
+    assert ds.added_mass.dims == ("omega", "influenced_dof", "radiating_dof")
+
+
+def test_netcdf_round_trip_splits_complex_values(tmp_path):
+    ds = _toy()
+    path = save_database(ds, tmp_path / "db.nc")
+    with xr.open_dataset(path) as raw:  # on disk: Capytaine's re/im split
+        assert "complex" in raw.dims
+        assert list(raw["complex"].values) == ["re", "im"]
+        assert raw.excitation_force.dims[-1] == "complex"
+    back = load_database(path)
+    for name in ds.data_vars:
+        np.testing.assert_array_equal(back[name].values, ds[name].values)
+        assert back[name].dims == ds[name].dims
+    assert np.iscomplexobj(back.excitation_force.values)
+    assert list(back.influenced_dof.values) == list(ds.influenced_dof.values)
+    np.testing.assert_array_equal(back.attrs["reference_point"], [0, 0, 0])
+
+
+def test_missing_file_names_the_file(tmp_path):
+    with pytest.raises(SceneError, match="nothere.nc"):
+        load_database(tmp_path / "nothere.nc")
+
+
+def test_garbage_file_names_the_file(tmp_path):
+    p = tmp_path / "bad.nc"
+    p.write_text("not netcdf")
+    with pytest.raises(DatabaseError, match="bad.nc"):
+        load_database(p)
+
+
+def test_validator_errors_name_the_quantity():
+    ds = _toy()
+    bad = ds.assign_coords(omega=ds.omega.values[::-1])
+    with pytest.raises(DatabaseError, match="omega.*increasing"):
+        validate_database(bad, name="x.nc")
+    bad = ds.copy()
+    bad.attrs["phase_convention"] = "exp(-i omega t)"
+    with pytest.raises(DatabaseError, match="phase_convention"):
+        validate_database(bad, name="x.nc")
+    bad = ds.copy(deep=True)
+    bad.added_mass.values[1, 2, 2] = np.nan
+    with pytest.raises(DatabaseError, match="x.nc: added_mass"):
+        validate_database(bad, name="x.nc")
+    bad = ds.drop_vars("radiation_damping")
+    with pytest.raises(DatabaseError, match="radiation_damping"):
+        validate_database(bad, name="x.nc")
+    bad = ds.assign_coords(influenced_dof=["x", "sway", "heave", "roll", "pitch", "yaw"])
+    with pytest.raises(DatabaseError, match="influenced_dof"):
+        validate_database(bad, name="x.nc")
+    bad = ds.assign_coords(wave_direction=[0.0, 45.0, 90.0])  # degrees by mistake
+    with pytest.raises(DatabaseError, match="wave_direction"):
+        validate_database(bad, name="x.nc")
+
+
+def test_validator_warns_on_asymmetry_and_negative_damping():
+    ds = _toy()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        validate_database(ds, name="ok.nc")  # no warning for a clean database
+    bad = ds.copy(deep=True)
+    bad.added_mass.values[:, 0, 4] += 5.0
+    with pytest.warns(FloatmoorWarning, match="bad.nc: added_mass is not symmetric"):
+        validate_database(bad, name="bad.nc")
+    bad = ds.copy(deep=True)
+    bad.radiation_damping.values[2, 3, 3] = -1.0
+    with pytest.warns(FloatmoorWarning, match=r"radiation_damping\[roll,roll\] is negative"):
+        validate_database(bad, name="bad.nc")
+
+
+def test_mean_drift_may_hold_nan_but_not_only_nan():
+    ds = _toy()
+    part = ds.copy(deep=True)
+    part.mean_drift_force.values[0] = np.nan
+    validate_database(part)
+    allnan = ds.copy(deep=True)
+    allnan.mean_drift_force.values[:] = np.nan
+    with pytest.raises(DatabaseError, match="mean_drift_force"):
+        validate_database(allnan)
