@@ -131,8 +131,8 @@ def airy_kinematics_into(omega, amplitude, phase, k, cos_dir, sin_dir, depth, g,
         Time (s).
     points : (m, 3) array
         Earth-frame points (m).
-    work : (2, n) array
-        Scratch space (cos and sin of the phase angles).
+    work : (3, n) array
+        Scratch space (cos and sin of the phase angles, exp(-2 k d)).
     velocity, acceleration : (m, 3) arrays (out)
         m/s and m/s^2.
     pressure : (m,) array (out)
@@ -141,6 +141,9 @@ def airy_kinematics_into(omega, amplitude, phase, k, cos_dir, sin_dir, depth, g,
         Elevation (m) at the points' (x, y).
     """
     n = omega.shape[0]
+    deep = math.isinf(depth)
+    for i in range(n):  # per-component constant exp(-2 k d) (0 in deep water)
+        work[2, i] = 0.0 if deep else math.exp(-2.0 * k[i] * depth)
     for p in range(points.shape[0]):
         x = points[p, 0]
         y = points[p, 1]
@@ -163,7 +166,7 @@ def airy_kinematics_into(omega, amplitude, phase, k, cos_dir, sin_dir, depth, g,
         if z < -depth:
             z = -depth
         if wheeler:
-            if math.isinf(depth):
+            if deep:
                 zs = z - e
             else:
                 zs = (z - e) * depth / (depth + e)
@@ -177,7 +180,13 @@ def airy_kinematics_into(omega, amplitude, phase, k, cos_dir, sin_dir, depth, g,
         az = 0.0
         pd = 0.0
         for i in range(n):
-            cs, ss, cc = depth_factors(k[i], zs, depth)
+            # depth factors as in depth_factors(), with e2 = exp(-k (zs + 2d)) = q / e1 <= e1
+            e1 = math.exp(k[i] * zs)
+            q = work[2, i]
+            e2 = q / e1 if e1 > 0.0 else 0.0
+            cs = (e1 + e2) / (1.0 - q)
+            ss = (e1 - e2) / (1.0 - q)
+            cc = (e1 + e2) / (1.0 + q)
             aw = amplitude[i] * omega[i]
             aww = aw * omega[i]
             c = work[0, i]
@@ -242,7 +251,7 @@ def airy_kinematics(omega, amplitude, phase, k, direction, t, points, *, water_d
     acc = np.empty((nt, m, 3))
     pres = np.empty((nt, m))
     eta = np.empty((nt, m))
-    work = np.empty((2, omega.size))
+    work = np.empty((3, omega.size))
     for j in range(nt):
         airy_kinematics_into(omega, amplitude, phase, k, cos_dir, sin_dir, depth, float(g),
                              float(rho), bool(wheeler), float(ta[j]), pts, work, vel[j], acc[j],

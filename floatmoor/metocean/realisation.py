@@ -208,9 +208,24 @@ class WaveRealisation:
         return airy_kinematics(self.omega, self.amplitude, self.phase, self.k, self.direction, t,
                                points, water_depth=depth, wheeler=wheeler, g=g, rho=rho)
 
+    def kinematics_work(self) -> np.ndarray:
+        """A scratch array of the shape :meth:`kinematics_into` needs, (3, n_components)."""
+        return np.empty((3, self.n_components))
+
     def kinematics_into(self, t: float, points, work, velocity, acceleration, pressure, eta, *,
                         wheeler: bool = True, g: float = GRAVITY, rho: float = RHO_WATER):
-        """Allocation-free kinematics at one time into preallocated outputs (see kernel)."""
+        """Allocation-free kinematics at one time into preallocated outputs.
+
+        ``points`` (m, 3); ``work`` from :meth:`kinematics_work`; outputs ``velocity`` and
+        ``acceleration`` (m, 3), ``pressure`` and ``eta`` (m,).  Shapes are checked here because
+        the kernel does not bounds-check; a time loop may call the kernel directly instead.
+        """
+        m = points.shape[0]
+        if (work.shape != (3, self.n_components) or points.shape != (m, 3)
+                or velocity.shape != (m, 3) or acceleration.shape != (m, 3)
+                or pressure.shape != (m,) or eta.shape != (m,)):
+            raise ValueError("kinematics_into: work (3, n_components), points/velocity/"
+                             "acceleration (m, 3), pressure/eta (m,) expected")
         airy_kinematics_into(self.omega, self.amplitude, self.phase, self.k, self.cos_dir,
                              self.sin_dir, float(self.water_depth), float(g), float(rho),
                              bool(wheeler), float(t), points, work, velocity, acceleration,

@@ -159,7 +159,7 @@ def test_wave_realisation_kinematics_methods():
     k = r.kinematics([1.0, 2.0], pts)
     assert k["velocity"].shape == (2, 2, 3) and k["pressure"].shape == (2, 2)
     vel, acc = np.empty((2, 3)), np.empty((2, 3))
-    p, eta, work = np.empty(2), np.empty(2), np.empty((2, r.n_components))
+    p, eta, work = np.empty(2), np.empty(2), np.empty((3, r.n_components))
     r.kinematics_into(2.0, pts, work, vel, acc, p, eta)
     np.testing.assert_array_equal(vel, k["velocity"][1])
     np.testing.assert_array_equal(eta, k["eta"][1])
