@@ -77,6 +77,8 @@ def environment_summary(env: Environment, *, water_depth: float | None, duration
     """
     if not (isinstance(dt, (int, float)) and dt > 0 and math.isfinite(dt)):
         raise SceneError(None, "analysis.dt", "a number > 0 (s)", dt)
+    if not (isinstance(duration, (int, float)) and duration >= dt and math.isfinite(duration)):
+        raise SceneError(None, "analysis.duration", f"a number >= dt = {dt:g} (s)", duration)
     nt = int(round(float(duration) / dt))
     out = {"name": env.name, "duration": float(duration), "dt": float(dt), "seed": int(seed),
            "water_depth": _f(water_depth), "waves": None, "wind": None, "current": None}
@@ -163,8 +165,8 @@ def format_summary(summary: dict) -> str:
     lines.append("=" * width)
     depth = summary.get("water_depth")
     lines.append(f"realisation: seed {summary['seed']}, {summary['duration']:.0f} s at "
-                 f"dt = {summary['dt']:g} s; water depth "
-                 + ("deep" if depth is None else f"{depth:g} m"))
+                 f"dt = {summary['dt']:g} s; "
+                 + ("deep water" if depth is None else f"water depth {depth:g} m"))
     row = "  {:<34s}{:>12s}{:>12s}  {:<8s}"
     head = row.format("", "target", "realised", "unit")
 
@@ -182,8 +184,9 @@ def format_summary(summary: dict) -> str:
         lines.append(row.format("maximum wave height Hmax", "", _num(wv["hmax"]), "m"))
         lines.append(row.format("maximum crest", "", _num(wv["crest_max"]), "m"))
         lines.append(row.format("number of zero-upcrossing waves", "", f"{wv['n_waves']:d}", "-"))
-        lines.append(row.format("components (omega range, rad/s)", f"{wv['n_components']:d}",
-                                f"{wv['omega_min']:.3f}-{wv['omega_max']:.3f}", "-"))
+        lines.append(row.format("frequency components", "", f"{wv['n_components']:d}", "-"))
+        lines.append(row.format("frequency range", "",
+                                f"{wv['omega_min']:.3f}-{wv['omega_max']:.3f}", "rad/s"))
         lines.append("  (*) target 2 pi sqrt(m0/m2) over the realised frequency range")
 
     wi = summary.get("wind")
@@ -203,8 +206,8 @@ def format_summary(summary: dict) -> str:
         lines.append(row.format("maximum speed", "", _num(wi["max"]), "m/s"))
         lines.append(row.format("gust factor (max/mean)", "", _num(wi["gust_factor"], "{:.3f}"),
                                 "-"))
-        lines.append(row.format("components (f max, Hz)", f"{wi['n_components']:d}",
-                                f"{wi['f_max']:.3f}", "-"))
+        lines.append(row.format("frequency components", "", f"{wi['n_components']:d}", "-"))
+        lines.append(row.format("frequency range", "", f"0-{wi['f_max']:.3f}", "Hz"))
 
     cu = summary.get("current")
     if cu is not None:
@@ -216,4 +219,4 @@ def format_summary(summary: dict) -> str:
 
     if wv is None and wi is None and cu is None:
         lines.append("(no waves, wind or current)")
-    return "\n".join(lines)
+    return "\n".join(line.rstrip() for line in lines)
