@@ -80,6 +80,12 @@ def test_oc3_excitation_units_and_long_wave_heave_limit(oc3_db, oc3_root):
                     .sel(influenced_dof="heave"))
         assert abs(x / c33 - 1.0) < 0.06
         assert abs(np.angle(x)) < 0.01
+    # Surge, waves towards +x (BETA = 0): the force follows the horizontal fluid acceleration,
+    # +90 deg ahead of the elevation in exp(+i w t) (the same check is made on Capytaine data
+    # after conjugation in test_capytaine.py)
+    x1 = complex(oc3_db.excitation_force.isel(omega=0).sel(wave_direction=0.0, method="nearest")
+                 .sel(influenced_dof="surge"))
+    assert np.degrees(np.angle(x1)) == pytest.approx(90.0, abs=1.0)
 
 
 def test_oc3_symmetry_and_non_negative_damping(oc3_db):

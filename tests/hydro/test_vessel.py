@@ -1,0 +1,153 @@
+"""Vessel files: loading, derived matrices, and SceneErrors naming file and key."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from floatmoor.core.errors import SceneError
+from floatmoor.hydro import load_vessel, make_database, save_database
+from floatmoor.hydro.vessel import gravity_stiffness, rigid_body_mass_matrix
+
+from .conftest import VESSELS
+
+G = 9.80665
+
+
+def test_mass_matrix_parallel_axis_and_symmetry():
+    m, r = 1000.0, np.array([1.0, -2.0, 3.0])
+    Icg = np.diag([10.0, 20.0, 30.0])
+    M = rigid_body_mass_matrix(m, r, Icg)
+    np.testing.assert_allclose(M, M.T)
+    # I_ref = I_cg + m (|r|^2 I - r r^T): e.g. Ixx = 10 + 1000 (4 + 9) = 13010
+    assert M[3, 3] == pytest.approx(10 + m * (r[1] ** 2 + r[2] ** 2))
+    assert M[3, 4] == pytest.approx(-m * r[0] * r[1])
+    # kinetic energy check: a rotation about the reference point moves the CoG by theta x r
+    theta = np.array([0.0, 0.0, 0.1])
+    v_cog = np.cross(theta, r)
+    u = np.concatenate([np.zeros(3), theta])
+    ke = 0.5 * u @ M @ u
+    assert ke == pytest.approx(0.5 * m * v_cog @ v_cog + 0.5 * theta @ Icg @ theta)
+
+
+def test_gravity_stiffness_terms():
+    C = gravity_stiffness(2.0e6, [1.0, 2.0, -10.0], G)
+    assert C[3, 3] == pytest.approx(2.0e6 * G * 10) and C[4, 4] == pytest.approx(2.0e6 * G * 10)
+    assert C[3, 5] == pytest.approx(2.0e6 * G * 1.0) and C[4, 5] == pytest.approx(2.0e6 * G * 2.0)
+
+
+def test_oc3_vessel():
+    v = load_vessel(VESSELS / "oc3_hywind" / "vessel.yaml")
+    # total mass: platform 7,466,330 + tower 249,718 + nacelle 240,000 + rotor 110,000 kg
+    assert v.mass == pytest.approx(8066048.0)
+    # Independent check (reference README: MAP++ solution): buoyancy - weight equals the
+    # vertical mooring load 3 x 535,728 N (MAP run with g = 9.81)
+    buoyancy = 1025 * G * 8029.21
+    assert buoyancy - v.mass * G == pytest.approx(3 * 535728.0, rel=0.005)
+    np.testing.assert_allclose(v.mass_matrix, v.mass_matrix.T)
+    # additional yaw spring and damping of HydroDyn
+    assert v.additional_stiffness[5, 5] == 9.834e7
+    assert v.linear_damping[5, 5] == 1.3e7 and v.linear_damping[2, 2] == 1.3e5
+    # total roll restoring = WAMIT C44 (-4.99918e9) - m g z_G
+    assert v.total_restoring[3, 3] == pytest.approx(-4.99918e9 - v.mass * G *
+                                                    v.centre_of_gravity[2], rel=1e-5)
+    assert v.total_restoring[3, 3] > 0
+    assert v.fairleads["FL1"][2] == -70.0
+    assert "excitation_force" in v.database
+
+
+@pytest.mark.parametrize("name", ["floatel_like", "oc4_semi"])
+def test_shipped_capytaine_vessels_load(name):
+    path = VESSELS / name / "vessel.yaml"
+    if not (VESSELS / name / "database.nc").exists():
+        pytest.skip(f"{name}/database.nc not built yet")
+    v = load_vessel(path)
+    np.testing.assert_allclose(v.mass_matrix, v.mass_matrix.T)
+    assert "excitation_force" in v.database
+    assert "mean_drift_force" in v.database
+
+
+# ---- bad input -------------------------------------------------------------------------------
+@pytest.fixture
+def vessel_dir(tmp_path):
+    w = np.linspace(0.2, 1.0, 4)
+    A = np.tile(np.eye(6), (4, 1, 1))
+    save_database(make_database(w, added_mass=A, radiation_damping=0.1 * A,
+                                hydrostatic_stiffness=np.diag([0, 0, 1e6, 1e8, 1e8, 0.0])),
+                  tmp_path / "db.nc")
+    return tmp_path
+
+
+def _write(d, data):
+    p = d / "vessel.yaml"
+    p.write_text(yaml.safe_dump(data))
+    return p
+
+
+def _base():
+    return {"name": "box", "database": "db.nc", "mass": 1.0e6, "centre_of_gravity": [0, 0, -1.0],
+            "inertia_cg": [1.0e8, 1.0e8, 2.0e8]}
+
+
+def test_minimal_vessel(vessel_dir):
+    v = load_vessel(_write(vessel_dir, _base()))
+    assert v.mass == 1.0e6
+    assert v.total_restoring[3, 3] == pytest.approx(1e8 + 1.0e6 * G * 1.0)
+    assert v.wind_coefficients is None and v.slender_elements is None
+
+
+@pytest.mark.parametrize("change, key, words", [
+    ({"mass": None}, "mass", "a number"),
+    ({"mass": -5.0}, "mass", "> 0"),
+    ({"mass": "1.0e6"}, "mass", "remove the quotes"),
+    ({"centre_of_gravity": [0, 0]}, "centre_of_gravity", "shape (3)"),
+    ({"inertia_cg": [[1, 2, 3], [0, 1, 0], [0, 0, 1]]}, "inertia_cg", "symmetric"),
+    ({"linear_damping": [[1, 0], [0, 1]]}, "linear_damping", "shape (6, 6)"),
+    ({"quadratic_damping": (-np.eye(6)).tolist()}, "quadratic_damping", "non-negative"),
+    ({"databse": "db.nc"}, "databse", "unknown key"),
+    ({"database": "nothere.nc"}, "database", "existing file"),
+    ({"reference_point": [0, 0, 1.0]}, "reference_point", "reference point of the database"),
+    ({"fairleads": {"FL1": [1, 2]}}, "fairleads.FL1", "shape (3)"),
+    ({"wind_coefficients": {"heading": [0, 90], "surge": [1, 0]}}, "wind_coefficients.heading",
+     "_deg"),
+    ({"wind_coefficients": {"heading_deg": [0, 90, 45], "surge": [1, 0, 1]}},
+     "wind_coefficients.heading_deg", "increasing"),
+    ({"current_coefficients": {"heading_deg": [0, 90], "surge": [1, 0, 3]}},
+     "current_coefficients.surge", "shape (2)"),
+    ({"current_coefficients": {"heading_deg": [0, 90], "surge": [1, 0], "reference_height": 10}},
+     "current_coefficients.reference_height", "unknown key"),
+    ({"point_masses": [{"mass": 1.0}]}, "point_masses[0].position", "a list of numbers"),
+])
+def test_scene_errors_name_file_and_key(vessel_dir, change, key, words):
+    data = _base()
+    for k, v in change.items():
+        if v is None:
+            data.pop(k)
+        else:
+            data[k] = v
+    p = _write(vessel_dir, data)
+    with pytest.raises(SceneError) as err:
+        load_vessel(p)
+    msg = str(err.value)
+    assert str(p) in msg and key in msg and words in msg, msg
+
+
+def test_bad_database_file_is_a_scene_error_naming_the_vessel_file(vessel_dir):
+    (vessel_dir / "junk.nc").write_text("junk")
+    data = _base()
+    data["database"] = "junk.nc"
+    p = _write(vessel_dir, data)
+    with pytest.raises(SceneError, match=r"vessel.yaml: database.*junk.nc"):
+        load_vessel(p)
+
+
+def test_coefficient_table_interpolation_is_periodic(vessel_dir):
+    data = _base()
+    data["current_coefficients"] = {"heading_deg": [0, 90, 180, 270],
+                                    "surge": [4.0, 0.0, -4.0, 0.0], "sway": [0, 2.0, 0, -2.0]}
+    v = load_vessel(_write(vessel_dir, data))
+    c = v.current_coefficients
+    np.testing.assert_allclose(c.at(np.radians(45)), [2.0, 1.0, 0, 0, 0, 0])
+    np.testing.assert_allclose(c.at(np.radians(315)), [2.0, -1.0, 0, 0, 0, 0])
+    np.testing.assert_allclose(c.at(np.radians(-45)), [2.0, -1.0, 0, 0, 0, 0])
