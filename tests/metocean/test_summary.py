@@ -102,3 +102,11 @@ def test_heidrun_file_reads_through_scene_parser():
     assert env.waves.hs == 16.0 and env.wind.u10 == 36.0
     s = environment_summary(env, water_depth=320.0, duration=1800.0)
     assert s["current"]["at_minus_50"] == 0.94
+
+
+@pytest.mark.parametrize("kwargs", [{"dt": 0.0}, {"dt": -0.1}, {"duration": 0.05},
+                                    {"duration": float("inf")}])
+def test_summary_bad_input(kwargs):
+    from floatmoor.core.errors import SceneError
+    with pytest.raises(SceneError):
+        environment_summary(HEIDRUN, water_depth=320.0, **kwargs)
