@@ -352,3 +352,54 @@ def _asymmetry(m3: np.ndarray) -> float:
     scale[scale == 0] = np.inf
     diff = np.max(np.abs(m3 - np.swapaxes(m3, 1, 2)), axis=0)
     return float(np.max(diff / scale))
+
+
+def interpolate_heading(ds: xr.Dataset, variable: str, heading: float, *,
+                        dim: str = "wave_direction") -> np.ndarray:
+    """``ds[variable]`` at a wave heading (rad, direction of travel), linear in heading.
+
+    A database whose headings cover the full circle (the largest gap, counted across the
+    wrap-around, equals the step) is treated as periodic; otherwise a heading outside
+    [min, max] is a DatabaseError naming the database and the quantity.
+
+    Returns the array with the heading dimension removed (same order of the other dims).
+    """
+    where = ds.attrs.get("source", "<database>")
+    if variable not in ds:
+        raise DatabaseError(where, variable, f"a variable {variable} in the database")
+    da = ds[variable]
+    beta = np.asarray(ds[dim].values, float)
+    axis = da.dims.index(dim)
+    vals = np.moveaxis(np.asarray(da.values), axis, 0)
+    order = np.argsort(beta)
+    beta, vals = beta[order], vals[order]
+    if beta.size == 1:
+        if abs(np.angle(np.exp(1j * (heading - beta[0])))) < 1e-6:
+            return vals[0]
+        raise DatabaseError(where, f"{variable} at heading {np.degrees(heading):.1f} deg",
+                            f"the only heading of the database, {np.degrees(beta[0]):.1f} deg",
+                            f"{np.degrees(heading):.1f} deg")
+    steps = np.diff(beta)
+    wrap_gap = beta[0] + 2 * np.pi - beta[-1]
+    periodic = wrap_gap <= np.max(steps) + 1e-6 and wrap_gap > 1e-9
+    if periodic:
+        x = (heading - beta[0]) % (2 * np.pi) + beta[0]
+        b = np.concatenate([beta, [beta[0] + 2 * np.pi]])
+        v = np.concatenate([vals, vals[:1]], axis=0)
+    else:
+        x = heading
+        # allow the same direction written as heading +- 2 pi
+        for cand in (heading, heading - 2 * np.pi, heading + 2 * np.pi):
+            if beta[0] - 1e-9 <= cand <= beta[-1] + 1e-9:
+                x = cand
+                break
+        else:
+            raise DatabaseError(where, f"{variable} at heading {np.degrees(heading):.1f} deg",
+                                f"a heading within the database range "
+                                f"{np.degrees(beta[0]):.1f} .. {np.degrees(beta[-1]):.1f} deg",
+                                f"{np.degrees(heading):.1f} deg",
+                                "extend the diffraction run or mirror a symmetric hull")
+        b, v = beta, vals
+    k = int(np.clip(np.searchsorted(b, x) - 1, 0, b.size - 2))
+    f = (x - b[k]) / (b[k + 1] - b[k])
+    return (1 - f) * v[k] + f * v[k + 1]

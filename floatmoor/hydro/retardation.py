@@ -329,7 +329,8 @@ def consistency_report(ds: xr.Dataset, *, band=DEFAULT_BAND, t=None, rel_tol_cut
                 if abs(b[m]) > 0.05 * peak and abs(b[m]) > spike_factor * max(neigh, 1e-300):
                     msgs.append(f"{where}: radiation_damping[{dof},{dof}] has a spike at "
                                 f"omega = {omega[m]:.3g} rad/s ({b[m]:.3g} vs neighbours "
-                                f"{neigh:.3g}): irregular frequency? remove it before use")
+                                f"{neigh:.3g}): an irregular frequency (remove it) or a sharp "
+                                "resonance that needs a finer frequency grid")
                     break
     for m in msgs:
         warnings.warn(m, FloatmoorWarning, stacklevel=2)

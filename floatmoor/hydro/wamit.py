@@ -31,7 +31,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.dofs import DOF_NAMES
 from ..core.errors import FloatmoorWarning
 from .database import DatabaseError, make_database
 

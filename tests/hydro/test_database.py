@@ -111,3 +111,19 @@ def test_mean_drift_may_hold_nan_but_not_only_nan():
     allnan.mean_drift_force.values[:] = np.nan
     with pytest.raises(DatabaseError, match="mean_drift_force"):
         validate_database(allnan)
+
+
+def test_interpolate_heading_inside_periodic_and_outside():
+    from floatmoor.hydro.database import interpolate_heading
+    ds = _toy(nb=3)  # headings 0, 45, 90 deg: not periodic
+    X = ds.excitation_force.values
+    mid = interpolate_heading(ds, "excitation_force", np.radians(22.5))
+    np.testing.assert_allclose(mid, 0.5 * (X[:, 0] + X[:, 1]))
+    with pytest.raises(DatabaseError, match=r"excitation_force at heading 120.0 deg"):
+        interpolate_heading(ds, "excitation_force", np.radians(120))
+    full = _toy(nb=4).assign_coords(wave_direction=np.radians([0, 90, 180, 270]))
+    Xf = full.excitation_force.values
+    wrap = interpolate_heading(full, "excitation_force", np.radians(315))
+    np.testing.assert_allclose(wrap, 0.5 * (Xf[:, 3] + Xf[:, 0]))
+    np.testing.assert_allclose(interpolate_heading(full, "excitation_force", np.radians(-90)),
+                               Xf[:, 3])

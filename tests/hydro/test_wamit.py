@@ -146,7 +146,6 @@ def test_crlf_and_lf_files_read_the_same(oc3_root, tmp_path, oc3_db):
         text = Path(str(oc3_root) + ext).read_bytes()
         assert b"\r\n" in text
         (tmp_path / ("s" + ext)).write_bytes(text.replace(b"\r\n", b"\n"))
-    ds = read_wamit(tmp_path / "s") if False else None
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         ds = read_wamit(tmp_path / "s")
