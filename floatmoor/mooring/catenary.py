@@ -302,19 +302,23 @@ def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
     ev = work[10:20]
     Ltot = 0.0
     Wtot = 0.0
+    Wabs = 0.0
     comp = 0.0
     for k in range(i0, i1):
         if not (L[k] > 0.0) or not (EA[k] > 0.0) or not math.isfinite(w[k]):
             return -4
         Ltot += L[k]
         Wtot += w[k] * L[k]
+        Wabs += abs(w[k]) * L[k]
         comp += L[k] / EA[k]
         if k < i1 - 1:
             Wtot += P[k]
+            Wabs += abs(P[k])
     if not (xf >= 0.0) or not math.isfinite(zf) or not math.isfinite(xf):
         return -4
     d = math.sqrt(xf * xf + zf * zf)
-    scale = max(abs(Wtot), 1e-6 * Ltot / comp, 1e-300)  # force scale, N
+    # force scale, N: the weights (a weightless line: a small fraction of its axial stiffness)
+    scale = Wabs if Wabs > 0.0 else max(1e-6 * Ltot / comp, 1e-300)
     Hmin = 1e-12 * scale
     # ---- initial guess
     if hf0 > 0.0:
@@ -358,11 +362,11 @@ def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
         Tn = math.sqrt(H * H + V * V)
         small = abs(dH) <= REL_TOL * Tn and abs(dV) <= REL_TOL * Tn
         slack = False
-        if H <= Hmin * 1.000001 and H + dH < Hmin:
-            # horizontally slack: H stays at its floor, solve the vertical equation only
+        if H + dH < Hmin and H <= 1e-6 * scale:
+            # horizontally slack: H goes to its floor, solve the vertical equation only
             slack = True
-            dH = 0.0
-            dV = -rz / dd if dd != 0.0 else 0.0
+            dH = Hmin - H
+            dV = -(rz + c * dH) / dd if dd != 0.0 else 0.0
         else:
             if H + dH < 0.1 * H:
                 # scale the whole step so that H falls by at most a factor of 10
@@ -373,6 +377,9 @@ def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
                 dH = Hmin - H
         if slack:
             small = abs(dV) <= REL_TOL * Tn
+        # near the round-off floor of the geometry (very stiff lines) the residual is noise:
+        # a step below 1e-7 relative that does not reduce it ends the iteration
+        tiny = abs(dH) <= 1e-7 * Tn and abs(dV) <= 1e-7 * Tn
         r0 = abs(rz) if slack else math.sqrt(rx * rx + rz * rz)
         alpha = 1.0
         ok = False
@@ -389,6 +396,10 @@ def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
             rzn = ev[1] - zf
             r1 = abs(rzn) if slack else math.sqrt(rxn * rxn + rzn * rzn)
             if r1 <= r0 or small or r1 <= ftol:
+                ok = True
+                break
+            if tiny:
+                small = True
                 ok = True
                 break
             ok = True  # accept the smallest step tried if nothing decreases the residual
