@@ -157,16 +157,19 @@ def _eval_line(H, V, L, EA, w, P, i0, i1, cb, seabed, work, res):
     tdp = -1          # segment holding the touchdown point
     lg_tdp = 0.0      # grounded length in that segment
     at_joint = False  # touchdown exactly at the joint below segment tdp
+    n_clump = 0.0     # seabed normal force on that clump (= -V_free just below it)
     if seabed and Vfree_anchor < 0.0:
         # walk up from the anchor until the free vertical force turns positive
         vb = Vfree_anchor
         for k in range(i0, i1):
             if k > i0:
-                vb += P[k - 1]
-                if vb > 0.0:
+                if vb + P[k - 1] > 0.0:
+                    # the clump at this joint rests on the seabed with normal force -vb
+                    n_clump = -vb
                     tdp = k
                     at_joint = True
                     break
+                vb += P[k - 1]
                 if P[k - 1] < 0.0:
                     return -3
             vt = vb + w[k] * L[k]
@@ -220,11 +223,14 @@ def _eval_line(H, V, L, EA, w, P, i0, i1, cb, seabed, work, res):
         TV = 0.0
         start = tdp if not at_joint else tdp - 1
         if at_joint:
-            # the clump at the joint under segment tdp rests on the seabed: friction cb * its
-            # share of weight is not resolved here; the full clump weight is used (conservative)
-            T = max(T - cb * P[tdp - 1], 0.0)
-            if T == 0.0:
+            # the clump under segment tdp rests on the seabed: friction cb x its normal force
+            # n_clump = -V_free just below the joint, d(n_clump)/dV = -1, so dT/dV = +cb
+            T = H - cb * n_clump
+            TV = cb
+            if T <= 0.0:
+                T = 0.0
                 TH = 0.0
+                TV = 0.0
         for k in range(start, i0 - 1, -1):
             if k == tdp and not at_joint:
                 lg = lg_tdp
@@ -702,13 +708,15 @@ def line_profile(HF, VF, lengths, ea, w, point_loads, cb, seabed, n=51):
             v -= P[k - 1]
     # grounded length per segment
     lg = np.zeros(nseg)
+    n_joint = None  # normal force of a clump at the touchdown joint
     if seabed and vbot[0] < 0.0:
         vb = vbot[0]
         for k in range(nseg):
             if k > 0:
-                vb += P[k - 1]
-                if vb > 0:
+                if vb + P[k - 1] > 0:
+                    n_joint = -vb
                     break
+                vb += P[k - 1]
             vt = vb + W[k] * L[k]
             if vt > 0:
                 lg[k] = -vb / W[k]
@@ -722,7 +730,7 @@ def line_profile(HF, VF, lengths, ea, w, point_loads, cb, seabed, n=51):
         ktop = int(grounded[-1])
         T = HF
         if lg[ktop] >= L[ktop] and ktop < nseg - 1:
-            T = max(T - cb * P[ktop], 0.0)
+            T = max(T - cb * (P[ktop] if n_joint is None else n_joint), 0.0)
         for k in range(ktop, -1, -1):
             t_top[k] = T
             T = max(T - cb * W[k] * lg[k], 0.0)

@@ -43,8 +43,9 @@ def test_chain_polyester_chain_stiffness_fd(xf):
     np.testing.assert_allclose(r.stiffness, k, rtol=2e-5, atol=1e-7 * np.abs(k).max())
 
 
+@pytest.mark.parametrize("cb", [0.0, 0.5])
 @pytest.mark.parametrize("xf,where", [(850.0, "polyester"), (870.0, "clump"), (880.0, "chain")])
-def test_clump_and_buoy_profile_equilibrium_and_fd(xf, where):
+def test_clump_and_buoy_profile_equilibrium_and_fd(xf, where, cb):
     """Clump weight at joint 1, buoy at joint 2; touchdown in the polyester, at the clump (which
     then rests on the seabed) or in the lower chain.  The profile closes on the fairlead, stays
     above the seabed, VF - VA equals the suspended weight, and the stiffness matches central
@@ -53,7 +54,7 @@ def test_clump_and_buoy_profile_equilibrium_and_fd(xf, where):
     EA = [5e8, 2e8, 5e8]
     W = [1000.0, 200.0, 1000.0]
     P = [50e3, -30e3, 0.0]
-    fun = lambda x, z: solve_line(x, z, L, EA, W, P)
+    fun = lambda x, z: solve_line(x, z, L, EA, W, P, cb)
     r = fun(xf, 150.0)
     p = r.profile(401)
     assert p["x"][-1] == pytest.approx(xf, abs=1e-6)
@@ -69,6 +70,9 @@ def test_clump_and_buoy_profile_equilibrium_and_fd(xf, where):
         above = 200.0 * 300.0 + 1000.0 * 200.0 - 30e3
         assert above < r.VF < above + 50e3
         suspended = r.VF  # VA = 0
+        # friction: anchor tension = HF - cb (normal force on the clump + chain weight on seabed)
+        normal = 50e3 - (r.VF - above)
+        assert r.HA == pytest.approx(max(r.HF - cb * (normal + 1000.0 * 400.0), 0.0), rel=1e-9)
     else:
         assert 400.0 < lg < 700.0
         suspended = 200.0 * (700.0 - lg) + 1000.0 * 200.0 - 30e3
