@@ -77,7 +77,7 @@ def _check_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", metavar="SCENE.yaml", help="the scene file")
     p.add_argument("--quick", action="store_true",
                    help="validate the scene and its environment only; do not read the vessel "
-                        "file and its hydrodynamic database")
+                        "file, its hydrodynamic database and the mooring")
 
 
 def _check_run(args: argparse.Namespace) -> int:
@@ -107,6 +107,25 @@ def _read_references(scene) -> list[str]:
                               if k in ("omega", "wave_direction"))
             lines.append(f"vessel file read: {v.name}, mass {v.mass:.6g} kg, database "
                          f"{v.database_path} ({sizes}), {len(v.fairleads)} fairleads")
+    if scene.mooring is not None:
+        try:
+            from .io.mooring_section import parse_mooring
+        except ImportError:  # pragma: no cover - io ships the mooring reader
+            lines.append("mooring: not read (floatmoor.io.mooring_section is not available)")
+        else:
+            site = scene.site
+            ms = parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
+                               water_density=site.water_density, gravity=site.gravity)
+            t = ms.tensions()
+            active = ~t["failed"].values
+            tf = t["fairlead_tension"].values[active]
+            failed = [str(n) for n, f in zip(t["line"].values, t["failed"].values) if f]
+            text = (f"mooring read: {ms.n_lines} lines; at zero offset fairlead tension "
+                    f"{tf.min() / 1e3:.1f}-{tf.max() / 1e3:.1f} kN, max utilisation "
+                    f"{float(t['utilisation'].values[active].max()):.3f} of MBS")
+            if failed:
+                text += "; failed: " + ", ".join(failed)
+            lines.append(text)
     return lines
 
 

@@ -206,3 +206,29 @@ def test_check_reads_a_real_vessel(tmp_path, capsys):
     assert main(["check", str(scene_path)]) == 0
     out = capsys.readouterr().out
     assert f"vessel: {vessel}" in out and "vessel file read: oc3_hywind" in out
+
+
+def _one_line_mooring(length):
+    # one studless R4 chain line of 84 mm from the shipped library, anchor 800 m out in 150 m
+    return {"lines": [{"name": "L1", "anchor": {"x": 800.0, "y": 0.0},
+                       "fairlead": [10.0, 0.0, -10.0],
+                       "segments": [{"type": "chain_studless_R4", "diameter": 0.084,
+                                     "length": length}]}]}
+
+
+def test_check_reads_an_inline_mooring(tmp_path, capsys):
+    pytest.importorskip("floatmoor.io.mooring_section")
+    scene_path, _ = write_case(tmp_path, {"mooring": _one_line_mooring(900.0)})
+    assert main(["check", str(scene_path)]) == 0
+    out = capsys.readouterr().out
+    assert "mooring: inline mapping with keys lines" in out
+    assert "mooring read: 1 lines; at zero offset fairlead tension" in out
+
+
+def test_check_names_a_mooring_mistake_in_the_scene_file(tmp_path, capsys):
+    pytest.importorskip("floatmoor.io.mooring_section")
+    scene_path, _ = write_case(tmp_path, {"mooring": _one_line_mooring(-900.0)})
+    assert main(["check", str(scene_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"floatmoor: error: {scene_path}: mooring.lines[0].segments[0].length")
+    assert "Traceback" not in err
