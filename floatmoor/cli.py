@@ -105,8 +105,11 @@ def _read_references(scene) -> list[str]:
             v = load_vessel(scene.vessel)
             sizes = ", ".join(f"{n} {k}" for k, n in v.database.sizes.items()
                               if k in ("omega", "wave_direction"))
-            lines.append(f"vessel file read: {v.name}, mass {v.mass:.6g} kg, database "
-                         f"{v.database_path} ({sizes}), {len(v.fairleads)} fairleads")
+            text = (f"vessel file read: {v.name}, mass {v.mass:.6g} kg, database "
+                    f"{v.database_path} ({sizes})")
+            if v.fairleads:
+                text += f", {len(v.fairleads)} fairleads"
+            lines.append(text)
     if scene.mooring is not None:
         try:
             from .io.mooring_section import parse_mooring
