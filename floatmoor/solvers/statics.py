@@ -59,6 +59,35 @@ class EquilibriumResult:
     tensions: xr.Dataset = field(repr=False)
     free_dofs: tuple = DOF_NAMES
 
+    def summary(self) -> str:
+        """Plain-text report: equilibrium pose, per-line tensions, 6x6 mooring stiffness."""
+        lines = [f"Static equilibrium ({self.iterations} Newton iterations; free DOFs: "
+                 f"{', '.join(self.free_dofs)})"]
+        for i, name in enumerate(DOF_NAMES):
+            v = self.pose[i]
+            txt = f"{v:12.4f} m" if i < 3 else f"{v:12.6f} rad ({math.degrees(v):9.4f} deg)"
+            lines.append(f"  {name:6s} {txt}")
+        t = self.tensions
+        lines.append("")
+        lines.append("  line        T fairlead   T anchor    angle  grounded   MBS       T/MBS")
+        lines.append("                  kN          kN        deg      m        kN")
+        for i, name in enumerate(t["line"].values):
+            if bool(t["failed"].values[i]):
+                lines.append(f"  {str(name):10s}  failed (removed)")
+                continue
+            lines.append(
+                f"  {str(name):10s} {t['fairlead_tension'].values[i] / 1e3:10.1f} "
+                f"{t['anchor_tension'].values[i] / 1e3:10.1f} {t['fairlead_angle'].values[i]:8.2f} "
+                f"{t['grounded_length'].values[i]:8.1f} {t['mbs'].values[i] / 1e3:9.0f} "
+                f"{t['utilisation'].values[i]:8.3f}")
+        lines.append("")
+        lines.append("  mooring stiffness at the equilibrium (N/m, N/rad, N m/rad; moments about "
+                     "the displaced reference point):")
+        lines.append("          " + "".join(f"{n:>12s}" for n in DOF_NAMES))
+        for i, name in enumerate(DOF_NAMES):
+            lines.append(f"  {name:6s}  " + "".join(f"{v:12.4g}" for v in self.mooring_stiffness[i]))
+        return "\n".join(lines)
+
     def to_dataset(self) -> xr.Dataset:
         """The result as an xarray Dataset (pose, forces, stiffness and line tensions)."""
         ds = self.tensions.copy()

@@ -114,3 +114,14 @@ def test_non_convergence_names_the_dof(oc3):
     with pytest.raises(ConvergenceError, match="surge|sway|heave|roll|pitch|yaw"):
         equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=[3e6, 0, 0, 0, 0, 0],
                     max_iter=1)
+
+
+def test_summary_and_dataset(floatel):
+    res = equilibrium(floatel.without_lines(["line7"]), external_force=[5.0e6, 0, 0, 0, 0, 0],
+                      dofs=("surge", "sway", "yaw"))
+    text = res.summary()
+    assert "line7       failed" in text and "surge" in text and "mooring stiffness" in text
+    ds = res.to_dataset()
+    assert ds["mooring_stiffness"].sel(dof="surge", dof_j="surge") == pytest.approx(
+        res.mooring_stiffness[0, 0])
+    assert ds["fairlead_tension"].attrs["units"] == "N"
