@@ -156,3 +156,43 @@ def test_profile_in_earth_coordinates():
     assert p["x"][-1] == pytest.approx(fl[0], abs=1e-6)
     assert p["y"][-1] == pytest.approx(fl[1], abs=1e-6)
     assert p["z"][-1] == pytest.approx(-70.0, abs=1e-6)
+
+
+def test_system_kernel_direct_call_with_warm_starts():
+    """The time-loop kernel called directly with preallocated arrays gives the same force as the
+    Python API, with and without warm starts, and reports per-line results."""
+    from floatmoor.mooring.catenary import OUT_SIZE
+    from floatmoor.mooring.system import system_force_kernel
+    ms = oc3_system(cb=0.2)
+    pose = np.array([5.0, -3.0, 0.5, 0.02, -0.01, 0.1])
+    n = ms.n_lines
+    warm = np.zeros((n, 2))
+    work = np.zeros(64)
+    rot = np.zeros((3, 3))
+    line_out = np.zeros((n, OUT_SIZE))
+    force = np.zeros(6)
+    stiff = np.zeros((6, 6))
+    args = (ms.anchors, ms.fairleads, ms.seg_L, ms.seg_EA, ms.seg_w, ms.seg_P, ms.line_start,
+            ms.cb, ms.seabed, ms.active)
+    ref = oc3_system(cb=0.2).force(pose)
+    for step in range(3):  # cold, then warm starts
+        p = pose + step * np.array([0.01, 0, 0, 0, 0, 0])
+        assert system_force_kernel(p, *args, warm, False, work, rot, line_out, force, stiff) == -1
+        if step == 0:
+            np.testing.assert_allclose(force, ref, rtol=1e-10, atol=1e-6)
+    assert np.all(warm[:, 0] > 0) and np.all(line_out[:, -1] <= 3)  # warm: few iterations
+
+
+def test_system_force_without_jit():
+    import os
+    import subprocess
+    import sys
+    code = ("import sys, numpy as np; sys.path.insert(0, 'tests/mooring'); "
+            "from test_system import oc3_system; "
+            "print(repr(oc3_system(cb=0.2).force(np.array([5.0, -3.0, 0.5, 0.02, -0.01, 0.1])).tolist()))")
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    out = subprocess.run([sys.executable, "-c", code], env=dict(os.environ, NUMBA_DISABLE_JIT="1"),
+                         capture_output=True, text=True, check=True, cwd=root)
+    f = np.array(eval(out.stdout.strip()))
+    np.testing.assert_allclose(f, oc3_system(cb=0.2).force(
+        np.array([5.0, -3.0, 0.5, 0.02, -0.01, 0.1])), rtol=1e-10, atol=1e-6)
