@@ -277,34 +277,8 @@ def _eval_line(H, V, L, EA, w, P, i0, i1, cb, seabed, work, res):
 
 
 @njit(cache=True)
-def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
-    """Solve one (multi-segment) line for its fairlead forces.  No allocation.
-
-    Parameters
-    ----------
-    xf, zf : float
-        Horizontal distance (>= 0) and height of the fairlead above the anchor, m.
-    L, EA, w, P : float arrays
-        Per segment (numbered from the anchor): unstretched length (m), axial stiffness (N),
-        submerged weight per length (N/m), point load at the segment's upper joint (N, + down).
-    i0, i1 : int
-        The line's segments are ``i0 .. i1-1``.
-    cb : float
-        Seabed friction coefficient (axial Coulomb) on the grounded part.
-    seabed : bool
-        True when the anchor lies on the seabed (the line may touch down).
-    hf0, vf0 : float
-        Warm start (the previous HF, VF); ``hf0 <= 0`` for a cold start.
-    work : float array, length >= 20
-        Scratch.
-    out : float array, length >= OUT_SIZE
-        HF, VF, HA, VA, grounded length, K11, K12, K21, K22, iterations.
-
-    Returns
-    -------
-    int
-        0 when converged, negative status code otherwise (see ``STATUS_MESSAGES``).
-    """
+def _line_kernel_impl(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
+    """One Newton attempt of :func:`line_kernel`."""
     ev = work[10:20]
     Ltot = 0.0
     Wtot = 0.0
@@ -449,6 +423,48 @@ def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
     out[OUT_LB] = ev[8]
     out[OUT_ITER] = it
     return 0
+
+
+@njit(cache=True)
+def line_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out):
+    """Solve one (multi-segment) line for its fairlead forces.  No allocation.
+
+    Parameters
+    ----------
+    xf, zf : float
+        Horizontal distance (>= 0) and height of the fairlead above the anchor, m.
+    L, EA, w, P : float arrays
+        Per segment (numbered from the anchor): unstretched length (m), axial stiffness (N),
+        submerged weight per length (N/m), point load at the segment's upper joint (N, + down).
+    i0, i1 : int
+        The line's segments are ``i0 .. i1-1``.
+    cb : float
+        Seabed friction coefficient (axial Coulomb) on the grounded part.
+    seabed : bool
+        True when the anchor lies on the seabed (the line may touch down).
+    hf0, vf0 : float
+        Warm start (the previous HF, VF); ``hf0 <= 0`` for a cold start.
+    work : float array, length >= 20
+        Scratch.
+    out : float array, length >= OUT_SIZE
+        HF, VF, HA, VA, grounded length, K11, K12, K21, K22, iterations.
+
+    Returns
+    -------
+    int
+        0 when converged, negative status code otherwise (see ``STATUS_MESSAGES``).
+    """
+    st = _line_kernel_impl(xf, zf, L, EA, w, P, i0, i1, cb, seabed, hf0, vf0, work, out)
+    if st == -1 and cb > 0.0:
+        # friction makes the equations only piecewise smooth; start again from the
+        # frictionless solution, which is close
+        st0 = _line_kernel_impl(xf, zf, L, EA, w, P, i0, i1, 0.0, seabed, 0.0, 0.0, work, out)
+        if st0 == 0 and out[OUT_HF] > 0.0:
+            it0 = out[OUT_ITER]
+            st = _line_kernel_impl(xf, zf, L, EA, w, P, i0, i1, cb, seabed, out[OUT_HF],
+                                   out[OUT_VF], work, out)
+            out[OUT_ITER] += it0 + MAX_ITER
+    return st
 
 
 @njit(cache=True)
