@@ -316,6 +316,15 @@ class MooringSystem:
 
     remove_lines = without_lines
 
+    def with_dynamic_ea(self) -> "MooringSystem":
+        """A copy whose segments use their dynamic axial stiffness (``ea_dynamic``, e.g. for
+        polyester) instead of the static one; segments without one keep ``ea``."""
+        from dataclasses import replace
+        lines = [replace(l, segments=tuple(replace(s, ea=s.ea_dynamic or s.ea) for s in l.segments))
+                 for l in self.lines]
+        return MooringSystem(lines, water_depth=self.water_depth, water_density=self.water_density,
+                             gravity=self.gravity, source=self.source, failed=self.failed)
+
     @property
     def n_lines(self) -> int:
         return len(self.lines)

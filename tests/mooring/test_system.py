@@ -196,3 +196,17 @@ def test_system_force_without_jit():
     f = np.array(eval(out.stdout.strip()))
     np.testing.assert_allclose(f, oc3_system(cb=0.2).force(
         np.array([5.0, -3.0, 0.5, 0.02, -0.01, 0.1])), rtol=1e-10, atol=1e-6)
+
+
+def test_dynamic_ea_stiffens_a_polyester_system():
+    """Polyester with dynamic EA (25 MBS) > static (15 MBS): the taut system gets stiffer."""
+    from floatmoor.mooring.line_types import polyester
+    p = polyester(0.15)
+    seg = Segment(length=400.0, ea=p.ea, w=p.submerged_weight(), ea_dynamic=p.ea_dynamic)
+    lines = [LineDef(name=f"p{i}", anchor=(380 * math.cos(a), 380 * math.sin(a), -150.0),
+                     fairlead=(0.0, 0.0, 0.0), segments=(seg,))
+             for i, a in enumerate((0.0, 2 * math.pi / 3, 4 * math.pi / 3))]
+    ms = MooringSystem(lines, water_depth=150.0)
+    k_static = ms.stiffness()[0, 0]
+    k_dyn = ms.with_dynamic_ea().stiffness()[0, 0]
+    assert k_dyn > 1.2 * k_static
