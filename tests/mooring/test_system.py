@@ -6,7 +6,6 @@ import math
 import numpy as np
 import pytest
 
-from floatmoor.core.errors import ConvergenceError
 from floatmoor.core.frames import rotation_matrix
 from floatmoor.mooring import LineDef, MooringSystem, Segment
 
