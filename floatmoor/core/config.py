@@ -69,6 +69,15 @@ def _construct_mapping(loader, node, deep=False):
 
 _UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
 
+# PyYAML follows YAML 1.1, where ``1.73e8`` and ``1e8`` (no sign or no dot) are strings.  Engineers
+# write them all the time; resolve them as floats, as YAML 1.2 does.
+import re as _re  # noqa: E402
+
+_FLOAT_12 = _re.compile(r"""^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)(?:[eE][-+]?[0-9]+)$""", _re.X)
+_UniqueKeyLoader.yaml_implicit_resolvers = {
+    k: list(v) for k, v in yaml.SafeLoader.yaml_implicit_resolvers.items()}
+_UniqueKeyLoader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12, list("-+0123456789."))
+
 
 def _read_yaml(path: Path, key: str = "", referenced_from: "Node | None" = None):
     file_for_error = referenced_from.file if referenced_from is not None else path

@@ -105,3 +105,10 @@ def test_scene_error_pickles():
     assert str(e2) == str(e) and e2.key == "a.b"
     m = SceneError(None, "x", "a mapping")
     assert "missing" in str(pickle.loads(pickle.dumps(m)))
+
+
+def test_exponent_without_sign_is_a_number(tmp_path):
+    # YAML 1.1 (PyYAML) would read 1.73e8 and 2e5 as strings; floatmoor reads them as numbers.
+    n = Node.load(write(tmp_path, "ea: 1.73e8\nb: 2e5\nc: -3E-2\nname: e5\nd: 1.5\ne: 7\n"))
+    assert n.float("ea") == 1.73e8 and n.float("b") == 2e5 and n.float("c") == -0.03
+    assert n.str("name") == "e5" and n.float("d") == 1.5 and n.int("e") == 7
