@@ -1,0 +1,109 @@
+"""Build the physical models a scene names: vessel, mooring system and the static balance.
+
+:func:`build` is the one place where a validated :class:`~floatmoor.io.scene.Scene` becomes
+objects the solvers use (statics, time domain, frequency domain), so that every solver sees the
+same vessel, the same mooring and the same constant loads.  It builds only what the scene asks
+for: no ``mooring:`` key, no mooring system.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.constants import GRAVITY
+from ..core.errors import SceneError
+from ..hydro.vessel import Vessel, load_vessel
+from ..mooring.system import MooringSystem
+from .mooring_section import parse_mooring
+from .scene import Scene, load_scene
+
+__all__ = ["BuiltScene", "build", "net_buoyancy_force"]
+
+
+@dataclass(frozen=True, kw_only=True)
+class BuiltScene:
+    """A scene with its models built.
+
+    scene: the validated scene; vessel: :class:`~floatmoor.hydro.vessel.Vessel` or None;
+    mooring: :class:`~floatmoor.mooring.system.MooringSystem` or None (failed lines already
+    removed); static_force: (6,) constant generalized force on the body at zero pose about the
+    reference point from buoyancy minus weight (N, N m) -- what the mooring and hydrostatic
+    restoring must balance; displaced_volume: m^3 at zero pose (None when unknown).
+    """
+
+    scene: Scene
+    vessel: Vessel | None = None
+    mooring: MooringSystem | None = None
+    static_force: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    displaced_volume: float | None = None
+
+
+def net_buoyancy_force(vessel: Vessel, water_density: float, gravity: float = GRAVITY):
+    """Buoyancy minus weight at zero pose, as a 6-vector about the reference point.
+
+    Buoyancy rho g V acts at the centre of buoyancy; its moment about the reference point is
+    already inside the database's hydrostatic stiffness (which is linear about zero pose), so
+    only the vertical force and the moment of the weight-buoyancy imbalance about the reference
+    point in roll/pitch from horizontal offsets of the CoG and CoB enter here.  The centre of
+    buoyancy is taken from the database attribute ``centre_of_buoyancy`` when present, else on
+    the vertical through the reference point (symmetric hulls).
+
+    Returns (force (6,), displaced volume or None).  Without a ``displaced_volume`` attribute in
+    the database the vessel is taken to float freely at zero pose (force 0).
+    """
+    db = vessel.database
+    vol = db.attrs.get("displaced_volume")
+    if vol is None:
+        return np.zeros(6), None
+    vol = float(np.asarray(vol).reshape(-1)[0])
+    cob = np.asarray(db.attrs.get("centre_of_buoyancy", [0.0, 0.0, 0.0]), float).reshape(-1)
+    ref = np.asarray(vessel.reference_point, float)
+    buoy = water_density * gravity * vol
+    weight = vessel.mass * gravity
+    f = np.zeros(6)
+    f[2] = buoy - weight
+    rg = np.asarray(vessel.centre_of_gravity, float) - ref
+    rb = (cob[:3] - ref) if cob.size >= 3 else np.zeros(3)
+    # moments of the vertical forces about the reference point: M = r x F, F = (0, 0, Fz)
+    f[3] = rb[1] * buoy - rg[1] * weight
+    f[4] = -rb[0] * buoy + rg[0] * weight
+    return f, vol
+
+
+def build(scene: Scene | str | os.PathLike, *, failed_lines=None, need_vessel: bool = True) -> BuiltScene:
+    """Build the vessel and mooring a scene names.
+
+    Parameters
+    ----------
+    scene : a :class:`Scene` or a path to a scene file.
+    failed_lines : names of lines to remove in addition to the scene's ``failed_lines`` (ALS).
+    need_vessel : raise a SceneError when the scene names no vessel.
+    """
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    vessel = None
+    if scene.vessel is not None:
+        vessel = load_vessel(scene.vessel)
+    elif need_vessel:
+        raise SceneError(scene.file, "vessel", "a path to a vessel file (vessel.yaml)")
+    mooring = None
+    node = scene.mooring_node()
+    if node is not None:
+        mooring = parse_mooring(node, water_depth=scene.site.water_depth,
+                                water_density=scene.site.water_density,
+                                gravity=scene.site.gravity)
+        if failed_lines:
+            known = {ln.name for ln in mooring.lines}
+            unknown = [n for n in failed_lines if n not in known]
+            if unknown:
+                raise SceneError(scene.file, "failed_lines",
+                                 "names of mooring lines: " + ", ".join(sorted(known)), unknown)
+            mooring = mooring.without_lines(failed_lines)
+    static_force, vol = (np.zeros(6), None)
+    if vessel is not None:
+        static_force, vol = net_buoyancy_force(vessel, scene.site.water_density, scene.site.gravity)
+    return BuiltScene(scene=scene, vessel=vessel, mooring=mooring, static_force=static_force,
+                      displaced_volume=vol)
