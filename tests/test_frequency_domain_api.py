@@ -246,3 +246,25 @@ def test_fd_against_td_linear_limit(tmp_path):
     td = np.mean(stds, axis=0)
     for k in (0, 2):  # surge, heave: WF std within 3 %
         assert td[k] == pytest.approx(fd.wf_std.values[k], rel=0.03)
+
+
+# -- the fd subcommand ---------------------------------------------------------------------------
+def test_fd_command_prints_table_and_writes_netcdf(oc3, tmp_path, capsys):
+    import argparse
+
+    import xarray as xr
+
+    from floatmoor.commands import fd as fd_cmd
+    path, ds = oc3
+    p = argparse.ArgumentParser()
+    fd_cmd.add_arguments(p)
+    out = tmp_path / "fd.nc"
+    args = p.parse_args([str(path), "--out", str(out), "--duration", "3600"])
+    assert fd_cmd.run(args) == 0
+    text = capsys.readouterr().out
+    assert "MAXIMUM LINE TENSIONS" in text and "surge" in text
+    assert all(str(n) in text for n in ds.line.values)
+    back = xr.load_dataset(out)
+    assert back.attrs["duration"] == 3600.0
+    np.testing.assert_allclose(back.wf_std.values, ds.wf_std.values)
+    assert back.tension_max_total.attrs["units"] == "N"
