@@ -1,0 +1,88 @@
+"""Hydrostatic and gravity restoring, additional stiffness, and linear / quadratic damping.
+
+Hydrostatics: ``F = F_0 - C x`` with ``C`` the vessel's ``total_restoring`` (hydrostatic +
+gravity + additional stiffness, about the reference point, linear about the zero pose: roll and
+pitch are small rotations here) and ``F_0`` the constant buoyancy-minus-weight force at the zero
+pose (:func:`floatmoor.io.build.net_buoyancy_force`, the same ``static_force`` the statics use).
+
+Damping: ``F = -D_l v`` and ``F_i = -sum_j D_q,ij v_j |v_j|`` with the vessel's matrices
+(earth-axis velocities of the reference point; exact for small yaw, and for yaw-symmetric
+damping at any yaw).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .base import ForceModel, KernelAssembly, SetupContext, register
+from .kernels import matvec_sub_into, quadratic_damping_into
+
+__all__ = ["Hydrostatics", "LinearDamping", "QuadraticDamping"]
+
+
+@register
+class Hydrostatics(ForceModel):
+    name = "hydrostatics"
+    description = "buoyancy - weight + linear hydrostatic, gravity and additional restoring"
+
+    def setup(self, ctx: SetupContext):
+        v = ctx.built.vessel
+        self.restoring = np.array(v.total_restoring, float)
+        self.const_force = np.array(ctx.built.static_force, float).reshape(6)
+        self._freeze()
+
+    def force(self, t, pose, velocity, out):
+        out += self.const_force
+        matvec_sub_into(self.restoring, np.asarray(pose, float), out)
+
+    def stiffness(self, pose=None):
+        return self.restoring.copy()
+
+    def mean_force(self):
+        return self.const_force.copy()
+
+    def contribute(self, asm: KernelAssembly):
+        asm.restoring = self.restoring
+        asm.const_force = self.const_force
+
+
+@register
+class LinearDamping(ForceModel):
+    name = "damping_linear"
+    description = "linear damping matrix of the vessel file"
+
+    def setup(self, ctx: SetupContext):
+        self.matrix = np.array(ctx.built.vessel.linear_damping, float)
+        self._freeze()
+
+    def force(self, t, pose, velocity, out):
+        matvec_sub_into(self.matrix, np.asarray(velocity, float), out)
+
+    def damping_linearized(self, *args, **kwargs):
+        return self.matrix.copy()
+
+    def contribute(self, asm: KernelAssembly):
+        asm.damping_linear = self.matrix
+        asm.has_damping_linear = True
+
+
+@register
+class QuadraticDamping(ForceModel):
+    name = "damping_quadratic"
+    description = "quadratic damping matrix of the vessel file, F = -D_q v|v|"
+
+    def setup(self, ctx: SetupContext):
+        self.matrix = np.array(ctx.built.vessel.quadratic_damping, float)
+        self._freeze()
+
+    def force(self, t, pose, velocity, out):
+        quadratic_damping_into(self.matrix, np.asarray(velocity, float), out)
+
+    def damping_linearized(self, velocity_std):
+        """Stochastic linearisation for Gaussian velocity of std sigma: D_q sqrt(8/pi) sigma_j."""
+        s = np.asarray(velocity_std, float).reshape(6)
+        return self.matrix * (np.sqrt(8.0 / np.pi) * s)[None, :]
+
+    def contribute(self, asm: KernelAssembly):
+        asm.damping_quadratic = self.matrix
+        asm.has_damping_quadratic = True

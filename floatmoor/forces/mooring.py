@@ -1,0 +1,58 @@
+"""Quasi-static mooring adapter: catenary lines at the instantaneous fairlead positions.
+
+The mooring force is that of :class:`floatmoor.mooring.MooringSystem` (force in earth axes,
+moment about the displaced reference point) at the current pose: fairleads move with the body
+(full rotation), anchors are fixed.  The time loop calls the numba
+:func:`floatmoor.mooring.system.system_force_kernel` directly with warm starts.
+
+Line failure (transient ALS): ``forces.line_failure`` names lines and the time (s) at which each
+breaks; from that time on the line is inactive.  Lines listed as ``failed_lines`` in the mooring
+section are removed from the start (by :func:`floatmoor.io.build.build`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.errors import SceneError
+from .base import ForceModel, KernelAssembly, SetupContext, register
+
+__all__ = ["QuasiStaticMooring"]
+
+
+@register
+class QuasiStaticMooring(ForceModel):
+    name = "mooring"
+    description = "quasi-static catenary lines at the instantaneous fairlead positions"
+
+    def setup(self, ctx: SetupContext):
+        system = ctx.built.mooring
+        self.system = system
+        fail = np.full(system.n_lines, math.inf)
+        failures = getattr(ctx.options, "line_failure", None) or {}
+        for name, t in dict(failures).items():
+            if name not in system.names:
+                raise SceneError(getattr(ctx.options, "file", None), "forces.line_failure",
+                                 "names of mooring lines: " + ", ".join(system.names), name)
+            fail[system.names.index(name)] = float(t)
+        self.fail_time = fail
+        self._freeze()
+
+    def _system_at(self, t):
+        failed = [n for n, tf in zip(self.system.names, self.fail_time) if t >= tf]
+        return self.system.without_lines(failed) if failed else self.system
+
+    def force(self, t, pose, velocity, out):
+        out += self._system_at(t).force(np.asarray(pose, float))
+
+    def stiffness(self, pose=None, t: float = 0.0):
+        return self._system_at(t).stiffness(pose)
+
+    def channels(self):
+        return ["force", "line_tension", "anchor_tension"]
+
+    def contribute(self, asm: KernelAssembly):
+        asm.mooring = self.system
+        asm.fail_time = self.fail_time

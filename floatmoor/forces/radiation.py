@@ -1,0 +1,94 @@
+"""Radiation memory (Cummins): ``F = -int_0^t K(t - tau) x'(tau) dtau`` and ``A_inf``.
+
+``K(t) = (2/pi) int B(w) cos(w t) dw`` (seed 002 eq. 2.58) from the database's radiation damping
+(:func:`floatmoor.hydro.retardation_function`), sampled at ``t_j = j dt`` up to the cut-off
+time (where every significant K_ij has decayed below 1 % of its peak,
+:func:`floatmoor.hydro.cutoff_time`; at most ``max_memory`` s).  DOF pairs whose peak is below
+``pair_tol`` of sqrt(peak_ii peak_jj) are dropped.
+
+The convolution in the time loop (solver) uses the trapezoidal rule on the step grid with the
+velocity history interpolated linearly between steps (second order in dt).
+
+``A_inf``: the database's ``infinite_frequency_added_mass`` when present, else the least-squares
+fit of Ogilvie's relation (:func:`floatmoor.hydro.fit_infinite_frequency_added_mass`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..hydro.retardation import (cutoff_time, fit_infinite_frequency_added_mass,
+                                 retardation_function)
+from .base import ForceModel, KernelAssembly, SetupContext, register
+
+__all__ = ["Radiation", "infinite_frequency_added_mass", "retardation_matrix"]
+
+DEFAULT_MAX_MEMORY = 120.0
+
+
+def retardation_matrix(db, t) -> np.ndarray:
+    """K_ij(t) (6, 6, n_t) from ``db.radiation_damping``."""
+    B = np.asarray(db["radiation_damping"].transpose("influenced_dof", "radiating_dof",
+                                                     "omega").values, float)
+    w = np.asarray(db["omega"].values, float)
+    return retardation_function(w, B, np.asarray(t, float))
+
+
+def infinite_frequency_added_mass(db) -> np.ndarray:
+    """A_inf (6, 6): from the database, else fitted (module docstring)."""
+    if "infinite_frequency_added_mass" in db:
+        return np.asarray(db["infinite_frequency_added_mass"].transpose(
+            "influenced_dof", "radiating_dof").values, float)
+    w = np.asarray(db["omega"].values, float)
+    t = np.arange(0.0, 200.0, 0.05)
+    K = retardation_matrix(db, t)
+    A = np.asarray(db["added_mass"].transpose("influenced_dof", "radiating_dof", "omega").values,
+                   float)
+    return fit_infinite_frequency_added_mass(w, A, t, K)
+
+
+@register
+class Radiation(ForceModel):
+    name = "radiation"
+    description = "radiation memory (retardation functions, Cummins equation)"
+
+    def setup(self, ctx: SetupContext):
+        db = ctx.built.vessel.database
+        opts = ctx.options
+        max_memory = getattr(opts, "max_memory", None) or DEFAULT_MAX_MEMORY
+        pair_tol = 1e-3
+        dt = ctx.dt
+        t = np.arange(0.0, max_memory + 0.5 * dt, dt)
+        K = retardation_matrix(db, t)
+        peak = np.max(np.abs(K), axis=-1)
+        diag = np.sqrt(np.outer(np.diag(peak), np.diag(peak)))
+        keep = peak > pair_tol * np.maximum(diag, 1e-300)
+        cut = cutoff_time(t, K)
+        t_cut = float(np.max(np.where(keep, cut, 0.0))) if keep.any() else 0.0
+        n_k = max(2, int(np.ceil(t_cut / dt)) + 1)
+        n_k = min(n_k, t.size)
+        ii, jj = np.nonzero(keep)
+        self.dt = dt
+        self.kernel = np.ascontiguousarray(K[ii, jj, :n_k])
+        self.pair_i = ii.astype(np.int64)
+        self.pair_j = jj.astype(np.int64)
+        self.memory = (n_k - 1) * dt
+        self._freeze()
+
+    def force(self, t, pose, velocity, out, history=None):
+        """Add ``-int K(t - tau) v(tau) dtau``; ``history`` (m, 6): velocities at t - dt, t - 2dt,
+        ... (most recent first; missing = at rest).  Trapezoidal rule as in the solver."""
+        v = np.asarray(velocity, float)
+        hist = np.zeros((0, 6)) if history is None else np.asarray(history, float)
+        n_k = self.kernel.shape[1]
+        for p in range(self.pair_i.size):
+            i, j = self.pair_i[p], self.pair_j[p]
+            s = 0.5 * self.kernel[p, 0] * v[j]
+            m = min(n_k - 1, hist.shape[0])
+            s += np.dot(self.kernel[p, 1:m + 1], hist[:m, j])
+            out[i] -= self.dt * s
+
+    def contribute(self, asm: KernelAssembly):
+        asm.ret_kernel = self.kernel
+        asm.ret_i = self.pair_i
+        asm.ret_j = self.pair_j

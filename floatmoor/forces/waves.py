@@ -1,0 +1,222 @@
+"""Wave forces: first-order excitation and second-order slow drift (Newman's approximation).
+
+Both are precomputed as time series before the time loop, at the half-step samples the
+integrator needs, by FFT (:mod:`floatmoor.forces.series`).  They are evaluated
+
+* at the **mean position** of the body (the origin of the earth frame, where the database's
+  phase reference lies): the body's slow horizontal excursion does not shift the wave phase, as
+  is common practice in SIMO/aNySIM-type analyses of moored units (the phase error is k x_LF,
+  e.g. 0.05 rad for a 7 m offset in 15 s waves);
+* for the body heading ``yaw0`` of the static start (the wave headings relative to the body are
+  ``direction - yaw0``; body-axis forces are turned to earth axes by ``yaw0``).  A slowly varying
+  yaw does not re-interpolate the transfer functions.
+
+Realisation: the scene's sea state is realised by :func:`floatmoor.metocean.realise_waves` with
+frequencies at the centres of equal bins of width ``dw = 2 pi / (N h)`` (``h`` = dt/2, ``N`` >=
+duration / h): the sum repeats only after N h >= the simulated duration, and every series is an
+exact FFT.  The wave seed stream is the run's seed itself, so ``wave_elevation`` equals
+``realise_waves(..., seed=seed, random_frequencies=False)`` on the same bins.
+
+First order (eq. 2.23, the 1st-order part of q_wa)::
+
+    F_i(t) = Re sum_k a_k X_i(w_k, beta_k - yaw0) exp(i (w_k t + phi_k))     (exp(+i w t))
+
+Slow drift, Newman (1974): with the mean drift coefficients D_i(w, beta) (N/m^2 per squared
+amplitude) and the off-diagonal QTF approximated by T_jk = (D_j + D_k)/2::
+
+    F_i(t) = sum_j sum_k a_j a_k T_jk cos((w_j - w_k) t + phi_j - phi_k)
+           = Re[ A_D,i(t) conj(A(t)) ],   A = sum a_k e^{i theta_k},  A_D,i = sum a_k D_i,k e^{i theta_k}
+
+which holds the mean drift ``sum a_k^2 D_k`` and only difference-frequency terms (no sum
+frequencies).  Cross-direction terms under spreading use the same arithmetic mean.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.errors import SceneError
+from ..hydro.database import interpolate_heading
+from ..metocean.realisation import WaveRealisation, realise_waves
+from ..metocean.spectra import default_omega_range
+from .base import ForceModel, KernelAssembly, SetupContext, register
+from .series import FrequencyGrid, complex_envelope, grid_for
+
+__all__ = ["WaveComponents", "wave_components", "FirstOrderWave", "DriftNewman",
+           "body_axes_to_earth", "transfer_at"]
+
+
+@dataclass(frozen=True, eq=False)
+class WaveComponents:
+    """The wave components of one run and the grid they lie on (grid None: direct sums)."""
+
+    realisation: WaveRealisation
+    grid: FrequencyGrid | None
+
+    @property
+    def omega(self):
+        return self.realisation.omega
+
+    def coefficients(self) -> np.ndarray:
+        """a_k exp(i phi_k), complex (n,)."""
+        r = self.realisation
+        return r.amplitude * np.exp(1j * r.phase)
+
+    def elevation(self, n_samples: int, h: float) -> np.ndarray:
+        """Elevation (m) at the origin at t = j h, j < n_samples."""
+        return complex_envelope(self.omega, self.coefficients(), n_samples, h, self.grid).real
+
+
+def wave_components(spec, *, duration: float, seed: int, h: float, water_depth: float,
+                    gravity: float) -> WaveComponents:
+    """Realise ``spec`` on an FFT grid with sampling step ``h`` (s) (see the module docstring)."""
+    lo_d, hi_d = default_omega_range(spec)
+    lo = lo_d if spec.omega_min is None else float(spec.omega_min)
+    hi = hi_d if spec.omega_max is None else float(spec.omega_max)
+    if not 0.0 < lo < hi:
+        raise SceneError(None, "waves.omega_min/omega_max", "0 < omega_min < omega_max (rad/s)",
+                         (lo, hi))
+    if spec.n_frequencies is not None:
+        dw_max = (hi - lo) / int(spec.n_frequencies)
+        grid = grid_for(lo, dw_max, h, 0.0)
+    else:
+        grid = grid_for(lo, 2.0 * math.pi / duration, h, duration)
+    n = max(1, int(math.ceil((hi - lo) / grid.dw - 1e-9)))
+    if spec.n_frequencies is not None:
+        n = int(spec.n_frequencies)
+    real = realise_waves(spec, duration=duration, seed=seed, water_depth=water_depth,
+                         n_frequencies=n, omega_min=lo, omega_max=lo + n * grid.dw,
+                         random_frequencies=False, g=gravity)
+    return WaveComponents(realisation=real, grid=grid)
+
+
+def transfer_at(db, variable: str, omega, direction, *, file=None) -> np.ndarray:
+    """``db[variable]`` (dims omega, wave_direction, influenced_dof) at the components'
+    (omega_k, direction_k): (n, 6), linear in heading and in omega, zero outside the database's
+    frequency range (with a SceneError if a component with significant energy falls outside)."""
+    omega = np.asarray(omega, float)
+    direction = np.asarray(direction, float)
+    w_db = np.asarray(db["omega"].values, float)
+    out = np.zeros((omega.size, 6), complex if variable == "excitation_force" else float)
+    for beta in np.unique(direction):
+        sel = direction == beta
+        try:
+            tab = interpolate_heading(db, variable, float(beta))  # (n_omega, 6)
+        except Exception as exc:  # DatabaseError: heading not covered
+            raise SceneError(file, f"{variable} at wave heading {math.degrees(beta):.1f} deg",
+                             "a heading inside the database's range", str(exc)) from None
+        tab = np.asarray(tab)
+        for d in range(6):
+            if np.iscomplexobj(tab):
+                out[sel, d] = (np.interp(omega[sel], w_db, tab[:, d].real, left=0.0, right=0.0)
+                               + 1j * np.interp(omega[sel], w_db, tab[:, d].imag, left=0.0,
+                                                right=0.0))
+            else:
+                out[sel, d] = np.interp(omega[sel], w_db, tab[:, d], left=0.0, right=0.0)
+    return out
+
+
+def body_axes_to_earth(f: np.ndarray, yaw: float) -> np.ndarray:
+    """Turn (..., 6) body-axis generalized forces into earth axes by the heading ``yaw``."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    out = np.array(f, copy=True)
+    for a, b in ((0, 1), (3, 4)):
+        out[..., a] = c * f[..., a] - s * f[..., b]
+        out[..., b] = s * f[..., a] + c * f[..., b]
+    return out
+
+
+def _check_range(comp: WaveComponents, db, vessel_file, what: str):
+    w_db = np.asarray(db["omega"].values, float)
+    r = comp.realisation
+    e = r.amplitude ** 2
+    outside = (r.omega < w_db[0]) | (r.omega > w_db[-1])
+    frac = e[outside].sum() / max(e.sum(), 1e-300)
+    if frac > 0.01:
+        raise SceneError(vessel_file, "database",
+                         f"{what} over the sea state's frequencies {r.omega.min():.3f}-"
+                         f"{r.omega.max():.3f} rad/s", f"{w_db[0]:.3f}-{w_db[-1]:.3f} rad/s "
+                         f"({100 * frac:.1f} % of the wave energy outside)")
+
+
+class _SeriesModel(ForceModel):
+    """A force precomputed as a time series (n_samples, 6) at the half-step samples."""
+
+    def force(self, t, pose, velocity, out):
+        j = int(round(t / self.h))
+        if not 0 <= j < self.series.shape[0] or abs(j * self.h - t) > 1e-9 * max(1.0, t):
+            raise ValueError(f"{self.name}: t = {t} s is not a sample time (step {self.h} s)")
+        out += self.series[j]
+
+    def contribute(self, asm: KernelAssembly):
+        asm.add_series(self.name, self.series)
+
+    def mean_force(self):
+        return self._mean.copy()
+
+
+@register
+class FirstOrderWave(_SeriesModel):
+    """First-order wave excitation from the database's excitation transfer functions."""
+
+    name = "wave1"
+    description = "first-order wave excitation (transfer functions x wave realisation)"
+
+    def setup(self, ctx: SetupContext):
+        v = ctx.built.vessel
+        comp = ctx.waves
+        db = v.database
+        if "excitation_force" not in db:
+            raise SceneError(v.file, "database", "a database with excitation_force for waves")
+        _check_range(comp, db, v.file, "excitation_force")
+        r = comp.realisation
+        X = transfer_at(db, "excitation_force", r.omega, r.direction - ctx.yaw0, file=v.file)
+        c = comp.coefficients()[:, None] * X
+        f = complex_envelope(r.omega, c, ctx.n_samples, ctx.sample_dt, comp.grid).real
+        f = body_axes_to_earth(f, ctx.yaw0) * ctx.ramp_series()[:, None]
+        self.h = ctx.sample_dt
+        self.series = np.ascontiguousarray(f)
+        self._mean = np.zeros(6)
+        self._freeze()
+
+
+@register
+class DriftNewman(_SeriesModel):
+    """Mean and slowly varying wave drift by Newman's approximation (module docstring)."""
+
+    name = "drift_newman"
+    description = "mean + slow wave drift, Newman's approximation of the mean drift coefficients"
+
+    def setup(self, ctx: SetupContext):
+        v = ctx.built.vessel
+        comp = ctx.waves
+        db = v.database
+        if "mean_drift_force" not in db:
+            raise SceneError(v.file, "database", "a database with mean_drift_force for the "
+                             "drift model (or exclude drift in the forces section)")
+        _check_range(comp, db, v.file, "mean_drift_force")
+        r = comp.realisation
+        D = transfer_at(db, "mean_drift_force", r.omega, r.direction - ctx.yaw0, file=v.file)
+        a = comp.coefficients()
+        if comp.grid is not None:
+            A = complex_envelope(r.omega, a[:, None], ctx.n_samples, ctx.sample_dt, comp.grid,
+                                 carrier=False)
+            AD = complex_envelope(r.omega, a[:, None] * D, ctx.n_samples, ctx.sample_dt,
+                                  comp.grid, carrier=False)
+        else:
+            A = complex_envelope(r.omega, a[:, None], ctx.n_samples, ctx.sample_dt)
+            AD = complex_envelope(r.omega, a[:, None] * D, ctx.n_samples, ctx.sample_dt)
+        f = (AD * np.conj(A)).real
+        mean = np.sum(r.amplitude[:, None] ** 2 * D, axis=0)
+        f = body_axes_to_earth(f, ctx.yaw0)
+        mean = body_axes_to_earth(mean, ctx.yaw0)
+        # ramp the fluctuation only: the run starts in equilibrium with the mean drift
+        ramp = ctx.ramp_series()[:, None]
+        f = mean + ramp * (f - mean)
+        self.h = ctx.sample_dt
+        self.series = np.ascontiguousarray(f)
+        self._mean = mean
+        self._freeze()

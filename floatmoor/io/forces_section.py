@@ -1,0 +1,78 @@
+"""The ``forces:`` section of a scene: options of the time-domain force models.
+
+```yaml
+forces:
+  exclude: [drift, wind]           # models (or groups drift, damping, waves) not to build
+  drift: newman                    # newman (default when the database has mean drift) | none
+  retardation: true                # radiation memory on (default) or off
+  max_memory: 120.0                # s, longest retardation memory kept
+  line_failure: {line6: 1500.0}    # transient ALS: line name -> time of failure (s)
+  record_forces: false             # store force(time, model, dof) in the results
+```
+
+Every key is optional.  The models themselves are chosen by the other sections (no wind in the
+environment: no wind model); this section only removes or tunes them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..core.config import Node
+
+__all__ = ["ForcesSpec", "parse_forces", "FORCES_KEYS", "DRIFT_METHODS"]
+
+FORCES_KEYS = ("exclude", "drift", "retardation", "max_memory", "line_failure", "record_forces")
+DRIFT_METHODS = ("newman", "none")
+
+
+@dataclass(frozen=True, kw_only=True)
+class ForcesSpec:
+    """Options of the force models (see the module docstring); ``file`` for messages."""
+
+    exclude: tuple[str, ...] = ()
+    drift: str | None = None
+    retardation: bool = True
+    max_memory: float | None = None
+    line_failure: dict = field(default_factory=dict)
+    record_forces: bool = False
+    file: object = field(default=None, compare=False)
+
+
+def parse_forces(node: Node) -> ForcesSpec:
+    """Read a ``forces:`` mapping (SceneError naming file and key for every mistake)."""
+    from ..forces import GROUPS, REGISTRY
+    node.reject_unknown(FORCES_KEYS)
+    names = sorted(set(REGISTRY) | set(GROUPS))
+    exclude = []
+    for i, item in enumerate(node.list("exclude", [])):
+        if not isinstance(item, str) or item not in names:
+            raise node.error("exclude", "force model names: " + ", ".join(names), item)
+        exclude.append(item)
+    drift = node.str("drift", None, choices=DRIFT_METHODS) if "drift" in node else None
+    failures = {}
+    if "line_failure" in node:
+        fl = node.child("line_failure")
+        for name in fl.keys():
+            failures[str(name)] = fl.float(name, ge=0.0, unit="s")
+    return ForcesSpec(exclude=tuple(exclude), drift=drift,
+                      retardation=node.bool("retardation", True),
+                      max_memory=node.float("max_memory", None, gt=0.0, unit="s")
+                      if "max_memory" in node else None,
+                      line_failure=failures, record_forces=node.bool("record_forces", False),
+                      file=node.file)
+
+
+def describe_forces(spec: ForcesSpec | None, scene=None) -> list[str]:
+    if spec is None:
+        return []
+    parts = []
+    if spec.exclude:
+        parts.append("excluded " + ", ".join(spec.exclude))
+    if spec.drift:
+        parts.append(f"drift {spec.drift}")
+    if not spec.retardation:
+        parts.append("no radiation memory")
+    for name, t in spec.line_failure.items():
+        parts.append(f"line {name} fails at {t:g} s")
+    return ["forces: " + ("; ".join(parts) if parts else "defaults")]

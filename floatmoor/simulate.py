@@ -1,0 +1,179 @@
+"""User API of the time domain: ``floatmoor.simulate(scene, seed=...)`` -> xarray Dataset."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import os
+import platform
+import time as _time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
+from .core.errors import FloatmoorWarning, SceneError
+
+__all__ = ["simulate", "result_dataset", "scene_text"]
+
+
+def scene_text(scene) -> str:
+    """The scene file's text (YAML) when it has a file, else its ``describe()``."""
+    if scene.file is not None and Path(scene.file).is_file():
+        return Path(scene.file).read_text()
+    return scene.describe()
+
+
+def _versions() -> dict:
+    import numba
+    import scipy
+    from . import __version__
+    return {"floatmoor": __version__, "numpy": np.__version__, "scipy": scipy.__version__,
+            "xarray": xr.__version__, "numba": numba.__version__,
+            "python": platform.python_version()}
+
+
+def simulate(scene, *, seed: int | None = None, duration: float | None = None,
+             dt: float | None = None, ramp: float | None = None, transient: float | None = None,
+             forces=None, record_forces: bool | None = None, models=None, waves=None,
+             start_pose=None, start_velocity=None) -> xr.Dataset:
+    """Simulate one realisation of a scene in the time domain.
+
+    Parameters
+    ----------
+    scene : Scene, BuiltScene, or path of a scene file
+    seed : int, optional
+        Realisation seed (default: the first of the scene's ``analysis.seeds``).  The waves use
+        the seed itself; the wind gust an independent stream derived from it.
+    duration, dt, ramp, transient : float, optional
+        Override ``analysis`` (s).  ``transient`` only marks the start of the statistics window
+        (attribute ``transient``); the series keep it.
+    forces : :class:`floatmoor.io.forces_section.ForcesSpec`, optional
+        Force options (default: the scene's ``forces`` section, if any).
+    record_forces : bool, optional
+        Store ``force(time, model, dof)`` (default from ``forces.record_forces``).
+    models : list of model names, optional (advanced: replaces the scene's choice).
+    waves : :class:`floatmoor.forces.waves.WaveComponents`, optional (advanced: e.g. a regular
+        wave instead of the scene's sea state).
+    start_pose, start_velocity : (6,), optional (advanced: free decay; default: static
+        equilibrium at rest).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``motion(time, dof)`` (m, rad) of the body reference point, ``velocity(time, dof)``,
+        ``line_tension(time, line)`` at the fairlead and ``anchor_tension(time, line)`` (N),
+        ``wave_elevation(time)`` at the origin (m, when the scene has waves),
+        ``force(time, model, dof)`` (N, N m; when recorded).  Attributes: ``scene`` (YAML text),
+        ``scene_file``, ``scene_name``, ``seed``, ``models`` (active force models), ``dt``,
+        ``duration``, ``ramp``, ``transient``, versions, ``run_time_s`` (time loop),
+        ``setup_time_s``, ``created``.
+
+    Raises
+    ------
+    SceneError
+        Bad input (names file and key).
+    NumericalError
+        NaN, exploding state, line far beyond MBS, failed catenary, or dt beyond the stability
+        limit (names the time, DOF or line, and a likely remedy).
+    """
+    from .io.build import BuiltScene, build
+    from .io.scene import Scene, load_scene
+    from .solvers.time_domain import assemble, integrate
+
+    t_all = _time.perf_counter()
+    if isinstance(scene, BuiltScene):
+        built = scene
+    else:
+        if not isinstance(scene, Scene):
+            scene = load_scene(scene)
+        built = build(scene)
+    sc = built.scene
+    an = sc.analysis
+    seed = an.seeds[0] if seed is None else seed
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise SceneError(sc.file, "seed", "an integer seed >= 0", seed)
+    duration = an.duration if duration is None else float(duration)
+    dt = an.dt if dt is None else float(dt)
+    ramp = an.ramp if ramp is None else float(ramp)
+    transient = an.transient if transient is None else float(transient)
+    if not (0.0 < dt < duration):
+        raise SceneError(sc.file, "analysis.dt", f"0 < dt < duration ({duration:g} s)", dt)
+    if forces is None:
+        forces = getattr(sc, "forces", None)
+    if record_forces is None:
+        record_forces = bool(getattr(forces, "record_forces", False))
+    a = assemble(built, seed=int(seed), dt=dt, duration=duration, ramp=ramp, options=forces,
+                 models=models, waves=waves, start_pose=start_pose)
+    r = integrate(a, record_forces=record_forces, built=built, v0=start_velocity)
+    setup = _time.perf_counter() - t_all - r.wall_time
+    ds = result_dataset(r, built, seed=int(seed), dt=dt, duration=a.n_steps * dt, ramp=ramp,
+                        transient=transient)
+    ds.attrs["run_time_s"] = float(r.wall_time)
+    ds.attrs["setup_time_s"] = float(setup)
+    ds.attrs["real_time_factor"] = float(a.n_steps * dt / max(r.wall_time, 1e-12))
+    mbs = built.mooring.mbs if built.mooring is not None else None
+    if mbs is not None and r.line_tension.size:
+        over = np.nonzero(r.line_tension.max(axis=0) > mbs)[0]
+        for i in over:
+            warnings.warn(f"line {r.line_names[i]!r}: maximum fairlead tension "
+                          f"{r.line_tension[:, i].max() / 1e3:.0f} kN exceeds its MBS "
+                          f"{mbs[i] / 1e3:.0f} kN (seed {seed})", FloatmoorWarning, stacklevel=2)
+    return ds
+
+
+def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: float,
+                   transient: float) -> xr.Dataset:
+    """The :class:`~floatmoor.solvers.time_domain.TimeDomainResult` as an xarray Dataset."""
+    sc = built.scene
+    data = {
+        "motion": (("time", "dof"), r.motion,
+                   {"units": "m (surge, sway, heave), rad (roll, pitch, yaw)",
+                    "long_name": "pose of the body reference point (earth axes)"}),
+        "velocity": (("time", "dof"), r.velocity,
+                     {"units": "m/s (surge, sway, heave), rad/s (roll, pitch, yaw)",
+                      "long_name": "pose rate of the body reference point"}),
+    }
+    coords = {"time": ("time", r.time, {"units": "s", "long_name": "simulated time"}),
+              "dof": ("dof", list(DOF_NAMES), {"long_name": "degree of freedom",
+                                               "units": ", ".join(DOF_UNITS)})}
+    if r.line_names:
+        coords["line"] = ("line", list(r.line_names), {"long_name": "mooring line"})
+        data["line_tension"] = (("time", "line"), r.line_tension,
+                                {"units": "N", "long_name": "effective tension at the fairlead "
+                                 "(quasi-static catenary)"})
+        data["anchor_tension"] = (("time", "line"), r.anchor_tension,
+                                  {"units": "N", "long_name": "tension at the anchor"})
+        data["mbs"] = (("line",), np.asarray(built.mooring.mbs, float),
+                       {"units": "N", "long_name": "minimum breaking strength (weakest segment)"})
+    if r.wave_elevation is not None:
+        data["wave_elevation"] = (("time",), r.wave_elevation,
+                                  {"units": "m", "long_name": "undisturbed wave elevation at the "
+                                   "origin"})
+    if r.forces is not None:
+        coords["model"] = ("model", list(r.force_models), {"long_name": "force model"})
+        data["force"] = (("time", "model", "dof"), r.forces,
+                         {"units": ", ".join(FORCE_UNITS),
+                          "long_name": "generalized force of each model on the body (moments "
+                                       "about the displaced reference point, earth axes)"})
+    data["start_pose"] = (("dof",), r.x0, {"units": ", ".join(DOF_UNITS),
+                                           "long_name": "start pose (static equilibrium)"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update({
+        "title": f"floatmoor time-domain simulation of {sc.name}",
+        "scene": scene_text(sc),
+        "scene_name": sc.name,
+        "scene_file": "" if sc.file is None else os.fspath(sc.file),
+        "seed": int(seed),
+        "models": list(r.models),
+        "dt": float(dt),
+        "duration": float(duration),
+        "ramp": float(ramp),
+        "transient": float(transient),
+        "integrator": "classical Runge-Kutta 4, fixed step; trapezoidal radiation memory",
+        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+    })
+    for k, v in _versions().items():
+        ds.attrs[f"version_{k}"] = v
+    return ds

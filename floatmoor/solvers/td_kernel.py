@@ -1,0 +1,269 @@
+"""The numba time loop of the coupled 6-DOF time-domain solver (one kernel, no allocation).
+
+Equation of motion (seed 002 eq. 2.56; Cummins form), pose ``x`` = [x, y, z, roll, pitch, yaw]
+of the body reference point, velocity ``v = x'``:
+
+    (M + A_inf) x'' = F_0 - C x + F_moor(x) - D_l v - D_q v|v| - int_0^t K(t - s) v(s) ds
+                      + F_wave1(t) + F_drift(t) + F_wind(t, x, v) + F_current(x, v)
+
+Integrator: classical 4th-order Runge-Kutta with a fixed step ``dt``.  The precomputed series
+(waves, drift, wind speed) are sampled every dt/2 so every stage reads an exact sample.  The
+convolution is the trapezoidal rule on the step grid; at a stage time t_n + c dt the history
+velocities are interpolated linearly between the step values, which splits it into
+``dt [K_0 v_stage / 2 + (1 - c) S_n + c S_{n+1}]`` with ``S_n = sum_{j>=1} K_j v_{n-j}``: one
+new sum per step (S_{n+1} is the next step's S_n), kept in a ring buffer of past velocities.
+Order: 4 for the instantaneous forces, 2 for the memory term.  Stability: RK4's real-axis limit
+is omega dt < 2.83; the solver checks omega_max dt of the linearised system before running.
+
+Status codes returned in ``status[0]`` (``status[1]`` the step, ``status[2]`` the DOF or line):
+0 ok, 1 NaN/inf in the state, 2 a DOF beyond its guard limit, 3 a line tension beyond
+``tension_guard`` x MBS, 4 a catenary solve failed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..forces.base import (PART_CURRENT, PART_DAMPING_LINEAR, PART_DAMPING_QUADRATIC,
+                           PART_HYDROSTATICS, PART_MOORING, PART_RADIATION, PART_SERIES,
+                           PART_WIND)
+from ..forces.kernels import relative_flow_force_into
+from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
+from ..mooring.system import system_force_kernel
+
+__all__ = ["td_kernel", "STATUS_OK", "STATUS_NAN", "STATUS_GUARD", "STATUS_TENSION",
+           "STATUS_CATENARY"]
+
+STATUS_OK, STATUS_NAN, STATUS_GUARD, STATUS_TENSION, STATUS_CATENARY = range(5)
+
+
+@njit(cache=True)
+def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_kernel, ret_i,
+         ret_j, s0, s1, series, has_wind, wind_speed, wind_heading, wind_th, wind_tab, has_cur,
+         cur_speed, cur_heading, cur_th, cur_tab, has_moor, anchors, fairleads, seg_L, seg_EA,
+         seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
+         parts, f):
+    """Total force ``f`` (6,) and its parts (N_PARTS, 6) at sample j (time j dt/2), stage
+    fraction c.  Returns -1, or the index of a line whose catenary failed."""
+    for p in range(parts.shape[0]):
+        for k in range(6):
+            parts[p, k] = 0.0
+    # hydrostatics
+    for i in range(6):
+        s = const_force[i]
+        for k in range(6):
+            s -= restoring[i, k] * x[k]
+        parts[PART_HYDROSTATICS, i] = s
+    # mooring
+    if has_moor:
+        bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
+                                  cb, seabed, active, warm, False, work, rot, line_out, fm, stiff)
+        if bad >= 0:
+            return bad
+        for i in range(6):
+            parts[PART_MOORING, i] = fm[i]
+    # damping
+    if has_dl:
+        for i in range(6):
+            s = 0.0
+            for k in range(6):
+                s += dl[i, k] * v[k]
+            parts[PART_DAMPING_LINEAR, i] = -s
+    if has_dq:
+        for i in range(6):
+            s = 0.0
+            for k in range(6):
+                s += dq[i, k] * v[k] * abs(v[k])
+            parts[PART_DAMPING_QUADRATIC, i] = -s
+    # radiation memory
+    for p in range(ret_i.shape[0]):
+        i = ret_i[p]
+        jj = ret_j[p]
+        parts[PART_RADIATION, i] -= dt * (0.5 * ret_kernel[p, 0] * v[jj] + (1.0 - c) * s0[p]
+                                          + c * s1[p])
+    # wind and current
+    if has_wind:
+        relative_flow_force_into(wind_speed[j], wind_heading, v[0], v[1], x[5], 1.0, wind_th,
+                                 wind_tab, coef, parts[PART_WIND])
+    if has_cur:
+        relative_flow_force_into(cur_speed, cur_heading, v[0], v[1], x[5], 1.0, cur_th, cur_tab,
+                                 coef, parts[PART_CURRENT])
+    # precomputed series
+    for q in range(series.shape[0]):
+        for i in range(6):
+            parts[PART_SERIES + q, i] = series[q, j, i]
+    for i in range(6):
+        s = 0.0
+        for p in range(parts.shape[0]):
+            s += parts[p, i]
+        f[i] = s
+    return -1
+
+
+@njit(cache=True)
+def _solve_acc(minv, f, a):
+    for i in range(6):
+        s = 0.0
+        for k in range(6):
+            s += minv[i, k] * f[k]
+        a[i] = s
+
+
+@njit(cache=True)
+def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq, has_dq,
+              ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading, wind_th,
+              wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor, anchors,
+              fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, fail_time,
+              mbs, warm, guard, tension_guard, record_parts, motion, velocity, t_fair, t_anchor,
+              parts_out, status):
+    """Integrate ``n_steps`` RK4 steps from (x0, v0); fill the outputs at every step.
+
+    Outputs: motion, velocity (n_steps+1, 6); t_fair, t_anchor (n_steps+1, n_lines) in N;
+    parts_out (n_steps+1, N_PARTS, 6) when ``record_parts`` else (1, N_PARTS, 6) scratch;
+    status (3,) int64.  ``hist`` (6, 2 n_k) ring buffer of step velocities, stored twice (zeros on entry);
+    ``guard`` (6,) largest |x - x0| allowed per DOF.
+    """
+    n_parts = parts_out.shape[1]
+    parts = np.zeros((n_parts, 6))
+    work = np.zeros(64)
+    rot = np.zeros((3, 3))
+    n_lines = anchors.shape[0]
+    line_out = np.zeros((n_lines, 10))
+    fm = np.zeros(6)
+    stiff = np.zeros((6, 6))
+    coef = np.zeros(6)
+    n_pairs = ret_i.shape[0]
+    n_k = hist.shape[1] // 2
+    s0 = np.zeros(n_pairs)
+    s1 = np.zeros(n_pairs)
+    x = x0.copy()
+    v = v0.copy()
+    xs = np.zeros(6)
+    vs = np.zeros(6)
+    f = np.zeros(6)
+    a1 = np.zeros(6)
+    a2 = np.zeros(6)
+    a3 = np.zeros(6)
+    a4 = np.zeros(6)
+    v1 = np.zeros(6)
+    v2 = np.zeros(6)
+    v3 = np.zeros(6)
+    for k in range(6):
+        hist[k, 0] = v[k]
+        hist[k, n_k] = v[k]
+    status[0] = 0
+    status[1] = 0
+    status[2] = 0
+    for n in range(n_steps + 1):
+        t = n * dt
+        if has_moor:
+            for i in range(n_lines):
+                if active[i] and t >= fail_time[i]:
+                    active[i] = False
+        # convolution sum S_{n+1} = sum_{j=1}^{n_k-1} K_j v_{n+1-j}; the history is stored
+        # twice (columns p and p + n_k) so that the window is contiguous without a modulo
+        b = (n + 1) % n_k + n_k
+        for p in range(n_pairs):
+            jj = ret_j[p]
+            s = 0.0
+            for m in range(1, n_k):
+                s += ret_kernel[p, m] * hist[jj, b - m]
+            s1[p] = s
+        # stage 1 (also the record at t_n)
+        bad = _rhs(2 * n, 0.0, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq,
+                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
+                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
+        if bad >= 0:
+            status[0] = 4
+            status[1] = n
+            status[2] = bad
+            return
+        for k in range(6):
+            motion[n, k] = x[k]
+            velocity[n, k] = v[k]
+        for i in range(n_lines):
+            tf = math.sqrt(line_out[i, OUT_HF] ** 2 + line_out[i, OUT_VF] ** 2)
+            t_fair[n, i] = tf
+            t_anchor[n, i] = math.sqrt(line_out[i, OUT_HA] ** 2 + line_out[i, OUT_VA] ** 2)
+            if tf > tension_guard * mbs[i]:
+                status[0] = 3
+                status[1] = n
+                status[2] = i
+                return
+        r = n if record_parts else 0
+        for p in range(n_parts):
+            for k in range(6):
+                parts_out[r, p, k] = parts[p, k]
+        if n == n_steps:
+            break
+        _solve_acc(minv, f, a1)
+        for k in range(6):
+            v1[k] = v[k]
+            xs[k] = x[k] + 0.5 * dt * v1[k]
+            vs[k] = v[k] + 0.5 * dt * a1[k]
+            v2[k] = vs[k]
+        bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
+                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
+                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
+        if bad >= 0:
+            status[0] = 4
+            status[1] = n
+            status[2] = bad
+            return
+        _solve_acc(minv, f, a2)
+        for k in range(6):
+            xs[k] = x[k] + 0.5 * dt * v2[k]
+            vs[k] = v[k] + 0.5 * dt * a2[k]
+            v3[k] = vs[k]
+        bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
+                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
+                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
+        if bad >= 0:
+            status[0] = 4
+            status[1] = n
+            status[2] = bad
+            return
+        _solve_acc(minv, f, a3)
+        for k in range(6):
+            xs[k] = x[k] + dt * v3[k]
+            vs[k] = v[k] + dt * a3[k]
+        bad = _rhs(2 * n + 2, 1.0, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
+                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
+                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
+        if bad >= 0:
+            status[0] = 4
+            status[1] = n
+            status[2] = bad
+            return
+        _solve_acc(minv, f, a4)
+        for k in range(6):
+            x[k] += dt / 6.0 * (v1[k] + 2.0 * v2[k] + 2.0 * v3[k] + vs[k])
+            v[k] += dt / 6.0 * (a1[k] + 2.0 * a2[k] + 2.0 * a3[k] + a4[k])
+        for k in range(6):
+            if not (math.isfinite(x[k]) and math.isfinite(v[k])):
+                status[0] = 1
+                status[1] = n + 1
+                status[2] = k
+                return
+            if abs(x[k] - x0[k]) > guard[k]:
+                status[0] = 2
+                status[1] = n + 1
+                status[2] = k
+                return
+        c0 = (n + 1) % n_k
+        for k in range(6):
+            hist[k, c0] = v[k]
+            hist[k, c0 + n_k] = v[k]
+        for p in range(n_pairs):
+            s0[p] = s1[p]

@@ -1,0 +1,336 @@
+"""Coupled 6-DOF time-domain simulation of a moored floater (quasi-static mooring).
+
+:func:`assemble` builds the force models a scene names (and only those), the static start and
+the plain arrays of the time loop; :func:`integrate` runs the numba kernel
+(:mod:`floatmoor.solvers.td_kernel`: the equation of motion, the RK4 integrator, the memory
+convolution, the guards) and returns a :class:`TimeDomainResult`.  The user-facing entry point
+is :func:`floatmoor.simulate`.
+
+Assumptions (documented limits)
+-------------------------------
+* Large horizontal motions and large yaw: mooring at the exact fairlead positions (full
+  rotation), wind and current coefficients at the relative heading of the flow to the body.
+* Roll and pitch are small rotations in the hydrostatic restoring (linear ``C``) and in the
+  mass, added-mass, radiation and damping terms, which act on the pose rates in earth axes
+  (exact for yaw-symmetric matrices such as a spar's, an approximation for large yaw of a
+  non-symmetric hull).
+* Wave forces are evaluated at the mean position and the start heading (see
+  :mod:`floatmoor.forces.waves`).
+* Start: the static equilibrium under buoyancy - weight, mooring, mean wind and current at rest
+  and mean wave drift (:func:`floatmoor.solvers.statics.equilibrium`); the fluctuating loads
+  (first-order waves, slow drift, gust) are ramped in over ``ramp`` seconds, so the run starts
+  without a jump; statistics should skip ``transient`` seconds.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.dofs import DOF_NAMES
+from ..core.errors import NumericalError, SceneError
+from ..forces.base import (N_PARTS, PART_NAMES, PART_SERIES, KernelAssembly, SetupContext,
+                           model_class)
+from ..forces.radiation import infinite_frequency_added_mass
+from ..forces.waves import wave_components
+from .statics import equilibrium
+from .td_kernel import td_kernel
+
+__all__ = ["assemble", "integrate", "TimeDomainResult", "Assembly", "default_models",
+           "RK4_LIMIT"]
+
+RK4_LIMIT = 2.78
+"""RK4 is stable for purely imaginary eigenvalues lambda dt up to 2 sqrt(2) = 2.83."""
+
+
+@dataclass(kw_only=True)
+class Assembly:
+    """Everything a run needs: the models, the kernel arrays and the start state."""
+
+    models: dict
+    asm: KernelAssembly
+    x0: np.ndarray
+    dt: float
+    n_steps: int
+    inertia: np.ndarray
+    waves: object = None
+    equilibrium: object = None
+    omega_max: float = 0.0
+
+
+@dataclass(kw_only=True)
+class TimeDomainResult:
+    """Raw arrays of one run (SI units); ``time`` (n,), ``motion``/``velocity`` (n, 6),
+    ``line_tension``/``anchor_tension`` (n, n_lines), ``forces`` (n, n_models, 6) or None,
+    ``wave_elevation`` (n,) or None; ``models`` active model names; ``line_names``;
+    ``wall_time`` (s) of the time loop; ``setup_time`` (s)."""
+
+    time: np.ndarray
+    motion: np.ndarray
+    velocity: np.ndarray
+    line_tension: np.ndarray
+    anchor_tension: np.ndarray
+    forces: np.ndarray | None
+    force_models: list
+    wave_elevation: np.ndarray | None
+    models: list
+    line_names: list
+    x0: np.ndarray
+    wall_time: float = 0.0
+    setup_time: float = 0.0
+    info: dict = field(default_factory=dict)
+
+
+def default_models(built, options=None) -> list[str]:
+    """Names of the models a built scene asks for, in assembly order."""
+    v = built.vessel
+    env = built.scene.environment
+    exclude = set(getattr(options, "exclude", ()) or ())
+    names = ["hydrostatics"]
+    if built.mooring is not None:
+        names.append("mooring")
+    if "radiation_damping" in v.database and getattr(options, "retardation", True):
+        names.append("radiation")
+    if np.any(v.linear_damping != 0.0):
+        names.append("damping_linear")
+    if np.any(v.quadratic_damping != 0.0):
+        names.append("damping_quadratic")
+    if env.waves is not None:
+        names.append("wave1")
+        drift = getattr(options, "drift", None)
+        if drift is None:
+            drift = "newman" if "mean_drift_force" in v.database else "none"
+        if drift != "none":
+            names.append(f"drift_{drift}")
+    if env.wind is not None:
+        names.append("wind")
+    if env.current is not None:
+        names.append("current")
+    from ..forces import GROUPS, REGISTRY
+    drop = set()
+    for name in exclude:
+        if name in GROUPS:
+            drop.update(GROUPS[name])
+        elif name in REGISTRY:
+            drop.add(name)
+        else:
+            raise SceneError(getattr(options, "file", None), "forces.exclude",
+                             "force model names: " + ", ".join(sorted(set(REGISTRY) | set(GROUPS))),
+                             name)
+    return [n for n in names if n not in drop]
+
+
+def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
+             options=None, models: list[str] | None = None, waves=None,
+             start_pose=None) -> Assembly:
+    """Build the models and the kernel arrays of one run.
+
+    Parameters
+    ----------
+    built : :class:`floatmoor.io.build.BuiltScene` (needs a vessel).
+    seed : int; dt : float (s); duration : float (s); ramp : float (s).
+    options : the scene's ``forces`` settings (or None).
+    models : model names (default :func:`default_models`).
+    waves : a :class:`floatmoor.forces.waves.WaveComponents` to use instead of realising the
+        scene's sea state (e.g. a regular wave); needs ``models`` to include ``wave1``.
+    start_pose : (6,) start pose instead of the static equilibrium (free decay).
+    """
+    if built.vessel is None:
+        raise SceneError(built.scene.file, "vessel", "a vessel for a time-domain simulation")
+    if not (dt > 0.0 and duration > dt):
+        raise SceneError(built.scene.file, "analysis", "0 < dt < duration", (dt, duration))
+    n_steps = int(round(duration / dt))
+    names = default_models(built, options) if models is None else list(models)
+    v = built.vessel
+    site = built.scene.site
+    if waves is None and built.scene.environment.waves is not None and (
+            "wave1" in names or any(n.startswith("drift") for n in names)):
+        waves = wave_components(built.scene.environment.waves, duration=n_steps * dt, seed=seed,
+                                h=0.5 * dt, water_depth=site.water_depth, gravity=site.gravity)
+    ctx = SetupContext(built=built, seed=int(seed), dt=float(dt), n_steps=n_steps,
+                       ramp=float(ramp), yaw0=0.0, options=options, waves=waves)
+    active = {}
+    for name in names:
+        m = model_class(name, key="forces")()
+        m.setup(ctx)
+        active[name] = m
+    asm = KernelAssembly(n_samples=ctx.n_samples, sample_dt=ctx.sample_dt)
+    for m in active.values():
+        m.contribute(asm)
+    a_inf = infinite_frequency_added_mass(v.database)
+    inertia = np.asarray(v.mass_matrix, float) + a_inf
+    asm.inertia = inertia
+    # static start
+    mean_env = np.zeros(6)
+    for name, m in active.items():
+        if name not in ("hydrostatics", "mooring"):
+            mean_env += m.mean_force()
+    C = asm.restoring
+    eq = None
+    if start_pose is not None:
+        x0 = np.asarray(start_pose, float).reshape(6)
+    elif built.mooring is not None and "mooring" in active:
+        # the catenary warm starts are cached in the MooringSystem: reset them so that the
+        # same seed gives a bit-identical run whatever ran before
+        built.mooring.warm[:] = 0.0
+        eq = equilibrium(built.mooring, hydrostatic_stiffness=C,
+                         external_force=asm.const_force + mean_env)
+        x0 = eq.pose.copy()
+    else:
+        x0 = np.zeros(6)
+        held = np.abs(np.diag(C)) > 0.0
+        if held.any():
+            sub = np.ix_(held, held)
+            x0[held] = np.linalg.solve(C[sub], (asm.const_force + mean_env)[held])
+    # highest natural frequency of the linearised system (stability check)
+    K_lin = C.copy()
+    if eq is not None:
+        K_lin = K_lin + eq.mooring_stiffness
+    elif built.mooring is not None and "mooring" in active:
+        K_lin = K_lin + built.mooring.stiffness(x0)
+    lam = np.linalg.eigvals(np.linalg.solve(inertia, K_lin))
+    omega_max = float(np.sqrt(np.max(np.abs(lam))))
+    return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
+                    inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max)
+
+
+def _guard_limits(built) -> np.ndarray:
+    depth = built.scene.site.water_depth
+    trans = max(2.0 * depth, 200.0)
+    return np.array([trans, trans, max(depth, 50.0), 1.0, 1.0, 1e3])
+
+
+def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guard: float = 10.0,
+              built=None) -> TimeDomainResult:
+    """Run the time loop of an :class:`Assembly`.
+
+    Raises
+    ------
+    NumericalError
+        NaN or an exploding state (names the time and DOF), a line tension above
+        ``tension_guard`` x MBS or a failed catenary solve (names the time and line), or a time
+        step beyond the integrator's stability limit (before running).
+    """
+    t_start = _time.perf_counter()
+    asm = a.asm
+    dt = a.dt
+    n = a.n_steps
+    if a.omega_max * dt > RK4_LIMIT:
+        raise NumericalError(
+            f"time step {dt:g} s is beyond the RK4 stability limit for the stiffest mode "
+            f"(natural period {2 * math.pi / a.omega_max:.3g} s, omega dt = "
+            f"{a.omega_max * dt:.2f} > {RK4_LIMIT})", time=0.0, where="integrator",
+            remedy=f"use dt <= {RK4_LIMIT / a.omega_max * 0.9:.3g} s")
+    minv = np.linalg.inv(a.inertia)
+    moor = asm.mooring
+    if moor is not None:
+        anchors, fairleads = moor.anchors, moor.fairleads
+        seg = (moor.seg_L, moor.seg_EA, moor.seg_w, moor.seg_P)
+        line_start, cb, seabed = moor.line_start, moor.cb, moor.seabed
+        active = moor.active.copy()
+        mbs = moor.mbs
+        warm = np.zeros((moor.n_lines, 2))
+        fail_time = np.asarray(asm.fail_time, float)
+        line_names = list(moor.names)
+    else:
+        anchors = np.zeros((0, 3))
+        fairleads = np.zeros((0, 3))
+        seg = (np.zeros(0),) * 4
+        line_start = np.zeros(1, np.int64)
+        cb = np.zeros(0)
+        seabed = np.zeros(0, np.bool_)
+        active = np.zeros(0, np.bool_)
+        mbs = np.zeros(0)
+        warm = np.zeros((0, 2))
+        fail_time = np.zeros(0)
+        line_names = []
+    n_lines = len(line_names)
+    n_k = max(1, asm.ret_kernel.shape[1]) if asm.ret_kernel.size else 1
+    ret_kernel = asm.ret_kernel if asm.ret_kernel.size else np.zeros((0, 1))
+    hist = np.zeros((6, 2 * n_k))
+    series = asm.series if asm.series is not None else np.zeros((0, asm.n_samples, 6))
+    wind_speed = asm.wind_speed if asm.has_wind else np.zeros(asm.n_samples)
+    wind_th = asm.wind_table_heading if asm.has_wind else np.zeros(1)
+    wind_tab = asm.wind_table if asm.has_wind else np.zeros((1, 6))
+    cur_th = asm.current_table_heading if asm.has_current else np.zeros(1)
+    cur_tab = asm.current_table if asm.has_current else np.zeros((1, 6))
+    motion = np.zeros((n + 1, 6))
+    velocity = np.zeros((n + 1, 6))
+    t_fair = np.zeros((n + 1, n_lines))
+    t_anchor = np.zeros((n + 1, n_lines))
+    parts = np.zeros((n + 1 if record_forces else 1, N_PARTS, 6))
+    status = np.zeros(3, np.int64)
+    x0 = np.ascontiguousarray(a.x0, float)
+    v0 = np.zeros(6) if v0 is None else np.ascontiguousarray(v0, float)
+    guard = _guard_limits(built) if built is not None else np.array([1e4, 1e4, 1e3, 1.0, 1.0, 1e3])
+    setup_time = _time.perf_counter() - t_start
+    t0 = _time.perf_counter()
+    args = (int(n), float(dt), minv, x0, v0, asm.const_force, asm.restoring, asm.damping_linear,
+            bool(asm.has_damping_linear), asm.damping_quadratic, bool(asm.has_damping_quadratic),
+            ret_kernel, asm.ret_i, asm.ret_j, hist, series, bool(asm.has_wind), wind_speed,
+            float(asm.wind_heading), wind_th, wind_tab, bool(asm.has_current),
+            float(asm.current_speed), float(asm.current_heading), cur_th, cur_tab, moor is not None, anchors, fairleads,
+            seg[0], seg[1], seg[2], seg[3], line_start, cb, seabed, active, fail_time, mbs,
+            warm, guard, float(tension_guard), bool(record_forces), motion, velocity, t_fair,
+            t_anchor, parts, status)
+    # one compiled signature: C-contiguous, writeable arrays (frozen model arrays are read-only)
+    args = tuple(np.require(x, requirements=("C", "W")) if isinstance(x, np.ndarray) else x
+                 for x in args)
+    td_kernel(*args)
+    (motion, velocity, t_fair, t_anchor, parts, status) = args[-6:]
+    wall = _time.perf_counter() - t0
+    _raise_on_status(status, dt, line_names, mbs, tension_guard, guard)
+    time = np.arange(n + 1) * dt
+    forces = None
+    force_models = []
+    if record_forces:
+        slots = []
+        for name in a.models:
+            if name in PART_NAMES:
+                slots.append(PART_NAMES.index(name))
+                force_models.append(name)
+        for q, name in enumerate(asm.series_names):
+            slots.append(PART_SERIES + q)
+            force_models.append(name)
+        forces = parts[:, slots, :]
+    eta = None
+    if a.waves is not None:
+        eta = a.waves.elevation(2 * n + 1, 0.5 * dt)[::2]
+    return TimeDomainResult(time=time, motion=motion, velocity=velocity, line_tension=t_fair,
+                            anchor_tension=t_anchor, forces=forces, force_models=force_models,
+                            wave_elevation=eta, models=list(a.models), line_names=line_names,
+                            x0=a.x0.copy(), wall_time=wall, setup_time=setup_time,
+                            info={"omega_max": a.omega_max})
+
+
+def _raise_on_status(status, dt, line_names, mbs, tension_guard, guard):
+    code, step, idx = (int(s) for s in status)
+    if code == 0:
+        return
+    t = step * dt
+    if code == 1:
+        raise NumericalError("NaN or infinite value in the state", time=t,
+                             where=f"DOF {DOF_NAMES[idx]}",
+                             remedy="reduce dt, or add damping to that DOF")
+    if code == 2:
+        unit = "m" if idx < 3 else "rad"
+        raise NumericalError(f"the motion exploded (|{DOF_NAMES[idx]} - start| > "
+                             f"{guard[idx]:g} {unit})", time=t, where=f"DOF {DOF_NAMES[idx]}",
+                             remedy="reduce dt; check that the DOF has restoring and damping "
+                                    "(mooring, hydrostatics) and the loads are not far beyond "
+                                    "the mooring capacity")
+    if code == 3:
+        raise NumericalError(f"line tension above {tension_guard:g} x MBS "
+                             f"({tension_guard * mbs[idx] / 1e3:.0f} kN)", time=t,
+                             where=f"line {line_names[idx]!r}",
+                             remedy="reduce dt; check the line lengths, EA and anchor "
+                                    "positions, or the loads against the mooring capacity")
+    if code == 4:
+        raise NumericalError("the catenary solve failed", time=t,
+                             where=f"line {line_names[idx]!r}",
+                             remedy="reduce dt; the line may be overstretched (offset beyond "
+                                    "its length) - check the mooring layout and the loads")
+    raise NumericalError(f"unknown status {code}", time=t)

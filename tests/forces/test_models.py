@@ -1,0 +1,133 @@
+"""Force models: registry, closed forms, FFT series, and the kernel against the models' force."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from floatmoor.core.errors import SceneError
+from floatmoor.forces import REGISTRY, model_class
+from floatmoor.forces.kernels import relative_flow_force_into, table_at_into
+from floatmoor.forces.series import complex_envelope, grid_for
+from floatmoor.io.build import build
+from floatmoor.io.scene import load_scene
+from floatmoor.simulate import simulate
+from floatmoor.solvers.time_domain import assemble, integrate
+
+ROOT = Path(__file__).resolve().parents[2]
+FL = ROOT / "vessels" / "floatel_like"
+
+
+def test_unknown_model_name_lists_the_registry():
+    with pytest.raises(SceneError, match="mooring") as err:
+        model_class("windd")
+    for name in ("wave1", "drift_newman", "wind", "current", "radiation"):
+        assert name in REGISTRY and name in str(err.value)
+
+
+def test_fft_sum_equals_direct_sum():
+    """A sum on an FFT grid equals the direct cosine sum (round-off)."""
+    h = 0.05
+    grid = grid_for(0.3, 2 * math.pi / 100.0, h, 100.0)
+    rng = np.random.default_rng(0)
+    m = np.arange(0, 40)
+    w = grid.w0 + m * grid.dw
+    c = rng.normal(size=40) + 1j * rng.normal(size=40)
+    n = 2500  # longer than the repeat period: wraps around
+    fast = complex_envelope(w, c[:, None], n, h, grid)[:, 0]
+    t = np.arange(n) * h
+    direct = (c[None, :] * np.exp(1j * w[None, :] * t[:, None])).sum(1)
+    assert np.max(np.abs(fast - direct)) < 1e-9 * np.abs(c).sum()
+
+
+def test_table_interpolation_periodic():
+    th = np.radians(np.arange(0, 360, 30.0))
+    tab = np.stack([np.cos(th)] * 6, 1)
+    out = np.zeros(6)
+    table_at_into(math.radians(345.0), th, tab, out)  # between 330 and 360 = 0
+    assert out[0] == pytest.approx(0.5 * (math.cos(math.radians(330)) + 1.0))
+    table_at_into(math.radians(-15.0), th, tab, out)
+    assert out[0] == pytest.approx(0.5 * (math.cos(math.radians(330)) + 1.0))
+
+
+def test_relative_flow_force_closed_form():
+    """Seed 002 eq. 2.24/2.26: F = C (U - x')^2 along the flow; its derivative in x' is the
+    flow damping -2 C (U - x'); turning the body by yaw turns the relative heading."""
+    th = np.radians(np.arange(0, 360, 30.0))
+    C0 = 1500.0
+    tab = np.zeros((12, 6))
+    tab[:, 0] = C0 * np.cos(th) * np.abs(np.cos(th))
+    tab[:, 1] = C0 * np.sin(th) * np.abs(np.sin(th))
+    coef = np.zeros(6)
+    out = np.zeros(6)
+    U, vx = 30.0, 0.7
+    relative_flow_force_into(U, 0.0, vx, 0.0, 0.0, 1.0, th, tab, coef, out)
+    assert out[0] == pytest.approx(C0 * (U - vx) ** 2)
+    # damping: -dF/dx' = 2 C (U - x')
+    eps = 1e-4
+    fp = np.zeros(6)
+    fm = np.zeros(6)
+    relative_flow_force_into(U, 0.0, vx + eps, 0.0, 0.0, 1.0, th, tab, coef, fp)
+    relative_flow_force_into(U, 0.0, vx - eps, 0.0, 0.0, 1.0, th, tab, coef, fm)
+    assert -(fp[0] - fm[0]) / (2 * eps) == pytest.approx(2 * C0 * (U - vx), rel=1e-8)
+    # body yawed by 90 deg, flow along +x: relative heading -90 deg (body -y), force along
+    # earth +x with the sway coefficient
+    out = np.zeros(6)
+    relative_flow_force_into(U, 0.0, 0.0, 0.0, math.pi / 2, 1.0, th, tab, coef, out)
+    assert out[0] == pytest.approx(C0 * U ** 2) and abs(out[1]) < 1e-6 * C0 * U ** 2
+
+
+@pytest.fixture(scope="module")
+def floatel(tmp_path_factory):
+    if not (FL / "database.nc").is_file():
+        pytest.skip("floatel_like database not present")
+    p = tmp_path_factory.mktemp("fl") / "s.yaml"
+    p.write_text(f"name: fl\nsite: {{water_depth: 150.0}}\nvessel: {FL / 'vessel.yaml'}\n"
+                 f"mooring: {FL / 'mooring.yaml'}\nenvironment: {ROOT / 'metocean' / 'heidrun_100yr.yaml'}\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return build(load_scene(p))
+
+
+def test_kernel_forces_equal_model_forces(floatel):
+    """The numba loop's per-model forces at recorded steps equal each model's Python
+    ``force`` at the same (t, pose, velocity) (radiation: with the same velocity history)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = assemble(floatel, seed=2, dt=0.2, duration=120.0, ramp=30.0)
+        r = integrate(a, built=floatel, record_forces=True)
+    assert r.force_models == ["hydrostatics", "mooring", "radiation", "damping_linear", "wind",
+                              "current", "wave1", "drift_newman"]
+    for n in (0, 37, 412, 600):
+        t = r.time[n]
+        for q, name in enumerate(r.force_models):
+            m = a.models[name]
+            out = np.zeros(6)
+            if name == "radiation":
+                m.force(t, r.motion[n], r.velocity[n], out, history=r.velocity[n - 1::-1]
+                        if n > 0 else None)
+            else:
+                m.force(t, r.motion[n], r.velocity[n], out)
+            scale = max(np.abs(out).max(), 1.0)
+            assert np.allclose(r.forces[n, q], out, rtol=1e-9, atol=1e-9 * scale), (name, n)
+
+
+def test_newman_mean_and_ramp(floatel):
+    """Newman drift: its time mean over the repeat period is sum a_k^2 D_k (the mean drift of
+    the realised spectrum); the first-order force starts from zero under the ramp."""
+    a = assemble(floatel, seed=5, dt=0.5, duration=2000.0, ramp=0.0)
+    drift = a.models["drift_newman"]
+    n_per = a.waves.grid.N  # samples in one repeat period
+    s = drift.series
+    assert s.shape[0] >= n_per
+    assert s[:n_per, 0].mean() == pytest.approx(drift.mean_force()[0], rel=1e-9)
+    r = a.waves.realisation
+    assert drift.mean_force()[0] > 0.0  # drift pushes the semi along the waves (+x)
+    a2 = assemble(floatel, seed=5, dt=0.5, duration=2000.0, ramp=100.0)
+    assert np.all(a2.models["wave1"].series[0] == 0.0)
+    assert np.array_equal(a2.models["wave1"].series[400:], a.models["wave1"].series[400:])
+    assert np.allclose(a2.models["drift_newman"].series[0], drift.mean_force())
