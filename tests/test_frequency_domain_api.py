@@ -229,20 +229,27 @@ def test_floatel_lf_period_consistent_with_mass_and_stiffness(floatel):
 
 # -- FD against TD in the linear limit (needs the time-domain solver) -------------------------
 def test_fd_against_td_linear_limit(tmp_path):
+    """OC3 spar, small JONSWAP waves, no wind/current/drift (the OC3 database has none): the
+    TD WF standard deviation of surge and heave (20 seeds of 3000 s after a 600 s transient)
+    within 3 % of the FD value (issue 6 verification)."""
     sim = pytest.importorskip("floatmoor.simulate")
     run = getattr(sim, "simulate", None)
     if run is None:
         pytest.skip("floatmoor.simulate has no simulate() yet")
     env = {"waves": {"spectrum": "jonswap", "hs": 1.0, "tp": 10.0, "heading_deg": 0.0}}
-    p = _scene(tmp_path, OC3, 320.0, env, "fd-vs-td")
+    sc = {"name": "fd-vs-td", "site": {"water_depth": 320.0, "water_density": 1025.0},
+          "vessel": str(OC3 / "vessel.yaml"), "mooring": str(OC3 / "mooring.yaml"),
+          "environment": env,
+          "analysis": {"duration": 3600.0, "dt": 0.1, "transient": 600.0, "ramp": 100.0}}
+    p = tmp_path / "scene.yaml"
+    p.write_text(yaml.safe_dump(sc, sort_keys=False))
     fd = frequency_domain(p)
     stds = []
     for seed in range(1, 21):
         res = run(p, seed=seed)
-        if "motion" not in res:
-            pytest.skip("the time-domain result has no 'motion' variable yet")
-        x = res["motion"].values
-        stds.append(np.std(x - x.mean(axis=0), axis=0))
+        keep = res["time"].values >= 600.0
+        x = res["motion"].values[keep]
+        stds.append(np.std(x, axis=0))
     td = np.mean(stds, axis=0)
     for k in (0, 2):  # surge, heave: WF std within 3 %
         assert td[k] == pytest.approx(fd.wf_std.values[k], rel=0.03)
