@@ -1,0 +1,120 @@
+"""``floatmoor convergence SCENE.yaml``: error against run time for halving time steps.
+
+Runs the same seed at dt = 0.4, 0.2, 0.1, ... s (``--levels``) and prints, for the maximum
+horizontal offset and the maximum line tension (after the transient), the relative error
+against the finest run next to the wall time of the time loop; ``--plot FILE`` draws both
+(matplotlib, optional).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+HELP = "time-step convergence: max offset and max tension error against wall time"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scene", metavar="SCENE.yaml", help="the scene file")
+    p.add_argument("--seed", type=int, default=None, help="seed (default: the scene's first)")
+    p.add_argument("--duration", type=float, default=None, metavar="S",
+                   help="simulated length in s (default: analysis.duration)")
+    p.add_argument("--dt0", type=float, default=0.4, metavar="S",
+                   help="largest time step, s (default 0.4)")
+    p.add_argument("--levels", type=int, default=5, metavar="N",
+                   help="number of time steps dt0, dt0/2, ... (default 5)")
+    p.add_argument("--plot", default=None, metavar="FILE", help="save a plot (png/pdf/svg)")
+
+
+def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, echo=None):
+    """Run the halving sequence; returns a list of dicts (dt, max_offset, max_tension,
+    wall_time, error_offset, error_tension; errors relative to the finest run)."""
+    import warnings
+
+    import numpy as np
+
+    from ..simulate import simulate
+
+    rows = []
+    for k in range(levels):
+        dt = dt0 / 2 ** k
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                ds = simulate(scene, seed=seed, duration=duration, dt=dt)
+            except Exception as exc:  # too large a dt may be refused: report it, go on
+                rows.append({"dt": dt, "error": f"{type(exc).__name__}: {exc}"})
+                if echo:
+                    echo(f"dt {dt:g} s: {type(exc).__name__}: {exc}")
+                continue
+        sel = ds["time"].values >= ds.attrs["transient"]
+        m = ds["motion"].values[sel]
+        row = {"dt": dt, "max_offset": float(np.hypot(m[:, 0], m[:, 1]).max()),
+               "max_tension": float(ds["line_tension"].values[sel].max())
+               if "line_tension" in ds else float("nan"),
+               "wall_time": float(ds.attrs["run_time_s"])}
+        rows.append(row)
+        if echo:
+            echo(f"dt {dt:g} s done in {row['wall_time']:.2f} s")
+    ok = [r for r in rows if "error" not in r]
+    if ok:
+        ref = ok[-1]
+        for r in ok:
+            r["error_offset"] = abs(r["max_offset"] / ref["max_offset"] - 1.0)
+            r["error_tension"] = abs(r["max_tension"] / ref["max_tension"] - 1.0)
+    return rows
+
+
+def format_table(rows) -> str:
+    out = [f"{'dt (s)':>8s}{'max offset (m)':>16s}{'error':>10s}{'max tension (kN)':>18s}"
+           f"{'error':>10s}{'wall (s)':>10s}"]
+    for r in rows:
+        if "error" in r:
+            out.append(f"{r['dt']:8.4f}  {r['error']}")
+            continue
+        out.append(f"{r['dt']:8.4f}{r['max_offset']:16.3f}{100 * r['error_offset']:9.3f}%"
+                   f"{r['max_tension'] / 1e3:18.1f}{100 * r['error_tension']:9.3f}%"
+                   f"{r['wall_time']:10.2f}")
+    out.append("errors relative to the finest time step")
+    return "\n".join(out)
+
+
+def plot(rows, path) -> None:
+    from matplotlib.figure import Figure
+
+    ok = [r for r in rows if "error" not in r][:-1]
+    fig = Figure(figsize=(6, 4))
+    ax = fig.add_subplot()
+    ax.loglog([r["wall_time"] for r in ok], [max(r["error_offset"], 1e-16) for r in ok], "o-",
+              label="max offset")
+    ax.loglog([r["wall_time"] for r in ok], [max(r["error_tension"], 1e-16) for r in ok], "s-",
+              label="max tension")
+    for r in ok:
+        ax.annotate(f"dt {r['dt']:g}", (r["wall_time"], max(r["error_offset"], 1e-16)),
+                    fontsize=7)
+    ax.set_xlabel("wall time of the time loop (s)")
+    ax.set_ylabel("relative error against the finest dt")
+    ax.legend()
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..cli import EXIT_OK, UsageError
+    from ..io.scene import load_scene
+
+    if args.levels < 2:
+        raise UsageError("--levels must be >= 2")
+    if not args.dt0 > 0:
+        raise UsageError("--dt0 must be > 0")
+    scene = load_scene(args.scene)
+    rows = convergence_study(scene, seed=args.seed, duration=args.duration, dt0=args.dt0,
+                             levels=args.levels, echo=lambda s: print(s, flush=True))
+    print(format_table(rows))
+    if args.plot:
+        try:
+            plot(rows, args.plot)
+            print(f"plot written to {args.plot}")
+        except ImportError:
+            print("matplotlib is not installed: no plot")
+    return EXIT_OK
