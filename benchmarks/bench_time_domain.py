@@ -1,0 +1,95 @@
+"""Time-domain benchmark: a 3-hour storm of the Floatel-like semi (issue 5).
+
+12 quasi-static lines, first-order waves, Newman drift, NPD wind, current, radiation memory,
+dt = 0.1 s, 10800 s simulated.  Prints
+
+* numba compilation: a first short run in a fresh subprocess with an empty numba cache
+  (``NUMBA_CACHE_DIR`` in a temp folder) -- compile from scratch -- and with the project's
+  cache (cache load);
+* the 3-hour run: setup (scene build, realisations, FFT series, retardation functions, static
+  equilibrium) and the time loop separately, and the real-time factor of the loop and of the
+  whole call.
+
+Run: ``.venv/bin/python benchmarks/bench_time_domain.py [--duration 10800] [--dt 0.1]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = ROOT / "scenes" / "floatel_100yr.yaml"
+
+_FIRST = """
+import time, warnings
+warnings.simplefilter("ignore")
+t0 = time.perf_counter()
+from floatmoor.simulate import simulate
+ds = simulate({scene!r}, seed=1, duration=60.0, dt=0.1)
+print(time.perf_counter() - t0)
+"""
+
+
+def first_run(cache_dir: str | None) -> float:
+    env = dict(os.environ)
+    if cache_dir is not None:
+        env["NUMBA_CACHE_DIR"] = cache_dir
+    out = subprocess.run([sys.executable, "-c", _FIRST.format(scene=str(SCENE))], env=env,
+                         capture_output=True, text=True, check=True)
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--duration", type=float, default=10800.0)
+    ap.add_argument("--dt", type=float, default=0.1)
+    ap.add_argument("--seed", type=int, default=1)
+    args = ap.parse_args()
+    import numba
+    import numpy as np
+
+    print(f"machine: {platform.machine()}, {os.cpu_count()} cores, Python "
+          f"{platform.python_version()}, numba {numba.__version__}")
+    with tempfile.TemporaryDirectory() as tmp:
+        t_fresh = first_run(tmp)
+    t_cached = first_run(None)
+    print(f"first 60 s run in a new process: empty numba cache {t_fresh:.2f} s (compile), "
+          f"project cache {t_cached:.2f} s (cache load + imports)")
+
+    warnings.simplefilter("ignore")
+    from floatmoor.simulate import simulate
+
+    simulate(SCENE, seed=args.seed, duration=60.0, dt=args.dt)  # load the kernels
+    t0 = time.perf_counter()
+    ds = simulate(SCENE, seed=args.seed, duration=args.duration, dt=args.dt)
+    total = time.perf_counter() - t0
+    loop = ds.attrs["run_time_s"]
+    setup = ds.attrs["setup_time_s"]
+    n = ds.sizes["time"] - 1
+    print(f"scene {SCENE.name}: {args.duration:g} s at dt {args.dt:g} s ({n} RK4 steps), "
+          f"models {', '.join(ds.attrs['models'])}, {ds.sizes.get('line', 0)} lines")
+    print(f"setup (build, realisations, FFT series, retardation, statics): {setup:.2f} s")
+    print(f"time loop: {loop:.2f} s = {1e6 * loop / n:.1f} us/step, "
+          f"{args.duration / loop:.0f}x real time")
+    print(f"whole simulate() call: {total:.2f} s, {args.duration / total:.0f}x real time")
+    t = ds["time"].values
+    sel = t >= 1200.0
+    m = ds["motion"].values[sel]
+    off = np.hypot(m[:, 0], m[:, 1])
+    T = ds["line_tension"].values[sel] / 1e3
+    i = int(np.argmax(T.max(0)))
+    print(f"after 1200 s: offset mean {off.mean():.2f} m, std {off.std():.2f} m, max "
+          f"{off.max():.2f} m; most loaded line {ds['line'].values[i]} mean {T[:, i].mean():.0f}"
+          f" kN, std {T[:, i].std():.0f} kN, max {T[:, i].max():.0f} kN")
+
+
+if __name__ == "__main__":
+    main()
