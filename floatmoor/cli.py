@@ -2,6 +2,9 @@
 
 ``floatmoor check SCENE.yaml``        validate a scene and print what it would build
 ``floatmoor environment SCENE.yaml``  realise the scene's environment and print its statistics
+``floatmoor run SCENE.yaml``          time-domain storms (:mod:`floatmoor.commands.run`)
+``floatmoor fd SCENE.yaml``           frequency-domain analysis (:mod:`floatmoor.commands.fd`)
+``floatmoor convergence SCENE.yaml``  time-step convergence (:mod:`floatmoor.commands.convergence`)
 
 Exit status: 0 success, 2 a mistake in an input file (:class:`~floatmoor.SceneError`, printed
 as ``floatmoor: error: <message>`` without a traceback) or on the command line, 3 a numerical
@@ -9,14 +12,16 @@ failure (:class:`~floatmoor.NumericalError`), 130 interrupted (Ctrl-C).
 
 Adding a subcommand
 -------------------
-Write ``add_arguments(parser)`` and ``run(args) -> int`` (import heavy modules inside ``run``
-so that ``floatmoor --help`` and ``floatmoor check`` stay fast), and add one :class:`Command`
-to :data:`COMMANDS`.  The functions may live in any module: ``Command`` takes them directly.
+Write a module ``floatmoor/commands/<name>.py`` with ``HELP``, ``add_arguments(parser)`` and
+``run(args) -> int`` (import heavy modules inside ``run`` so that ``floatmoor --help`` and
+``floatmoor check`` stay fast), and add one entry ``("<name>", "floatmoor.commands.<name>")`` to
+:data:`COMMANDS` (or a :class:`Command` built from any two functions).
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 import warnings
 from dataclasses import dataclass
@@ -25,7 +30,8 @@ from typing import Callable, Sequence
 from . import __version__
 from .core.errors import FloatmoorWarning, NumericalError, SceneError
 
-__all__ = ["main", "Command", "COMMANDS", "build_parser", "UsageError"]
+__all__ = ["main", "Command", "COMMANDS", "commands", "module_command", "build_parser",
+           "UsageError"]
 
 EXIT_OK = 0
 EXIT_SCENE_ERROR = 2
@@ -47,6 +53,15 @@ class Command:
     add_arguments: Callable[[argparse.ArgumentParser], None]
     run: Callable[[argparse.Namespace], int]
     description: str | None = None
+
+
+def module_command(name: str, module: str) -> Command:
+    """A :class:`Command` defined by a module with ``HELP``, ``add_arguments(parser)`` and
+    ``run(args) -> int`` (the convention of :mod:`floatmoor.commands`).  The module is imported
+    when the parser is built, so it must keep heavy imports inside ``run``."""
+    mod = importlib.import_module(module)
+    doc = (mod.__doc__ or "").strip()
+    return Command(name, mod.HELP, mod.add_arguments, mod.run, description=doc or None)
 
 
 # -- argument types -------------------------------------------------------------------------------
@@ -162,13 +177,22 @@ def _environment_run(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-COMMANDS: list[Command] = [
+COMMANDS: list[Command | tuple[str, str]] = [
     Command("check", "validate a scene and print what it would build",
             _check_arguments, _check_run),
     Command("environment", "realise the scene's waves, wind and current and print statistics",
             _environment_arguments, _environment_run),
+    ("run", "floatmoor.commands.run"),
+    ("fd", "floatmoor.commands.fd"),
+    ("convergence", "floatmoor.commands.convergence"),
 ]
-"""The subcommands, in the order ``--help`` lists them."""
+"""The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
+``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""
+
+
+def commands() -> list[Command]:
+    """The registered subcommands as :class:`Command` objects (modules imported)."""
+    return [c if isinstance(c, Command) else module_command(*c) for c in COMMANDS]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -180,8 +204,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"floatmoor {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
-    for cmd in COMMANDS:
-        p = sub.add_parser(cmd.name, help=cmd.help, description=cmd.description or cmd.help)
+    for cmd in commands():
+        p = sub.add_parser(cmd.name, help=cmd.help, description=cmd.description or cmd.help,
+                           formatter_class=argparse.RawDescriptionHelpFormatter)
         cmd.add_arguments(p)
         p.set_defaults(_run=cmd.run)
     return parser

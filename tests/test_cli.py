@@ -7,7 +7,7 @@ import pytest
 
 import floatmoor
 from floatmoor import NumericalError
-from floatmoor.cli import COMMANDS, main
+from floatmoor.cli import commands, main
 
 from .io.helpers import DELETE, write_case
 
@@ -21,7 +21,7 @@ def test_help_lists_every_subcommand(capsys):
     assert main(["--help"]) == 0
     out = capsys.readouterr().out
     assert "usage: floatmoor" in out
-    for cmd in COMMANDS:
+    for cmd in commands():
         assert cmd.name in out
 
 
@@ -83,7 +83,8 @@ def _install_failing_command(monkeypatch, exc):
     def run(args):
         raise exc
 
-    new = [cli.Command(c.name, c.help, c.add_arguments, run) if c.name == "check" else c
+    new = [cli.Command(c.name, c.help, c.add_arguments, run)
+           if isinstance(c, cli.Command) and c.name == "check" else c
            for c in cli.COMMANDS]
     monkeypatch.setattr(cli, "COMMANDS", new)
 
@@ -232,3 +233,9 @@ def test_check_names_a_mooring_mistake_in_the_scene_file(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.startswith(f"floatmoor: error: {scene_path}: mooring.lines[0].segments[0].length")
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("name", [c.name for c in commands()])
+def test_every_subcommand_has_help(name, capsys):
+    assert main([name, "--help"]) == 0
+    assert f"usage: floatmoor {name}" in capsys.readouterr().out
