@@ -146,15 +146,18 @@ def newman_drift_spectrum(omega, s_eta, coefficients, mu):
     w = np.asarray(omega, float)
     s = np.asarray(s_eta, float)
     C = np.asarray(coefficients, float)
+    mu = np.asarray(mu, float)
     d = C.shape[1]
-    out = np.zeros((len(mu), d, d))
-    for k, m in enumerate(np.asarray(mu, float)):
-        s2 = np.interp(w + m, w, s, right=0.0)
-        cm = np.empty((w.size, d))
-        for j in range(d):
-            cm[:, j] = np.interp(w + 0.5 * m, w, C[:, j], right=0.0)
-        weight = s * s2
-        out[k] = 8.0 * np.einsum("n,ni,nj->ij", _trapz_weights(w) * weight, cm, cm)
+    q = _trapz_weights(w) * s
+    out = np.zeros((mu.size, d, d))
+    for a in range(0, mu.size, 128):  # blocks of difference frequencies, vectorised
+        mb = mu[a:a + 128]
+        s2 = np.interp((w[None, :] + mb[:, None]).ravel(), w, s, right=0.0)
+        s2 = s2.reshape(mb.size, w.size)
+        wm = (w[None, :] + 0.5 * mb[:, None]).ravel()
+        cm = np.stack([np.interp(wm, w, C[:, j], right=0.0).reshape(mb.size, w.size)
+                       for j in range(d)], axis=-1)  # (block, n, d)
+        out[a:a + mb.size] = 8.0 * np.matmul(np.swapaxes(cm * (q * s2)[..., None], 1, 2), cm)
     return out
 
 
@@ -177,14 +180,19 @@ def qtf_drift_spectrum(omega, s_eta, qtf, mu):
     :func:`newman_drift_spectrum`."""
     w = np.asarray(omega, float)
     s = np.asarray(s_eta, float)
-    q = _trapz_weights(w)
+    mu = np.asarray(mu, float)
+    q = _trapz_weights(w) * s
     out = None
-    for k, m in enumerate(np.asarray(mu, float)):
-        s2 = np.interp(w + m, w, s, right=0.0)
-        Q = np.asarray(qtf(w, w + m), complex)
+    for a in range(0, mu.size, 128):  # blocks of difference frequencies, vectorised
+        mb = mu[a:a + 128]
+        w2 = (w[None, :] + mb[:, None]).ravel()
+        s2 = np.interp(w2, w, s, right=0.0).reshape(mb.size, w.size)
+        Q = np.asarray(qtf(np.tile(w, mb.size), w2), complex)
+        Q = Q.reshape(mb.size, w.size, -1)
         if out is None:
-            out = np.zeros((len(mu), Q.shape[1], Q.shape[1]))
-        out[k] = 8.0 * np.real(np.einsum("n,ni,nj->ij", q * s * s2, Q, np.conj(Q)))
+            out = np.zeros((mu.size, Q.shape[-1], Q.shape[-1]))
+        out[a:a + mb.size] = 8.0 * np.real(
+            np.matmul(np.swapaxes(Q * (q * s2)[..., None], 1, 2), np.conj(Q)))
     return out
 
 
