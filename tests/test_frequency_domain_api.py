@@ -296,3 +296,29 @@ def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     b = qtf_drift_spectrum(w, S, _qtf_function(db, 0.0, np.eye(6)), mu)[:, 0, 0]
     assert b[0] == pytest.approx(a[0], rel=0.01)
     assert abs(b[1] / a[1] - 1.0) > 0.05
+
+
+def test_relative_flow_damping_against_finite_differences():
+    """B = -dF/dv of F = T(yaw) C(theta - yaw) |U e - v|^2 (coefficients on the body heading)
+    against central differences of that force in the surge/sway velocity, for an oblique
+    flow and a non-zero yaw."""
+    from floatmoor.frequency_domain import _relative_flow_damping, _rot6
+    from floatmoor.hydro.vessel import CoefficientTable
+    h = np.radians(np.arange(0.0, 360.0, 30.0))
+    coef = np.zeros((h.size, 6))
+    coef[:, 0] = 1500.0 * np.cos(h) * np.abs(np.cos(h))
+    coef[:, 1] = 900.0 * np.sin(h) * np.abs(np.sin(h))
+    coef[:, 5] = 4.0e4 * np.sin(2 * h)
+    tab = CoefficientTable(heading=h, coefficients=coef, reference_height=10.0)
+    U, heading, yaw = 30.0, math.radians(40.0), math.radians(3.0)
+
+    def force(v):
+        rel = U * np.array([math.cos(heading), math.sin(heading)]) - v
+        th = math.atan2(rel[1], rel[0])
+        return _rot6(yaw) @ tab.at(th - yaw) * float(rel @ rel)
+    B = _relative_flow_damping(tab, U, heading, yaw)
+    for j in range(2):
+        dv = np.zeros(2)
+        dv[j] = 1e-4
+        fd = -(force(dv) - force(-dv)) / 2e-4
+        np.testing.assert_allclose(B[:, j], fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())

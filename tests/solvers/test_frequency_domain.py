@@ -222,3 +222,15 @@ def test_no_quadratic_damping_single_pass_and_lf_mass_only_horizontal():
     assert np.all(sol.lf_mass[np.ix_(vert, vert)] == 0.0)
     assert sol.lf_mass[0, 0] == pytest.approx(1.5)
     assert sol.lf_mass[np.ix_(hz, hz)][0, 2] == pytest.approx(0.5)
+
+
+def test_aranha_drift_damping_constant_coefficient():
+    """Constant C: b = 2 int S (w/g) 4 C dw = 8 C m1 / g, m1 = a s sqrt(2 pi) w0 for the
+    Gaussian-shaped spectrum (its tails are negligible on the grid)."""
+    from floatmoor.solvers.frequency_domain import aranha_drift_damping
+    a, w0, s, C, g = 2.0, 0.6, 0.05, 1.0e4, 9.80665
+    w = np.linspace(0.2, 1.0, 4001)
+    B = aranha_drift_damping(w, _gauss(w, a, w0, s), np.full(w.size, C), g, math.pi / 2)
+    b = 8 * C * a * s * math.sqrt(2 * math.pi) * w0 / g
+    assert B[1, 1] == pytest.approx(b, rel=1e-6)  # waves along +y: sway only
+    assert abs(B[0, 0]) < 1e-9 * b and abs(B[0, 1]) < 1e-9 * b
