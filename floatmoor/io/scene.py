@@ -13,7 +13,8 @@ analysis: {duration: 10800.0, dt: 0.1, transient: 1200.0, ramp: 100.0, seeds: [1
 
 Required: ``site`` (with ``water_depth``).  Optional: ``name`` (default: the file name without
 extension), ``description``, ``vessel``, ``environment`` (absent: calm, no wind, no current),
-``mooring``, ``analysis`` (defaults in :mod:`floatmoor.io.analysis`).  Paths are relative to the
+``mooring``, ``analysis`` (defaults in :mod:`floatmoor.io.analysis`), ``forces`` (options of the
+time-domain force models, :mod:`floatmoor.io.forces_section`).  Paths are relative to the
 scene file's folder.  Unknown keys are refused everywhere.  The section formats are documented
 in :mod:`floatmoor.io.site`, :mod:`floatmoor.io.environment`, :mod:`floatmoor.io.analysis`.
 
@@ -38,6 +39,7 @@ from ..metocean.config import Environment
 from .analysis import AnalysisSpec, describe_analysis, parse_analysis
 from .checks import SCENE_CHECKS
 from .environment import describe_environment, environment_models, parse_environment
+from .forces_section import ForcesSpec, describe_forces, parse_forces
 from .site import SiteSpec, parse_site
 
 __all__ = ["Scene", "Section", "SECTIONS", "load_scene", "scene_keys"]
@@ -97,6 +99,12 @@ def _parse_analysis(node: Node, key: str, parsed: Mapping[str, Any]) -> Analysis
     return parse_analysis(node.child(key))
 
 
+def _parse_forces(node: Node, key: str, parsed: Mapping[str, Any]) -> ForcesSpec | None:
+    if key not in node:
+        return None
+    return parse_forces(node.child(key))
+
+
 def _describe_site(site: SiteSpec, scene: "Scene") -> list[str]:
     return [f"site: water depth {site.water_depth:g} m, water density {site.water_density:g} "
             f"kg/m^3, air density {site.air_density:g} kg/m^3, gravity {site.gravity:g} m/s^2"]
@@ -148,6 +156,7 @@ SECTIONS: tuple[Section, ...] = (
     Section("mooring", "mooring", _parse_mooring, describe=_describe_mooring,
             models=lambda m: [] if m is None else ["mooring"]),
     Section("analysis", "analysis", _parse_analysis, describe=_describe_analysis),
+    Section("forces", "forces", _parse_forces, describe=describe_forces),
 )
 """The scene's sections in parsing order (a section may use those before it)."""
 
@@ -167,7 +176,8 @@ class Scene:
     ``site`` (:class:`~floatmoor.io.site.SiteSpec`), ``vessel`` (path of the vessel file or
     None), ``environment`` (:class:`~floatmoor.metocean.config.Environment`; components that are
     None are not modelled), ``mooring`` (path, raw mapping or None), ``analysis``
-    (:class:`~floatmoor.io.analysis.AnalysisSpec`).
+    (:class:`~floatmoor.io.analysis.AnalysisSpec`), ``forces`` (options of the time-domain force
+    models, :class:`~floatmoor.io.forces_section.ForcesSpec`, or None for the defaults).
     """
 
     name: str
@@ -178,6 +188,7 @@ class Scene:
     environment: Environment = field(default_factory=Environment)
     mooring: Path | dict | None = None
     analysis: AnalysisSpec = field(default_factory=AnalysisSpec)
+    forces: ForcesSpec | None = None
 
     def active_models(self) -> list[str]:
         """Names of the models this scene asks for, as ``"section:model"`` or ``"section"``

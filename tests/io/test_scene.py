@@ -271,3 +271,18 @@ def test_vessel_may_be_given_as_its_folder(tmp_path):
     (tmp_path / "vessels" / "semi" / "vessel.yaml").write_text("name: semi\n")
     scene_path, _ = write_case(tmp_path, {"vessel": "../vessels/semi"})
     assert load_quietly(scene_path).vessel == tmp_path / "vessels" / "semi" / "vessel.yaml"
+
+
+def test_forces_section_is_read_through_the_registry(tmp_path):
+    pytest.importorskip("floatmoor.forces")
+    scene_path, _ = write_case(tmp_path, {"forces": {"exclude": ["wind"],
+                                                     "line_failure": {"line6": 1500.0}}})
+    scene = load_quietly(scene_path)
+    assert scene.forces.exclude == ("wind",) and scene.forces.line_failure == {"line6": 1500.0}
+    assert "forces: excluded wind; line line6 fails at 1500 s" in scene.describe()
+    scene_path, _ = write_case(tmp_path, {"forces": {"exclud": ["wind"]}})
+    with pytest.raises(SceneError) as info:
+        load_scene(scene_path)
+    assert (info.value.file, info.value.key) == (str(scene_path), "forces.exclud")
+    scene_path, _ = write_case(tmp_path)                  # no forces: section
+    assert load_quietly(scene_path).forces is None
