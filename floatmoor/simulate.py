@@ -112,6 +112,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
                         transient=transient)
     ds.attrs["run_time_s"] = float(r.wall_time)
     ds.attrs["setup_time_s"] = float(setup)
+    om = float(r.info.get("omega_max", 0.0))
+    ds.attrs["stiffest_mode_period_s"] = float(2 * np.pi / om) if om > 0 else float("inf")
     ds.attrs["real_time_factor"] = float(a.n_steps * dt / max(r.wall_time, 1e-12))
     mbs = built.mooring.mbs if built.mooring is not None else None
     if mbs is not None and r.line_tension.size:

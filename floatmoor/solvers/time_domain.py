@@ -176,8 +176,13 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         # the catenary warm starts are cached in the MooringSystem: reset them so that the
         # same seed gives a bit-identical run whatever ran before
         built.mooring.warm[:] = 0.0
-        eq = equilibrium(built.mooring, hydrostatic_stiffness=C,
-                         external_force=asm.const_force + mean_env)
+        try:
+            eq = equilibrium(built.mooring, hydrostatic_stiffness=C,
+                             external_force=asm.const_force + mean_env)
+        except NumericalError as exc:
+            raise NumericalError(f"no static equilibrium to start from under the mean loads "
+                                 f"({exc.what})", time=0.0, where=exc.where,
+                                 remedy=exc.remedy) from exc
         x0 = eq.pose.copy()
     else:
         x0 = np.zeros(6)
