@@ -34,13 +34,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.dofs import DOF_NAMES
-from ..core.errors import ConvergenceError, NumericalError
+from ..core.errors import ConvergenceError, NumericalError, SceneError
 
 __all__ = [
     "SQRT_8_OVER_PI", "HORIZONTAL_DOFS", "spectral_moment", "response_std_tz",
     "wave_frequency_rao", "response_cross_spectrum", "newman_drift_spectrum",
     "qtf_drift_spectrum", "gust_force_spectrum", "lf_transfer", "equivalent_quadratic_damping",
-    "mean_drift_force", "aranha_drift_damping", "FDModel", "FDSolution", "solve_frequency_domain",
+    "mean_drift_force", "aranha_drift_damping", "FDOptions", "TENSION_MODELS", "DRIFT_METHODS",
+    "FDModel", "FDSolution", "solve_frequency_domain",
 ]
 
 SQRT_8_OVER_PI = math.sqrt(8.0 / math.pi)
@@ -245,6 +246,54 @@ def aranha_drift_damping(omega, s_eta, coefficient_along, gravity, direction):
     B = np.zeros((6, 6))
     B[:2, :2] = b * np.outer(e, e)
     return B
+
+
+TENSION_MODELS = ("quasi_static",)
+DRIFT_METHODS = ("auto", "newman", "qtf")
+
+@dataclass(frozen=True, kw_only=True)
+class FDOptions:
+    """Options of :func:`floatmoor.frequency_domain.frequency_domain` (scene section
+    ``frequency_domain:`` when present, read by :mod:`floatmoor.io.fd_section`).
+
+    duration : s, the storm duration for the number of cycles N = duration / Tz (3 h).
+    tension_model : ``quasi_static`` (a dynamic WF tension from the FE line model is planned).
+    drift : ``auto`` (the full QTF when the database has one, else Newman), ``newman``, ``qtf``.
+    wave_drift_damping : add Aranha's wave drift damping to the LF system.
+    lf_cutoff_period : s, upper end of the LF band (2 pi / period rad/s).
+    n_lf : number of LF frequencies from 0 to the cut-off.
+    d_omega : rad/s, step of the WF grid.
+    heading_iterations : fixed-point iterations on the mean yaw for the relative headings.
+    """
+
+    duration: float = 10800.0
+    tension_model: str = "quasi_static"
+    drift: str = "auto"
+    wave_drift_damping: bool = False
+    lf_cutoff_period: float = 30.0
+    n_lf: int = 1200
+    d_omega: float = 0.005
+    heading_iterations: int = 4
+
+    def __post_init__(self):
+        def bad(key, expected, found):
+            raise SceneError(None, f"frequency_domain.{key}", expected, found)
+        for key in ("duration", "lf_cutoff_period", "d_omega"):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                bad(key, "a number > 0", v)
+        if self.tension_model not in TENSION_MODELS:
+            bad("tension_model", "one of: " + ", ".join(TENSION_MODELS)
+                + " (dynamic WF tension from the FE line model is not available yet)",
+                self.tension_model)
+        if self.drift not in DRIFT_METHODS:
+            bad("drift", "one of: " + ", ".join(DRIFT_METHODS), self.drift)
+        if not isinstance(self.n_lf, int) or self.n_lf < 50:
+            bad("n_lf", "an integer >= 50", self.n_lf)
+        if not isinstance(self.heading_iterations, int) or self.heading_iterations < 1:
+            bad("heading_iterations", "an integer >= 1", self.heading_iterations)
+        if not isinstance(self.wave_drift_damping, bool):
+            bad("wave_drift_damping", "true or false", self.wave_drift_damping)
 
 
 # -- the coupled solution -----------------------------------------------------------------------
