@@ -18,16 +18,37 @@ HEIDRUN = REPO / "metocean" / "heidrun_100yr.yaml"
 
 def test_the_examples_are_there():
     names = {p.name for p in SCENES}
-    assert {"floatel_100yr.yaml", "metocean_demo.yaml"} <= names
+    assert {"floatel_100yr.yaml", "metocean_demo.yaml", "oc3_hywind.yaml"} <= names
+
+
+def _load_without_warnings(path):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        return load_scene(path)
 
 
 @pytest.mark.parametrize("path", SCENES, ids=[p.name for p in SCENES])
-def test_example_scene_checks_without_warnings(path, capsys):
+def test_example_scene_checks(path, capsys):
+    text = path.read_text()
+    if "heidrun_100yr.yaml" in text and not HEIDRUN.exists():
+        pytest.skip("metocean/heidrun_100yr.yaml not in this tree")
+    scene = _load_without_warnings(path)
+    for ref in (scene.vessel, scene.mooring):
+        assert ref is None or ref.exists()
+    assert main(["check", str(path)]) == 0          # reads the vessel and mooring files too
+    out = capsys.readouterr().out
+    assert out.rstrip().endswith(": OK")
+    if scene.vessel is not None:
+        assert "vessel file read:" in out
+    if scene.mooring is not None:
+        assert "mooring read:" in out
+
+
+@pytest.mark.parametrize("name", ["floatel_100yr.yaml", "metocean_demo.yaml"])
+def test_heidrun_scenes_hold_the_design_environment(name):
     if not HEIDRUN.exists():
         pytest.skip("metocean/heidrun_100yr.yaml not in this tree")
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        scene = load_scene(path)
+    scene = _load_without_warnings(REPO / "scenes" / name)
     assert scene.environment.name == "heidrun-100yr"
     w = scene.environment.waves
     # seed 002 section 5.2: Hs 16 m, Tp 18.2 s JONSWAP; wind 36 m/s; current 0.94 m/s; head seas
@@ -35,8 +56,15 @@ def test_example_scene_checks_without_warnings(path, capsys):
     assert scene.environment.wind.u10 == 36.0
     assert scene.environment.current.speed[0] == 0.94
     assert scene.site.water_depth == 150.0
-    assert main(["check", str(path)]) == 0
-    assert capsys.readouterr().out.rstrip().endswith(": OK")
+
+
+def test_oc3_scene_is_the_openfast_sea_state():
+    # shared/reference/OC3_Hywind/SeaState.dat: WaveHs 6, WaveTp 10, WaveDir 0, depth 320 m
+    scene = _load_without_warnings(REPO / "scenes" / "oc3_hywind.yaml")
+    w = scene.environment.waves
+    assert (w.hs, w.tp, w.heading, w.random_amplitudes) == (6.0, 10.0, 0.0, True)
+    assert scene.site.water_depth == 320.0
+    assert scene.environment.wind is None and scene.environment.current is None
 
 
 def test_floatel_scene_with_a_local_environment_copy(tmp_path):
