@@ -1,0 +1,751 @@
+"""Numba kernels of the lumped-mass line: nodal forces with their tangent, block-tridiagonal
+solver, static Newton, generalised-alpha and explicit time steps.
+
+Discretisation (lumped mass, as MoorDyn, OrcaFlex, Aqwa eq. 9-45 to 9-74): nodes 0 (anchor) to
+``n-1`` (fairlead), element ``j`` joins nodes ``j`` and ``j+1``.  Element tension
+``T = T_el(eps) + B d(eps)/dt`` (only while taut), ``eps = l / L0 - 1``.  At node ``i``: half the
+mass, net weight and hydrodynamic load of the adjacent elements; the node tangent ``q`` is the
+normalised sum of the adjacent element directions; Morison drag
+``-k_n |v_n| v_n - k_t |v_t| v_t`` on the velocity relative to the current split along ``q``;
+added mass ``m_an (I - q q^T) + m_at q q^T``; seabed springs and friction (see ``config``).
+
+Tangent: ``K = -df/dx`` and ``C = -df/dv``; element blocks are exact for the axial force
+(``dT/dl e e^T + T / l (I - e e^T)``), the drag, seabed and friction blocks are nodal (the
+dependence of ``q`` and of the seabed axes on the positions is left out: a quasi-Newton
+iteration that still converges quadratically for the dominant axial stiffness).
+
+Every kernel writes into preallocated arrays; none allocates.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# node parameter columns
+NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL = \
+    range(12)
+N_NP = 12
+# element parameter columns
+EL_L0, EL_C1, EL_C2, EL_C3, EL_B = range(5)
+N_EL = 5
+# scalar parameters
+S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO = range(6)
+N_S = 6
+# friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
+FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC = 0, 1, 2, 3
+# friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y
+N_FS = 6
+V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
+D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
+
+
+@njit(cache=True)
+def _current(z, cur_z, cur_u):
+    n = cur_z.shape[0]
+    if n == 0:
+        return 0.0
+    if z <= cur_z[0]:
+        return cur_u[0]
+    if z >= cur_z[n - 1]:
+        return cur_u[n - 1]
+    j = 0
+    while cur_z[j + 1] < z:
+        j += 1
+    w = (z - cur_z[j]) / (cur_z[j + 1] - cur_z[j])
+    return (1.0 - w) * cur_u[j] + w * cur_u[j + 1]
+
+
+@njit(cache=True)
+def _tension(eps, c1, c2, c3):
+    """Elastic tension and dT/deps (zero in compression)."""
+    if eps <= 0.0:
+        return 0.0, 0.0
+    return (c1 * eps + c2 * eps * eps + c3 * eps * eps * eps,
+            c1 + 2.0 * c2 * eps + 3.0 * c3 * eps * eps)
+
+
+@njit(cache=True)
+def node_tangents(r, q):
+    """Unit tangent at every node (average of the adjacent element directions)."""
+    n = r.shape[0]
+    for i in range(n):
+        qx = 0.0
+        qy = 0.0
+        qz = 0.0
+        for j in (i - 1, i):
+            if 0 <= j < n - 1:
+                dx = r[j + 1, 0] - r[j, 0]
+                dy = r[j + 1, 1] - r[j, 1]
+                dz = r[j + 1, 2] - r[j, 2]
+                ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+                if ll > 0.0:
+                    qx += dx / ll
+                    qy += dy / ll
+                    qz += dz / ll
+        nq = math.sqrt(qx * qx + qy * qy + qz * qz)
+        if nq > 0.0:
+            q[i, 0] = qx / nq
+            q[i, 1] = qy / nq
+            q[i, 2] = qz / nq
+        else:
+            q[i, 0] = 1.0
+            q[i, 1] = 0.0
+            q[i, 2] = 0.0
+
+
+@njit(cache=True)
+def node_mass(r, P, q, Mb):
+    """3x3 mass blocks (structural + added mass) of every node into ``Mb`` (n, 3, 3)."""
+    node_tangents(r, q)
+    n = r.shape[0]
+    for i in range(n):
+        m = P[i, NP_MASS] + P[i, NP_MAC]
+        man = P[i, NP_MAN]
+        mat = P[i, NP_MAT]
+        for a in range(3):
+            for b in range(3):
+                qq = q[i, a] * q[i, b]
+                d = 1.0 if a == b else 0.0
+                Mb[i, a, b] = m * d + man * (d - qq) + mat * qq
+
+
+@njit(cache=True)
+def _friction_dirs(qx, qy):
+    h = math.sqrt(qx * qx + qy * qy)
+    if h > 1e-12:
+        ax = qx / h
+        ay = qy / h
+    else:
+        ax = 1.0
+        ay = 0.0
+    return ax, ay, -ay, ax
+
+
+@njit(cache=True)
+def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of):
+    """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
+
+    Parameters
+    ----------
+    r, v : (n, 3) node positions (m) and velocities (m/s), earth axes.
+    P : (n, N_NP) node parameters; E : (n-1, N_EL) element parameters; S : (N_S,) scalars.
+    cur_z, cur_u : current profile (levels increasing, speeds m/s); direction in S.
+    fric : int friction code; fs : (n, N_FS) friction state of the last accepted step (read
+        only; :func:`friction_commit` updates it).
+    q : (n, 3) scratch, node tangents on return.
+    f : (n, 3) output, total force on every node (N).
+    tens : (n-1,) output, element tensions (N).
+    want_jac : bool; cK, cC : weights; Dg : (n, 3, 3), Of : (n-1, 3, 3) outputs (overwritten):
+        diagonal and upper off-diagonal blocks of ``cK K + cC C``.
+    """
+    n = r.shape[0]
+    node_tangents(r, q)
+    for i in range(n):
+        f[i, 0] = 0.0
+        f[i, 1] = 0.0
+        f[i, 2] = -P[i, NP_W]
+        if want_jac:
+            for a in range(3):
+                for b in range(3):
+                    Dg[i, a, b] = 0.0
+    # ---- elements
+    for j in range(n - 1):
+        dx = r[j + 1, 0] - r[j, 0]
+        dy = r[j + 1, 1] - r[j, 1]
+        dz = r[j + 1, 2] - r[j, 2]
+        ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+        ex = dx / ll
+        ey = dy / ll
+        ez = dz / ll
+        L0 = E[j, EL_L0]
+        eps = ll / L0 - 1.0
+        T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3])
+        B = 0.0
+        dvx = v[j + 1, 0] - v[j, 0]
+        dvy = v[j + 1, 1] - v[j, 1]
+        dvz = v[j + 1, 2] - v[j, 2]
+        ldot = ex * dvx + ey * dvy + ez * dvz
+        if eps > 0.0:
+            B = E[j, EL_B]
+            T += B * ldot / L0
+        tens[j] = T
+        f[j, 0] += T * ex
+        f[j, 1] += T * ey
+        f[j, 2] += T * ez
+        f[j + 1, 0] -= T * ex
+        f[j + 1, 1] -= T * ey
+        f[j + 1, 2] -= T * ez
+        if want_jac:
+            ka = cK * dTde / L0
+            kg = cK * max(T, 0.0) / ll
+            if eps <= 0.0 and cC == 0.0:
+                # statics: a slack element gets its linear axial stiffness in the tangent so that
+                # Newton pulls it taut (the residual keeps T = 0); dynamics keep the true tangent
+                ka = cK * E[j, EL_C1] / L0
+            if cC == 0.0:
+                # statics: floor the geometric stiffness of a slack or nearly slack element at its
+                # own weight over its length (tangent only) so a slack grounded node is not
+                # laterally singular
+                kg = cK * max(T, abs(P[j, NP_W]) + abs(P[j + 1, NP_W])) / ll
+            cb = cC * B / L0
+            # position derivative of the damping force (B / L0) ldot e through ldot (not
+            # symmetric): (B / (L0 l)) e dv_perp^T; the part through e is in the geometric term
+            kb = cK * B / (L0 * ll)
+            e0 = (ex, ey, ez)
+            dvp = (dvx - ldot * ex, dvy - ldot * ey, dvz - ldot * ez)
+            for a in range(3):
+                for b in range(3):
+                    ee = e0[a] * e0[b]
+                    d = 1.0 if a == b else 0.0
+                    val = (ka + cb) * ee + kg * (d - ee)
+                    if kb != 0.0:
+                        val += kb * e0[a] * dvp[b]
+                    Dg[j, a, b] += val
+                    Dg[j + 1, a, b] += val
+                    Of[j, a, b] = -val
+    # ---- nodes: drag, clump drag, seabed, friction
+    zc = S[S_ZC]
+    ccos = S[S_CURC]
+    csin = S[S_CURS]
+    for i in range(n):
+        qx = q[i, 0]
+        qy = q[i, 1]
+        qz = q[i, 2]
+        uc = _current(r[i, 2], cur_z, cur_u)
+        vrx = v[i, 0] - uc * ccos
+        vry = v[i, 1] - uc * csin
+        vrz = v[i, 2]
+        vq = vrx * qx + vry * qy + vrz * qz
+        vnx = vrx - vq * qx
+        vny = vry - vq * qy
+        vnz = vrz - vq * qz
+        vn = math.sqrt(vnx * vnx + vny * vny + vnz * vnz)
+        kdn = P[i, NP_KDN]
+        kdt = P[i, NP_KDT]
+        f[i, 0] -= kdn * vn * vnx + kdt * abs(vq) * vq * qx
+        f[i, 1] -= kdn * vn * vny + kdt * abs(vq) * vq * qy
+        f[i, 2] -= kdn * vn * vnz + kdt * abs(vq) * vq * qz
+        kc = P[i, NP_KC]
+        vr = math.sqrt(vrx * vrx + vry * vry + vrz * vrz)
+        if kc > 0.0:
+            f[i, 0] -= kc * vr * vrx
+            f[i, 1] -= kc * vr * vry
+            f[i, 2] -= kc * vr * vrz
+        if want_jac:
+            qv = (qx, qy, qz)
+            vnv = (vnx, vny, vnz)
+            vrv = (vrx, vry, vrz)
+            for a in range(3):
+                for b in range(3):
+                    qq = qv[a] * qv[b]
+                    d = 1.0 if a == b else 0.0
+                    val = kdn * vn * (d - qq) + 2.0 * kdt * abs(vq) * qq
+                    if vn > 0.0:
+                        val += kdn * vnv[a] * vnv[b] / vn
+                    if kc > 0.0:
+                        val += kc * vr * d
+                        if vr > 0.0:
+                            val += kc * vrv[a] * vrv[b] / vr
+                    Dg[i, a, b] += cC * val
+        # seabed contact
+        pen = zc - r[i, 2]
+        if pen > 0.0 and P[i, NP_KS] > 0.0:
+            ks = P[i, NP_KS]
+            # damping faded in over the static penetration w / k so that the contact force is
+            # continuous when a moving node touches down (a jump makes Newton cycle)
+            pst = max(P[i, NP_W], 1e-12) / ks
+            fade = pen / pst if pen < pst else 1.0
+            cs = P[i, NP_CS] * fade
+            Fn = ks * pen - cs * v[i, 2]
+            if Fn > 0.0:
+                f[i, 2] += Fn
+                if want_jac:
+                    Dg[i, 2, 2] += cK * (ks - (P[i, NP_CS] * v[i, 2] / pst if pen < pst else 0.0)) \
+                        + cC * cs
+            N = ks * pen
+            if fric != FR_NONE:
+                mua = P[i, NP_MUA]
+                mul = P[i, NP_MUL]
+                ax, ay, bx, by = _friction_dirs(qx, qy)
+                va = v[i, 0] * ax + v[i, 1] * ay
+                vl = v[i, 0] * bx + v[i, 1] * by
+                if fric == FR_VEL:
+                    vR = S[S_VR]
+                    u = math.sqrt(va * va + vl * vl)
+                    if u < vR:
+                        g = 2.0 / vR - u / (vR * vR)
+                        gp = -1.0 / (vR * vR)
+                    else:
+                        g = 1.0 / u
+                        gp = -1.0 / (u * u)
+                    mx = mua * va * ax + mul * vl * bx
+                    my = mua * va * ay + mul * vl * by
+                    f[i, 0] -= N * g * mx
+                    f[i, 1] -= N * g * my
+                    if want_jac:
+                        # through the normal force N = ks pen: dF/dz = ks g m
+                        Dg[i, 0, 2] -= cK * ks * g * mx
+                        Dg[i, 1, 2] -= cK * ks * g * my
+                        A00 = mua * ax * ax + mul * bx * bx
+                        A01 = mua * ax * ay + mul * bx * by
+                        A11 = mua * ay * ay + mul * by * by
+                        Dg[i, 0, 0] += cC * N * g * A00
+                        Dg[i, 0, 1] += cC * N * g * A01
+                        Dg[i, 1, 0] += cC * N * g * A01
+                        Dg[i, 1, 1] += cC * N * g * A11
+                        if u > 0.0:
+                            s = cC * N * gp / u
+                            Dg[i, 0, 0] += s * mx * v[i, 0]
+                            Dg[i, 0, 1] += s * mx * v[i, 1]
+                            Dg[i, 1, 0] += s * my * v[i, 0]
+                            Dg[i, 1, 1] += s * my * v[i, 1]
+                else:
+                    Cd = S[S_CD]
+                    dxr = r[i, 0] - fs[i, 4]
+                    dyr = r[i, 1] - fs[i, 5]
+                    for k in range(2):
+                        if k == 0:
+                            dk_x = ax
+                            dk_y = ay
+                            mu = mua
+                            vk = va
+                        else:
+                            dk_x = bx
+                            dk_y = by
+                            mu = mul
+                            vk = vl
+                        if mu <= 0.0:
+                            continue
+                        dk = dxr * dk_x + dyr * dk_y
+                        kx = 0.0   # stiffness-like tangent (N/m)
+                        kv = 0.0   # damping-like tangent (N s/m)
+                        if fric == FR_STATIC:
+                            c = dk / Cd
+                            if c > 1.0:
+                                c = 1.0
+                            elif c < -1.0:
+                                c = -1.0
+                            else:
+                                kx = mu * N / Cd
+                        else:
+                            c, kx, kv = _dispvel_coef(vk, dk, fs[i, k], fs[i, 2 + k], S[S_VR],
+                                                      Cd, mu * N)
+                        f[i, 0] -= mu * N * c * dk_x
+                        f[i, 1] -= mu * N * c * dk_y
+                        if want_jac:
+                            Dg[i, 0, 2] -= cK * mu * ks * c * dk_x
+                            Dg[i, 1, 2] -= cK * mu * ks * c * dk_y
+                        if want_jac and (kx > 0.0 or kv > 0.0):
+                            w = cK * kx + cC * kv
+                            Dg[i, 0, 0] += w * dk_x * dk_x
+                            Dg[i, 0, 1] += w * dk_x * dk_y
+                            Dg[i, 1, 0] += w * dk_y * dk_x
+                            Dg[i, 1, 1] += w * dk_y * dk_y
+
+
+@njit(cache=True)
+def _dispvel_coef(vk, dk, c_prev, v_prev, Cv, Cd, muN):
+    """Seed 000 combined displacement and velocity ramp (figure 8) for one direction.
+
+    Returns the signed coefficient ``c`` and its tangents (N/m and N s/m) for the friction
+    magnitude ``muN``.
+    """
+    if abs(vk) < V_MEANINGFUL:
+        return c_prev, 0.0, 0.0
+    kx = 0.0
+    kv = 0.0
+    c = vk / Cv
+    if c > 1.0:
+        c = 1.0
+    elif c < -1.0:
+        c = -1.0
+    else:
+        kv = muN / Cv
+    if abs(dk) > D_MEANINGFUL and dk * vk > 0.0:
+        c2 = dk / Cd
+        sat2 = False
+        if c2 > 1.0:
+            c2 = 1.0
+            sat2 = True
+        elif c2 < -1.0:
+            c2 = -1.0
+            sat2 = True
+        if abs(c2) > abs(c):
+            c = c2
+            kv = 0.0
+            kx = 0.0 if sat2 else muN / Cd
+    # no decrease unless the node reverses
+    if vk * v_prev > 0.0 and c_prev * vk > 0.0 and abs(c_prev) > abs(c):
+        c = c_prev
+        kx = 0.0
+        kv = 0.0
+    return c, kx, kv
+
+
+@njit(cache=True)
+def friction_commit(r, v, q, fric, fs, P, S, zc):
+    """End of an accepted time step: store the seed-000 friction coefficients and reference
+    positions (reset at a reversal of the sliding direction)."""
+    if fric != FR_DISPVEL:
+        return
+    n = r.shape[0]
+    Cd = S[S_CD]
+    Cv = S[S_VR]
+    for i in range(n):
+        pen = zc - r[i, 2]
+        if not (pen > 0.0):
+            fs[i, 0] = 0.0
+            fs[i, 1] = 0.0
+            fs[i, 2] = 0.0
+            fs[i, 3] = 0.0
+            fs[i, 4] = r[i, 0]
+            fs[i, 5] = r[i, 1]
+            continue
+        ax, ay, bx, by = _friction_dirs(q[i, 0], q[i, 1])
+        dxr = r[i, 0] - fs[i, 4]
+        dyr = r[i, 1] - fs[i, 5]
+        reset = False
+        for k in range(2):
+            if k == 0:
+                vk = v[i, 0] * ax + v[i, 1] * ay
+                dk = dxr * ax + dyr * ay
+            else:
+                vk = v[i, 0] * bx + v[i, 1] * by
+                dk = dxr * bx + dyr * by
+            c, kx, kv = _dispvel_coef(vk, dk, fs[i, k], fs[i, 2 + k], Cv, Cd, 1.0)
+            if abs(vk) >= V_MEANINGFUL and vk * fs[i, 2 + k] < 0.0:
+                reset = True
+            fs[i, k] = c
+            if abs(vk) >= V_MEANINGFUL:
+                fs[i, 2 + k] = vk
+        if reset:
+            fs[i, 4] = r[i, 0]
+            fs[i, 5] = r[i, 1]
+
+
+# --------------------------------------------------------------------------------------------
+# linear algebra
+# --------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _inv3(A, out):
+    a, b, c = A[0, 0], A[0, 1], A[0, 2]
+    d, e, g = A[1, 0], A[1, 1], A[1, 2]
+    h, k, m = A[2, 0], A[2, 1], A[2, 2]
+    c00 = e * m - g * k
+    c01 = -(d * m - g * h)
+    c02 = d * k - e * h
+    det = a * c00 + b * c01 + c * c02
+    if det == 0.0 or not math.isfinite(det):
+        return False
+    inv = 1.0 / det
+    out[0, 0] = c00 * inv
+    out[1, 0] = c01 * inv
+    out[2, 0] = c02 * inv
+    out[0, 1] = -(b * m - c * k) * inv
+    out[1, 1] = (a * m - c * h) * inv
+    out[2, 1] = -(a * k - b * h) * inv
+    out[0, 2] = (b * g - c * e) * inv
+    out[1, 2] = -(a * g - c * d) * inv
+    out[2, 2] = (a * e - b * d) * inv
+    return True
+
+
+@njit(cache=True)
+def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
+    """Solve the block-tridiagonal system on nodes ``i0 .. i1-1`` (3x3 blocks).
+
+    Diagonal blocks ``Dg[i]``, upper blocks ``Of[i]`` (row i, column i+1) and lower blocks
+    ``Of[i-1]`` (row i, column i-1): element-assembled matrices have the same coupling block on
+    both sides of the diagonal, symmetric or not.  ``W`` (n,3,3), ``Y`` (n,3), ``T1`` (3,3) scratch; solution into ``x`` (n,3).
+    Returns the first node whose pivot block is singular, or -1.
+    """
+    for i in range(i0, i1):
+        # G = Dg[i] - Of[i-1] W[i-1] Of[i-1];  y = rhs[i] - Of[i-1] W[i-1] y[i-1]
+        for a in range(3):
+            for b in range(3):
+                T1[a, b] = Dg[i, a, b]
+            Y[i, a] = rhs[i, a]
+        if i > i0:
+            p = i - 1
+            # H = W[p] Of[p]  (3x3), then T1 -= Of[p] H ; Y -= Of[p] (W[p] Y[p])
+            for a in range(3):
+                wy = 0.0
+                for b in range(3):
+                    wy += W[p, a, b] * Y[p, b]
+                x[p, a] = wy  # temporary: W[p] Y[p]
+            for a in range(3):
+                for b in range(3):
+                    s = 0.0
+                    for c in range(3):
+                        h = 0.0
+                        for d in range(3):
+                            h += W[p, c, d] * Of[p, d, b]
+                        s += Of[p, a, c] * h
+                    T1[a, b] -= s
+                s2 = 0.0
+                for c in range(3):
+                    s2 += Of[p, a, c] * x[p, c]
+                Y[i, a] -= s2
+        if not _inv3(T1, W[i]):
+            return i
+    for i in range(i1 - 1, i0 - 1, -1):
+        for a in range(3):
+            s = Y[i, a]
+            if i < i1 - 1:
+                for b in range(3):
+                    s -= Of[i, a, b] * x[i + 1, b]
+            T1[0, a] = s
+        for a in range(3):
+            x[i, a] = W[i, a, 0] * T1[0, 0] + W[i, a, 1] * T1[0, 1] + W[i, a, 2] * T1[0, 2]
+    return -1
+
+
+# --------------------------------------------------------------------------------------------
+# statics
+# --------------------------------------------------------------------------------------------
+@njit(cache=True)
+def static_newton(r, P, E, S, cur_z, cur_u, fric, fs, tol, maxit, v0, q, f, tens, Dg, Of,
+                  W, Y, T1, dx, rtry, info):
+    """Damped Newton (Levenberg-Marquardt) for the static equilibrium of the free nodes
+    (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3).
+
+    A step ``(K + lam I) dx = f`` is accepted when it lowers the 2-norm of the nodal residual;
+    ``lam`` (N/m) starts at 0 (pure Newton), grows by 10 from the weight of a node over its
+    element length when a step fails and falls by 10 after a success.
+
+    ``info[0]`` iterations, ``info[1]`` final max residual (N), ``info[2]`` node with the
+    largest residual.  Returns 0 when converged (max nodal residual < ``tol`` N), -1 when not,
+    -2 singular tangent (``info[2]`` = node).
+    """
+    n = r.shape[0]
+    lam_min = 0.0
+    for i in range(n):
+        lam_min = max(lam_min, abs(P[i, NP_W]))
+    lam_min /= max(E[0, EL_L0], 1e-12)
+    line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
+    res2 = _res2(f, n)
+    lam = 0.0
+    it = 0
+    while it < maxit:
+        info[0] = it
+        info[1] = _max_res(f, n)
+        if info[1] < tol:
+            break
+        it += 1
+        if lam > 0.0:
+            for i in range(1, n - 1):
+                for a in range(3):
+                    Dg[i, a, a] += lam
+        bad = block_tridiag_solve(Dg, Of, f, 1, n - 1, W, Y, T1, dx)
+        if bad >= 0:
+            if lam == 0.0:
+                lam = lam_min
+                line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0,
+                            Dg, Of)
+                continue
+            info[2] = bad
+            return -2
+        for i in range(n):
+            for a in range(3):
+                rtry[i, a] = r[i, a] + (dx[i, a] if 0 < i < n - 1 else 0.0)
+        line_forces(rtry, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0,
+                    Dg, Of)
+        r2 = _res2(f, n)
+        if r2 < res2 or _max_res(f, n) < tol:
+            for i in range(n):
+                for a in range(3):
+                    r[i, a] = rtry[i, a]
+            res2 = r2
+            lam = lam / 10.0 if lam > 100.0 * lam_min else 0.0
+        else:
+            lam = lam_min if lam == 0.0 else 10.0 * lam
+            if lam > 1e30:
+                break
+            line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0,
+                        Dg, Of)
+    line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
+    info[0] = it
+    info[1] = _max_res(f, n)
+    worst = 1
+    for i in range(1, n - 1):
+        if abs(f[i, 0]) + abs(f[i, 1]) + abs(f[i, 2]) > abs(f[worst, 0]) + abs(f[worst, 1]) + abs(f[worst, 2]):
+            worst = i
+    info[2] = worst
+    return 0 if info[1] < tol else -1
+
+
+@njit(cache=True)
+def _res2(f, n):
+    m = 0.0
+    for i in range(1, n - 1):
+        for a in range(3):
+            m += f[i, a] * f[i, a]
+    return m if math.isfinite(m) else math.inf
+
+
+@njit(cache=True)
+def _max_res(f, n):
+    m = 0.0
+    for i in range(1, n - 1):
+        for a in range(3):
+            if not math.isfinite(f[i, a]):
+                return math.inf
+            if abs(f[i, a]) > m:
+                m = abs(f[i, a])
+    return m
+
+
+# --------------------------------------------------------------------------------------------
+# dynamics
+# --------------------------------------------------------------------------------------------
+@njit(cache=True)
+def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, fs, coef, tol,
+                   maxit, r1, v1, a1, f1, q, tens, Mb, Dg, Of, Rr, W, Y, T1, da, info):
+    """One generalised-alpha step (Chung & Hulbert 1993) of the free nodes with Newton
+    iterations on the accelerations.
+
+    State at ``t1 - dt``: ``r, v, a`` (n, 3) and the nodal force ``fn``; fairlead (node n-1)
+    position ``rf1`` and velocity ``vf1`` at ``t1``.  ``coef = (alpha_m, alpha_f, beta,
+    gamma)``.  Trial state at ``t1`` into ``r1, v1, a1, f1`` (the caller accepts it).
+    Residual ``M ((1-am) a1 + am a) - (1-af) f(r1, v1) - af fn``; mass blocks from ``r``.
+
+    Returns the number of Newton iterations (> 0), or -1 (no convergence: ``info[1]`` = node
+    with the largest correction), -2 (singular iteration matrix at node ``info[1]``), -3 (NaN).
+    """
+    am = coef[0]
+    af = coef[1]
+    ftol = 0.0
+    for i in range(r.shape[0]):
+        ftol = max(ftol, 1e-5 * abs(P[i, NP_W]))
+    beta = coef[2]
+    gamma = coef[3]
+    n = r.shape[0]
+    node_mass(r, P, q, Mb)
+    # predictor: constant acceleration, plus the fairlead's deviation from its own constant-
+    # velocity prediction spread along the line in proportion to the node number (keeps the
+    # element lengths nearly unchanged: essential for very stiff lines)
+    for i in range(n):
+        for k in range(3):
+            a1[i, k] = a[i, k] if 0 < i < n - 1 else 0.0
+    for k in range(3):
+        dev = rf1[k] - (r[n - 1, k] + dt * v[n - 1, k])
+        for i in range(1, n - 1):
+            a1[i, k] += dev * (i / (n - 1.0)) / (beta * dt * dt)
+    for k in range(3):
+        r1[0, k] = r[0, k]
+        v1[0, k] = 0.0
+        r1[n - 1, k] = rf1[k]
+        v1[n - 1, k] = vf1[k]
+    cK = (1.0 - af) * beta * dt * dt
+    cC = (1.0 - af) * gamma * dt
+    it = 0
+    conv = False
+    res_prev = math.inf
+    alpha = 1.0
+    while it < maxit:
+        it += 1
+        for i in range(1, n - 1):
+            for k in range(3):
+                r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
+                                                               + beta * a1[i, k])
+                v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
+        line_forces(r1, v1, P, E, S, cur_z, cur_u, fric, fs, q, f1, tens, True, cK, cC, Dg, Of)
+        res = 0.0
+        for i in range(1, n - 1):
+            for k in range(3):
+                s = 0.0
+                for m in range(3):
+                    s += Mb[i, k, m] * ((1.0 - am) * a1[i, m] + am * a[i, m])
+                    Dg[i, k, m] += (1.0 - am) * Mb[i, k, m]
+                Rr[i, k] = (1.0 - af) * f1[i, k] + af * fn[i, k] - s
+                res += Rr[i, k] * Rr[i, k]
+        if not math.isfinite(res):
+            info[1] = 1
+            return -3
+        if res > res_prev and alpha > 1.0 / 64.0:
+            # the last correction raised the residual (a node jumping across the seabed
+            # contact, a slack element): go back half of it
+            alpha *= 0.5
+            for i in range(1, n - 1):
+                for k in range(3):
+                    a1[i, k] -= alpha * da[i, k]
+            continue
+        alpha = 1.0
+        res_prev = res
+        if it > 1 and math.sqrt(res) <= ftol:
+            # residual below ftol (N): converged even if a contact or slack kink keeps the
+            # position corrections from settling
+            conv = True
+            break
+        bad = block_tridiag_solve(Dg, Of, Rr, 1, n - 1, W, Y, T1, da)
+        if bad >= 0:
+            info[1] = bad
+            return -2
+        dmax = 0.0
+        imax = 1
+        for i in range(1, n - 1):
+            for k in range(3):
+                if not math.isfinite(da[i, k]):
+                    info[1] = i
+                    return -3
+                a1[i, k] += da[i, k]
+                if abs(da[i, k]) > dmax:
+                    dmax = abs(da[i, k])
+                    imax = i
+        info[1] = imax
+        # displacement correction beta dt^2 da below tol (m) ends the iteration
+        if dmax * beta * dt * dt <= tol:
+            conv = True
+            break
+    if not conv:
+        return -1
+    for i in range(1, n - 1):
+        for k in range(3):
+            r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k] + beta * a1[i, k])
+            v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
+    line_forces(r1, v1, P, E, S, cur_z, cur_u, fric, fs, q, f1, tens, False, cK, cC, Dg, Of)
+    for i in range(n):
+        for k in range(3):
+            if not math.isfinite(f1[i, k]):
+                info[1] = i
+                return -3
+    return it
+
+
+@njit(cache=True)
+def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, Mb, Dg,
+                  Of, W):
+    """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the
+    fairlead node follows ``rf1, vf1``.  Updates ``r, v`` in place.  Returns -1, or the first
+    node with a singular mass block / NaN."""
+    n = r.shape[0]
+    node_mass(r, P, q, Mb)
+    line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of)
+    for i in range(1, n - 1):
+        if not _inv3(Mb[i], W[i]):
+            return i
+        for k in range(3):
+            acc = W[i, k, 0] * f[i, 0] + W[i, k, 1] * f[i, 1] + W[i, k, 2] * f[i, 2]
+            v[i, k] += dt * acc
+            r[i, k] += dt * v[i, k]
+            if not math.isfinite(r[i, k]):
+                return i
+    for k in range(3):
+        r[n - 1, k] = rf1[k]
+        v[n - 1, k] = vf1[k]
+    return -1
+
+
+@njit(cache=True)
+def end_forces(r, v, P, f, tens, out):
+    """Force of the line on its end points (N, earth axes): ``out[0:3]`` on the anchor,
+    ``out[3:6]`` on the fairlead.  It is minus the nodal force of the end node without its
+    inertia: the pull of the adjacent element plus the end node's share of weight, drag and
+    seabed load (minus the reaction a support must provide)."""
+    n = r.shape[0]
+    for k in range(3):
+        out[k] = f[0, k]
+        out[3 + k] = f[n - 1, k]

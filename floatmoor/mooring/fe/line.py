@@ -1,0 +1,436 @@
+"""FE (lumped-mass) mooring line: arrays from the configuration, statics from the catenary start,
+and a stepping interface a floater time-domain solver can call.
+
+Coupling interface (for the body solver): ::
+
+    line = FELine(spec)
+    line.solve_static()                 # equilibrium at the initial fairlead position
+    line.start(dt=0.1)                  # generalised-alpha, rho_inf = 0.7
+    for each body step t -> t + dt:
+        F = line.advance(t + dt, dt, r_fair(t + dt), v_fair(t + dt))   # trial, N (3,)
+        ... (the body solver may call advance again with new fairlead kinematics: every call
+             restarts from the last accepted state)
+        line.accept()                   # commit the trial state
+
+``F`` is the force of the line on the fairlead point in earth axes (pulls towards the anchor and
+down).  ``advance`` sub-steps the line (``substeps``) with the fairlead moving linearly between
+the accepted and the new position when the body step is larger than the line can take.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...core.errors import ConvergenceError, NumericalError
+from ..catenary import line_profile, solve_line
+from . import kernels as K
+from .config import FRICTION_MODELS, FELineSpec
+
+__all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients"]
+
+
+def gen_alpha_coefficients(rho_inf: float) -> np.ndarray:
+    """Generalised-alpha parameters ``(alpha_m, alpha_f, beta, gamma)`` for the spectral radius
+    at infinite frequency ``rho_inf`` in [0, 1] (Chung & Hulbert 1993, eq. 25)."""
+    if not (0.0 <= rho_inf <= 1.0):
+        raise ValueError(f"rho_inf must be in [0, 1], got {rho_inf!r}")
+    am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0)
+    af = rho_inf / (rho_inf + 1.0)
+    gamma = 0.5 - am + af
+    beta = 0.25 * (1.0 - am + af) ** 2
+    return np.array([am, af, beta, gamma])
+
+
+@dataclass(frozen=True, kw_only=True)
+class StaticSolution:
+    """Static equilibrium of a FE line (SI units).
+
+    ``positions`` (n, 3) m; ``tensions`` (n-1,) N per element; ``fairlead_force`` and
+    ``anchor_force`` (3,) N: force of the line on the end points; ``iterations``;
+    ``residual`` largest nodal force imbalance, N.
+    """
+
+    positions: np.ndarray
+    tensions: np.ndarray
+    fairlead_force: np.ndarray
+    anchor_force: np.ndarray
+    iterations: int
+    residual: float
+
+    @property
+    def fairlead_tension(self) -> float:
+        return float(np.linalg.norm(self.fairlead_force))
+
+    @property
+    def anchor_tension(self) -> float:
+        return float(np.linalg.norm(self.anchor_force))
+
+
+class FELine:
+    """A lumped-mass line built from a :class:`FELineSpec`.
+
+    Parameters
+    ----------
+    spec : FELineSpec
+    dynamic_ea : bool
+        Use the segments' ``ea_dynamic`` in dynamics (statics always use ``ea``).
+    """
+
+    def __init__(self, spec: FELineSpec, *, dynamic_ea: bool = True):
+        self.spec = spec
+        rho = spec.water_density
+        g = spec.gravity
+        ne = spec.n_elements
+        nn = ne + 1
+        self.n_nodes = nn
+        E_st = np.zeros((ne, K.N_EL))
+        E_dy = np.zeros((ne, K.N_EL))
+        P = np.zeros((nn, K.N_NP))
+        seg_of = np.zeros(ne, dtype=np.int64)
+        j = 0
+        dmax = 0.0
+        for k, seg in enumerate(spec.segments):
+            lt = seg.line_type
+            dmax = max(dmax, lt.diameter)
+            le = seg.length / seg.n_elements
+            w = lt.submerged_weight(rho, g)
+            for _ in range(seg.n_elements):
+                seg_of[j] = k
+                for E, ea in ((E_st, lt.ea), (E_dy, lt.ea_dynamic if dynamic_ea else lt.ea)):
+                    E[j, K.EL_L0] = le
+                    if seg.tension_poly:
+                        c = list(seg.tension_poly) + [0.0] * (3 - len(seg.tension_poly))
+                        E[j, K.EL_C1:K.EL_C3 + 1] = c
+                    else:
+                        E[j, K.EL_C1] = ea
+                    E[j, K.EL_B] = seg.damping_coefficient(ea)
+                for i in (j, j + 1):
+                    h = 0.5 * le
+                    P[i, K.NP_MASS] += lt.mass_per_length * h
+                    P[i, K.NP_W] += w * h
+                    P[i, K.NP_KDN] += 0.5 * rho * lt.cdn * lt.diameter * h
+                    P[i, K.NP_KDT] += 0.5 * rho * lt.cdt * lt.diameter * h
+                    P[i, K.NP_MAN] += rho * lt.can * lt.displaced_volume * h
+                    P[i, K.NP_MAT] += rho * lt.cat * lt.displaced_volume * h
+                    if spec.seabed.model == "springs":
+                        P[i, K.NP_KS] += spec.seabed.stiffness * h
+                        P[i, K.NP_CS] += spec.seabed.damping * h
+                    P[i, K.NP_MUA] = spec.friction.mu_axial
+                    P[i, K.NP_MUL] = spec.friction.mu_lateral
+                j += 1
+        for pb in spec.point_bodies:
+            P[pb.node, K.NP_MASS] += pb.mass
+            P[pb.node, K.NP_W] += (pb.mass - rho * pb.volume) * g
+            P[pb.node, K.NP_KC] += 0.5 * rho * pb.cda
+            P[pb.node, K.NP_MAC] += rho * pb.ca * pb.volume
+        if spec.seabed.model == "mud_layer":
+            for i in range(nn):
+                ks = max(P[i, K.NP_W], 0.0) / spec.seabed.mud_depth
+                P[i, K.NP_KS] = ks
+                P[i, K.NP_CS] = 2.0 * math.sqrt(ks * (P[i, K.NP_MASS] + P[i, K.NP_MAN]
+                                                      + P[i, K.NP_MAC]))
+        S = np.zeros(K.N_S)
+        S[K.S_ZC] = -spec.seabed.depth + (spec.seabed.mud_depth
+                                          if spec.seabed.model == "mud_layer" else 0.0)
+        fr = spec.friction
+        S[K.S_VR] = fr.ramp_velocity if fr.ramp_velocity is not None else dmax / fr.zero_crossing_period
+        S[K.S_CD] = fr.ramp_displacement if fr.ramp_displacement is not None else 0.5 * dmax
+        S[K.S_CURC] = math.cos(spec.current_heading)
+        S[K.S_CURS] = math.sin(spec.current_heading)
+        S[K.S_RHO] = rho
+        self.P = P
+        self.E_static = E_st
+        self.E_dynamic = E_dy
+        self.S = S
+        self.segment_of_element = seg_of
+        self.fric_code = FRICTION_MODELS[fr.model]
+        cz = np.asarray(spec.current_z, float)
+        cu = np.asarray(spec.current_speed, float)
+        order = np.argsort(cz)
+        self.cur_z = np.ascontiguousarray(cz[order])
+        self.cur_u = np.ascontiguousarray(cu[order])
+        self.s_nodes = np.concatenate([[0.0], np.cumsum(E_st[:, K.EL_L0])])
+        # state and work arrays (allocated once)
+        self.r = np.zeros((nn, 3))
+        self.v = np.zeros((nn, 3))
+        self.a = np.zeros((nn, 3))
+        self.fn = np.zeros((nn, 3))
+        self.fs = np.zeros((nn, K.N_FS))
+        self._alloc_work()
+        self.r[:] = self.initial_shape()
+        self.fs[:, 4:6] = self.r[:, 0:2]
+        self.time = 0.0
+        self._started = False
+
+    # ------------------------------------------------------------------------------------------
+    def _alloc_work(self):
+        nn = self.n_nodes
+        z3 = lambda: np.zeros((nn, 3))  # noqa: E731
+        self._r1, self._v1, self._a1, self._f1 = z3(), z3(), z3(), z3()
+        self._q, self._Rr, self._Y, self._da, self._rtry = z3(), z3(), z3(), z3(), z3()
+        self._tens = np.zeros(nn - 1)
+        self._Mb = np.zeros((nn, 3, 3))
+        self._Dg = np.zeros((nn, 3, 3))
+        self._Of = np.zeros((nn - 1, 3, 3))
+        self._W = np.zeros((nn, 3, 3))
+        self._T1 = np.zeros((3, 3))
+        self._info = np.zeros(3)
+        self._ends = np.zeros(6)
+        self._fs1 = np.zeros((nn, K.N_FS))
+        self._rB, self._vB, self._aB, self._Rk, self._Yk = z3(), z3(), z3(), z3(), z3()
+        self._split_rf = np.zeros((self.MAX_SPLIT + 1, 3))
+        self._split_vf = np.zeros((self.MAX_SPLIT + 1, 3))
+        self._rf0 = np.zeros(3)
+        self._vf0 = np.zeros(3)
+        self._rfk = np.zeros(3)
+        self._vfk = np.zeros(3)
+
+    def initial_shape(self, fairlead=None) -> np.ndarray:
+        """Node positions (n, 3) from the quasi-static elastic catenary (no friction, static EA)
+        in the vertical plane through anchor and fairlead; a straight line if the catenary has
+        no solution (line too short)."""
+        sp = self.spec
+        A = np.asarray(sp.anchor, float)
+        F = np.asarray(sp.fairlead if fairlead is None else fairlead, float)
+        dh = F[:2] - A[:2]
+        xf = float(np.hypot(*dh))
+        zf = float(F[2] - A[2])
+        u = dh / xf if xf > 0 else np.array([1.0, 0.0])
+        rho, g = sp.water_density, sp.gravity
+        L = np.array([s.length for s in sp.segments])
+        EA = np.array([s.line_type.ea for s in sp.segments])
+        w = np.array([s.line_type.submerged_weight(rho, g) for s in sp.segments])
+        on_seabed = A[2] <= -sp.seabed.depth + 1e-6
+        try:
+            sol = solve_line(xf, zf, L, EA, w, None, 0.0, seabed=bool(on_seabed), name=sp.name)
+            prof = line_profile(sol.HF, sol.VF, L, EA, w, np.zeros(L.size), 0.0, bool(on_seabed),
+                                n=401)
+            s, x, z = prof["s"], prof["x"], prof["z"]
+            keep = np.concatenate([[True], np.diff(s) > 0])
+            xs = np.interp(self.s_nodes, s[keep], x[keep])
+            zs = np.interp(self.s_nodes, s[keep], z[keep])
+        except (ConvergenceError, ValueError):
+            t = self.s_nodes / self.s_nodes[-1]
+            xs = t * xf
+            zs = t * zf
+        r = np.empty((self.n_nodes, 3))
+        r[:, 0] = A[0] + xs * u[0]
+        r[:, 1] = A[1] + xs * u[1]
+        r[:, 2] = A[2] + zs
+        r[-1] = F
+        r[0] = A
+        return r
+
+    # ------------------------------------------------------------------------------------------
+    def solve_static(self, fairlead=None, *, friction: bool = True, reference=None,
+                     tol: float | None = None, maxit: int = 200, restart: bool = False
+                     ) -> StaticSolution:
+        """Static equilibrium (Newton with backtracking) for the fairlead at ``fairlead`` (m).
+
+        Starts from the current positions (the catenary shape after construction, or the last
+        solution: use it for continuation), or from the catenary when ``restart``.  Seabed
+        friction in statics is the displacement ramp (seed 000 sec. 2.2.1) measured from
+        ``reference`` node positions (default: the positions before this call) when the
+        line's friction model is not ``none`` and ``friction`` is true.
+
+        Raises
+        ------
+        ConvergenceError
+            Naming the line, the node with the largest imbalance and a remedy.
+        """
+        if fairlead is not None:
+            F = np.asarray(fairlead, float)
+            if restart:
+                self.r[:] = self.initial_shape(F)
+            else:
+                # move the nodes with the fairlead in proportion to the arc length
+                d = F - self.r[-1]
+                t = self.s_nodes / self.s_nodes[-1]
+                self.r += t[:, None] * d[None, :]
+                self.r[-1] = F
+        elif restart:
+            self.r[:] = self.initial_shape()
+        ref = self.r if reference is None else np.asarray(reference, float)
+        self.fs[:] = 0.0
+        self.fs[:, 4:6] = ref[:, 0:2]
+        code = K.FR_STATIC if (friction and self.fric_code != 0) else K.FR_NONE
+        wmax = max(float(np.max(np.abs(self.P[:, K.NP_W]))), 1.0)
+        eamax = float(np.max(self.E_static[:, K.EL_C1]))
+        if tol is None:
+            # 1e-6 of a node weight, but not below the round-off of the axial force
+            tol = max(1e-6 * wmax, 1e-13 * eamax)
+        v0 = np.zeros_like(self.r)
+        r_start = self.r.copy()
+        st = self._newton(self.E_static, code, tol, maxit, v0)
+        if st != 0:
+            # continuation in the axial stiffness: very stiff lines (EA / weight ~ 1e6 and more:
+            # the catenary start is off by the chord-arc difference, ~ l^2 kappa^2 / 24 in
+            # strain) are solved first with EA = 1e3 x the line weight, then stiffened by 4x
+            self.r[:] = r_start
+            f = min(1.0, 1e3 * float(np.sum(np.abs(self.P[:, K.NP_W]))) / max(eamax, 1e-300))
+            Ec = self.E_static.copy()
+            while True:
+                Ec[:, K.EL_C1:K.EL_C3 + 1] = self.E_static[:, K.EL_C1:K.EL_C3 + 1] * f
+                st = self._newton(Ec, code, max(tol * f, 1e-6 * wmax) if f < 1 else tol, maxit, v0)
+                if st != 0 or f >= 1.0:
+                    break
+                f = min(1.0, 4.0 * f)
+        if st != 0:
+            raise ConvergenceError(
+                f"FE statics: {'singular tangent' if st == -2 else 'no convergence'} "
+                f"(largest residual {self._info[1]:.3g} N after {int(self._info[0])} iterations)",
+                where=f"line {self.spec.name}, node {int(self._info[2])}",
+                remedy="move the fairlead in smaller steps (continuation), check that the line is "
+                       "long enough and not slack, or add elements")
+        K.end_forces(self.r, v0, self.P, self._f1, self._tens, self._ends)
+        # end forces: the internal nodal force of the end node
+        return StaticSolution(positions=self.r.copy(), tensions=self._tens.copy(),
+                              fairlead_force=self._ends[3:6].copy(),
+                              anchor_force=self._ends[0:3].copy(),
+                              iterations=int(self._info[0]), residual=float(self._info[1]))
+
+    def _newton(self, E, code, tol, maxit, v0):
+        return K.static_newton(self.r, self.P, E, self.S, self.cur_z, self.cur_u, code, self.fs,
+                               tol, maxit, v0, self._q, self._f1, self._tens, self._Dg, self._Of,
+                               self._W, self._Y, self._T1, self._da, self._rtry, self._info)
+
+    # ------------------------------------------------------------------------------------------
+    def start(self, *, rho_inf: float = 0.7, tol: float = 1e-6, maxit: int = 30,
+              integrator: str = "generalized_alpha", t0: float = 0.0):
+        """Prepare dynamics from the current (static) state: velocities and accelerations zero,
+        friction references at the current positions.
+
+        ``tol`` (m): Newton stops when the position correction is below it.
+        """
+        if integrator not in ("generalized_alpha", "explicit"):
+            raise ValueError("integrator must be 'generalized_alpha' or 'explicit'")
+        self.integrator = integrator
+        self.coef = gen_alpha_coefficients(rho_inf)
+        self.tol = float(tol)
+        self.maxit = int(maxit)
+        self.v[:] = 0.0
+        self.a[:] = 0.0
+        self.fs[:] = 0.0
+        self.fs[:, 4:6] = self.r[:, 0:2]
+        self.time = float(t0)
+        K.line_forces(self.r, self.v, self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u,
+                      self.fric_code, self.fs, self._q, self.fn, self._tens, False, 0.0, 0.0,
+                      self._Dg, self._Of)
+        self._trial = False
+        self._started = True
+        self.newton_iterations = 0
+        self.substeps_taken = 0
+
+    def advance(self, t1: float, dt: float, rf1, vf1, *, substeps: int = 1) -> np.ndarray:
+        """Advance from the last accepted state (time ``t1 - dt``) to ``t1`` with the fairlead at
+        ``rf1`` (m) moving with ``vf1`` (m/s) at ``t1``; returns the trial force of the line on
+        the fairlead (N, (3,)).  Call :meth:`accept` to commit.
+
+        With ``substeps > 1`` the fairlead moves linearly from its accepted position.
+        """
+        if not self._started:
+            raise RuntimeError("call start() before advance()")
+        rf1 = np.asarray(rf1, float)
+        vf1 = np.asarray(vf1, float)
+        self._r1[:] = self.r
+        self._v1[:] = self.v
+        self._a1[:] = self.a
+        self._fs1[:] = self.fs
+        rA, vA, aA, fA = self._r1, self._v1, self._a1, self._f1
+        fnA = self._Rr  # scratch copy of fn
+        fnA[:] = self.fn
+        rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
+        rf0[:] = self.r[-1]
+        vf0[:] = self.v[-1]
+        h = dt / substeps
+        t0 = t1 - dt
+        rB, vB, aB = self._rB, self._vB, self._aB
+        for k in range(1, substeps + 1):
+            s = k / substeps
+            for c in range(3):
+                rf[c] = rf0[c] + s * (rf1[c] - rf0[c])
+                vf[c] = vf0[c] + s * (vf1[c] - vf0[c])
+            tk = t0 + k * h
+            if self.integrator == "explicit":
+                bad = K.explicit_step(tk, h, rA, vA, rf, vf, self.P, self.E_dynamic, self.S,
+                                      self.cur_z, self.cur_u, self.fric_code, self._fs1, self._q,
+                                      fA, self._tens, self._Mb, self._Dg, self._Of, self._W)
+                if bad >= 0:
+                    self._fail(tk, bad, "explicit step diverged (NaN)",
+                               "reduce dt below the axial-wave limit or use generalized_alpha")
+                fnA[:] = fA
+                continue
+            self._ga_split(tk, h, rf, vf, 0)
+        self._t1 = t1
+        self._trial = True
+        K.end_forces(rA, vA, self.P, fnA, self._tens, self._ends)
+        return self._ends[3:6].copy()
+
+    MAX_SPLIT = 5
+
+    def _ga_split(self, tk, h, rf, vf, depth):
+        """One generalised-alpha step of the trial state to ``tk``; when Newton fails the step
+        is split in two halves (fairlead linear in between), down to h / 2^MAX_SPLIT."""
+        rA, vA, aA, fA, fnA = self._r1, self._v1, self._a1, self._f1, self._Rr
+        # the kernel reads the trial state and writes the new one into rB, vB, aB: a failed
+        # attempt leaves the trial state untouched
+        it = K.gen_alpha_step(tk, h, rA, vA, aA, fnA, rf, vf, self.P, self.E_dynamic, self.S,
+                              self.cur_z, self.cur_u, self.fric_code, self._fs1, self.coef,
+                              self.tol, self.maxit, self._rB, self._vB, self._aB, fA, self._q,
+                              self._tens, self._Mb, self._Dg, self._Of, self._Rk, self._W,
+                              self._Yk, self._T1, self._da, self._info)
+        if it < 0:
+            if depth < self.MAX_SPLIT:
+                rf0 = self._split_rf[depth]
+                vf0 = self._split_vf[depth]
+                rf0[:] = rA[-1]
+                vf0[:] = vA[-1]
+                mid_r = 0.5 * (rf0 + rf)
+                mid_v = 0.5 * (vf0 + vf)
+                self._ga_split(tk - 0.5 * h, 0.5 * h, mid_r, mid_v, depth + 1)
+                self._ga_split(tk, 0.5 * h, rf, vf, depth + 1)
+                self.substeps_taken += 1
+                return
+            msg = {-1: f"no Newton convergence in {self.maxit} iterations",
+                   -2: "singular iteration matrix", -3: "NaN in the line state"}[it]
+            self._fail(tk, int(self._info[1]), msg,
+                       f"reduce dt (the step was already split {self.MAX_SPLIT} times), add "
+                       "elements, or check for a slack line hit by a snap load")
+        self.newton_iterations += it
+        rA[:] = self._rB
+        vA[:] = self._vB
+        aA[:] = self._aB
+        fnA[:] = fA
+        K.friction_commit(rA, vA, self._q, self.fric_code, self._fs1, self.P, self.S,
+                          self.S[K.S_ZC])
+
+    def accept(self):
+        """Commit the state of the last :meth:`advance`."""
+        if not self._trial:
+            raise RuntimeError("accept() without a preceding advance()")
+        self.r[:] = self._r1
+        self.v[:] = self._v1
+        self.a[:] = self._a1
+        self.fn[:] = self._Rr
+        self.fs[:] = self._fs1
+        self.time = self._t1
+        self._trial = False
+
+    def step(self, t1, dt, rf1, vf1, *, substeps: int = 1) -> np.ndarray:
+        """:meth:`advance` then :meth:`accept`; returns the fairlead force (N)."""
+        F = self.advance(t1, dt, rf1, vf1, substeps=substeps)
+        self.accept()
+        return F
+
+    @property
+    def tensions(self) -> np.ndarray:
+        """Element tensions (N) of the last force evaluation."""
+        return self._tens.copy()
+
+    def _fail(self, t, node, what, remedy):
+        raise NumericalError(f"FE line: {what}", time=t,
+                             where=f"line {self.spec.name}, node {node} of {self.n_nodes - 1}",
+                             remedy=remedy)

@@ -1,0 +1,235 @@
+"""Decoupled FE line runs: fairlead motion prescribed as a harmonic or a time series (for
+example the fairlead track of a previous floater run, seed 002 chapter 8 workflow), results as
+an xarray Dataset with units, and the dynamic amplification factor
+
+    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (seed 002, eq. 8.1)
+
+with the quasi-static tension from the elastic catenary for the same fairlead track.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from ...core.frames import rotation_matrix_into
+from ..catenary import solve_line
+from . import kernels as K
+from .line import FELine
+
+__all__ = ["HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
+           "quasi_static_tension", "daf"]
+
+
+@dataclass(frozen=True, kw_only=True)
+class HarmonicMotion:
+    """Fairlead displacement ``amplitude * sin(2 pi t / period + phase)`` (m, earth axes) about
+    its static position, ramped in over ``ramp`` s with ``(1 - cos)`` / 2."""
+
+    amplitude: tuple
+    period: float
+    phase: float = 0.0
+    ramp: float = 0.0
+
+    def __call__(self, t):
+        A = np.asarray(self.amplitude, float)
+        w = 2.0 * math.pi / self.period
+        s = math.sin(w * t + self.phase)
+        c = math.cos(w * t + self.phase)
+        if self.ramp > 0.0 and t < self.ramp:
+            g = 0.5 * (1.0 - math.cos(math.pi * t / self.ramp))
+            gd = 0.5 * math.pi / self.ramp * math.sin(math.pi * t / self.ramp)
+        else:
+            g, gd = 1.0, 0.0
+        return A * s * g, A * (w * c * g + s * gd)
+
+
+@dataclass(frozen=True, kw_only=True)
+class TimeSeriesMotion:
+    """Fairlead displacement from a time series ``t`` (s), ``xyz`` (nt, 3) m about the static
+    position, linear in between; the velocity is the slope of the interval."""
+
+    t: np.ndarray
+    xyz: np.ndarray
+
+    def __call__(self, t):
+        tt = np.asarray(self.t, float)
+        X = np.asarray(self.xyz, float)
+        j = int(np.clip(np.searchsorted(tt, t) - 1, 0, tt.size - 2))
+        w = (t - tt[j]) / (tt[j + 1] - tt[j])
+        w = min(max(w, 0.0), 1.0)
+        pos = (1.0 - w) * X[j] + w * X[j + 1]
+        vel = (X[j + 1] - X[j]) / (tt[j + 1] - tt[j])
+        return pos, vel
+
+
+def fairlead_track_from_body(t, poses, fairlead_body, reference_pose=None) -> TimeSeriesMotion:
+    """Fairlead displacement history from body poses of a floater run.
+
+    Parameters
+    ----------
+    t : (nt,) s
+    poses : (nt, 6) body poses ``[x, y, z, roll, pitch, yaw]`` (m, rad)
+    fairlead_body : (3,) fairlead in body axes, m
+    reference_pose : (6,), optional
+        Pose at which the line's static fairlead position was given (default the first pose).
+    """
+    poses = np.asarray(poses, float)
+    rb = np.asarray(fairlead_body, float)
+    R = np.empty((3, 3))
+    pos = np.empty((poses.shape[0], 3))
+    for k, p in enumerate(poses):
+        rotation_matrix_into(p[3], p[4], p[5], R)
+        pos[k] = p[:3] + R @ rb
+    p0 = poses[0] if reference_pose is None else np.asarray(reference_pose, float)
+    rotation_matrix_into(p0[3], p0[4], p0[5], R)
+    ref = p0[:3] + R @ rb
+    return TimeSeriesMotion(t=np.asarray(t, float), xyz=pos - ref)
+
+
+def _touchdown(r, zc, s_nodes):
+    below = np.nonzero(r[:, 2] < zc)[0]
+    if below.size == 0:
+        return -1, 0.0
+    i = int(below.max())
+    return i, float(s_nodes[i])
+
+
+def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: int = 1,
+                   snapshot_times=(), record_every: int = 1) -> xr.Dataset:
+    """Run a FE line with the fairlead following ``motion`` (a callable ``t -> (disp, vel)``,
+    displacement about the static fairlead position, m and m/s).
+
+    The line must be in static equilibrium and started (:meth:`FELine.solve_static`,
+    :meth:`FELine.start`).  Returns a Dataset over ``time`` with ``fairlead_tension``,
+    ``anchor_tension``, ``fairlead_force`` (time, axis), ``max_tension``,
+    ``max_tension_element``, ``touchdown_tension``, ``touchdown_x``, ``touchdown_y``,
+    ``grounded_length`` and profile snapshots ``profile_position`` (snapshot, node, axis),
+    ``profile_tension`` (snapshot, element) at the steps nearest to ``snapshot_times``.
+    """
+    n = int(round(t_end / dt))
+    r0 = line.r[-1].copy()
+    nrec = n // record_every + 1
+    times = np.zeros(nrec)
+    Ff = np.zeros((nrec, 3))
+    Fa = np.zeros((nrec, 3))
+    tmax = np.zeros(nrec)
+    imax = np.zeros(nrec, dtype=np.int64)
+    ttd = np.zeros(nrec)
+    xtd = np.zeros(nrec)
+    ytd = np.zeros(nrec)
+    lg = np.zeros(nrec)
+    snap_steps = sorted({int(round(ts / dt)) for ts in snapshot_times})
+    snaps_r = np.zeros((len(snap_steps), line.n_nodes, 3))
+    snaps_t = np.zeros((len(snap_steps), line.n_nodes - 1))
+    zc = line.S[K.S_ZC]
+    t0 = line.time
+
+    def record(k, t, F):
+        times[k] = t
+        Ff[k] = F
+        K.end_forces(line.r, line.v, line.P, line.fn, line._tens, line._ends)
+        Fa[k] = line._ends[0:3]
+        tens = line._tens
+        j = int(np.argmax(tens))
+        tmax[k] = tens[j]
+        imax[k] = j
+        i, s = _touchdown(line.r, zc, line.s_nodes)
+        lg[k] = s
+        if i >= 0:
+            ttd[k] = tens[min(i, tens.size - 1)]
+            xtd[k], ytd[k] = line.r[i, 0], line.r[i, 1]
+        else:
+            ttd[k] = np.linalg.norm(Fa[k])
+            xtd[k], ytd[k] = line.r[0, 0], line.r[0, 1]
+
+    K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u,
+                  line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
+                  line._Dg, line._Of)
+    K.end_forces(line.r, line.v, line.P, line._f1, line._tens, line._ends)
+    record(0, t0, line._ends[3:6].copy())
+    si = 0
+    if snap_steps and snap_steps[0] == 0:
+        snaps_r[0] = line.r
+        snaps_t[0] = line._tens
+        si = 1
+    for k in range(1, n + 1):
+        t = t0 + k * dt
+        d, v = motion(t - t0)
+        F = line.step(t, dt, r0 + d, v, substeps=substeps)
+        if k % record_every == 0:
+            record(k // record_every, t, F)
+        if si < len(snap_steps) and snap_steps[si] == k:
+            snaps_r[si] = line.r
+            snaps_t[si] = line._tens
+            si += 1
+    name = line.spec.name
+    ds = xr.Dataset(
+        {
+            "fairlead_tension": ("time", np.linalg.norm(Ff, axis=1),
+                                 {"units": "N", "long_name": f"tension at the fairlead, {name}"}),
+            "anchor_tension": ("time", np.linalg.norm(Fa, axis=1),
+                               {"units": "N", "long_name": "tension at the anchor"}),
+            "fairlead_force": (("time", "axis"), Ff,
+                               {"units": "N", "long_name": "force of the line on the fairlead, "
+                                                           "earth axes"}),
+            "max_tension": ("time", tmax, {"units": "N",
+                                           "long_name": "largest element tension along the line"}),
+            "max_tension_element": ("time", imax, {"units": "1", "long_name":
+                                                   "element of the largest tension (0 at anchor)"}),
+            "touchdown_tension": ("time", ttd, {"units": "N", "long_name":
+                                                "tension of the element above the touchdown node"}),
+            "touchdown_x": ("time", xtd, {"units": "m", "long_name": "touchdown node x"}),
+            "touchdown_y": ("time", ytd, {"units": "m", "long_name": "touchdown node y"}),
+            "grounded_length": ("time", lg, {"units": "m", "long_name":
+                                             "unstretched length from the anchor to the last node "
+                                             "in seabed contact"}),
+            "profile_position": (("snapshot", "node", "axis"), snaps_r,
+                                 {"units": "m", "long_name": "node positions"}),
+            "profile_tension": (("snapshot", "element"), snaps_t,
+                                {"units": "N", "long_name": "element tensions"}),
+        },
+        coords={"time": ("time", times, {"units": "s"}),
+                "axis": ["x", "y", "z"],
+                "snapshot": ("snapshot", np.array(snap_steps, float) * dt + t0, {"units": "s"}),
+                "node": np.arange(line.n_nodes), "element": np.arange(line.n_nodes - 1)},
+        attrs={"line": name, "dt": dt, "substeps": substeps,
+               "integrator": getattr(line, "integrator", ""),
+               "newton_iterations": int(getattr(line, "newton_iterations", 0))})
+    return ds
+
+
+def quasi_static_tension(line: FELine, motion, times) -> np.ndarray:
+    """Quasi-static fairlead tension (N) along the fairlead track (elastic catenary of
+    :func:`floatmoor.mooring.solve_line`, no friction, static EA) at ``times`` (s)."""
+    sp = line.spec
+    A = np.asarray(sp.anchor, float)
+    F0 = np.asarray(sp.fairlead, float)
+    rho, g = sp.water_density, sp.gravity
+    L = np.array([s.length for s in sp.segments])
+    EA = np.array([s.line_type.ea for s in sp.segments])
+    w = np.array([s.line_type.submerged_weight(rho, g) for s in sp.segments])
+    out = np.empty(len(times))
+    hf = vf = 0.0
+    for k, t in enumerate(times):
+        d, _ = motion(t)
+        F = F0 + d
+        xf = float(np.hypot(*(F[:2] - A[:2])))
+        sol = solve_line(xf, float(F[2] - A[2]), L, EA, w, None, 0.0, hf0=hf, vf0=vf)
+        hf, vf = sol.HF, sol.VF
+        out[k] = sol.fairlead_tension
+    return out
+
+
+def daf(t_fe, t_qs) -> float:
+    """Dynamic amplification factor ``(T_max - T_mean)_FE / (T_max - T_mean)_QS`` (seed 002
+    eq. 8.1) from two tension histories over the same (steady) interval."""
+    t_fe = np.asarray(t_fe, float)
+    t_qs = np.asarray(t_qs, float)
+    den = t_qs.max() - t_qs.mean()
+    if not den > 0:
+        raise ValueError("the quasi-static tension does not vary: DAF undefined")
+    return float((t_fe.max() - t_fe.mean()) / den)
