@@ -14,7 +14,8 @@ analysis: {duration: 10800.0, dt: 0.1, transient: 1200.0, ramp: 100.0, seeds: [1
 Required: ``site`` (with ``water_depth``).  Optional: ``name`` (default: the file name without
 extension), ``description``, ``vessel``, ``environment`` (absent: calm, no wind, no current),
 ``mooring``, ``analysis`` (defaults in :mod:`floatmoor.io.analysis`), ``forces`` (options of the
-time-domain force models, :mod:`floatmoor.io.forces_section`).  Paths are relative to the
+time-domain force models, :mod:`floatmoor.io.forces_section`), ``frequency_domain`` (options of
+the frequency-domain analysis, :mod:`floatmoor.io.fd_section`).  Paths are relative to the
 scene file's folder.  Unknown keys are refused everywhere.  The section formats are documented
 in :mod:`floatmoor.io.site`, :mod:`floatmoor.io.environment`, :mod:`floatmoor.io.analysis`.
 
@@ -32,7 +33,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from ..core.config import Node
 from ..metocean.config import Environment
@@ -41,6 +42,9 @@ from .checks import SCENE_CHECKS
 from .environment import describe_environment, environment_models, parse_environment
 from .forces_section import ForcesSpec, describe_forces, parse_forces
 from .site import SiteSpec, parse_site
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..solvers.frequency_domain import FDOptions
 
 __all__ = ["Scene", "Section", "SECTIONS", "load_scene", "scene_keys"]
 
@@ -105,6 +109,20 @@ def _parse_forces(node: Node, key: str, parsed: Mapping[str, Any]) -> ForcesSpec
     return parse_forces(node.child(key))
 
 
+def _parse_frequency_domain(node: Node, key: str, parsed: Mapping[str, Any]) -> "FDOptions | None":
+    if key not in node:  # imported only when used: the solver module is heavy
+        return None
+    from .fd_section import parse_frequency_domain
+    return parse_frequency_domain(node, key, parsed)
+
+
+def _describe_frequency_domain(options: "FDOptions | None", scene: "Scene") -> list[str]:
+    if options is None:
+        return []
+    from .fd_section import describe_frequency_domain
+    return describe_frequency_domain(options, scene)
+
+
 def _describe_site(site: SiteSpec, scene: "Scene") -> list[str]:
     return [f"site: water depth {site.water_depth:g} m, water density {site.water_density:g} "
             f"kg/m^3, air density {site.air_density:g} kg/m^3, gravity {site.gravity:g} m/s^2"]
@@ -157,6 +175,8 @@ SECTIONS: tuple[Section, ...] = (
             models=lambda m: [] if m is None else ["mooring"]),
     Section("analysis", "analysis", _parse_analysis, describe=_describe_analysis),
     Section("forces", "forces", _parse_forces, describe=describe_forces),
+    Section("frequency_domain", "frequency_domain", _parse_frequency_domain,
+            describe=_describe_frequency_domain),
 )
 """The scene's sections in parsing order (a section may use those before it)."""
 
@@ -177,7 +197,8 @@ class Scene:
     None), ``environment`` (:class:`~floatmoor.metocean.config.Environment`; components that are
     None are not modelled), ``mooring`` (path, raw mapping or None), ``analysis``
     (:class:`~floatmoor.io.analysis.AnalysisSpec`), ``forces`` (options of the time-domain force
-    models, :class:`~floatmoor.io.forces_section.ForcesSpec`, or None for the defaults).
+    models, :class:`~floatmoor.io.forces_section.ForcesSpec`, or None for the defaults),
+    ``frequency_domain`` (:class:`~floatmoor.solvers.frequency_domain.FDOptions` or None).
     """
 
     name: str
@@ -189,6 +210,7 @@ class Scene:
     mooring: Path | dict | None = None
     analysis: AnalysisSpec = field(default_factory=AnalysisSpec)
     forces: ForcesSpec | None = None
+    frequency_domain: "FDOptions | None" = None
 
     def active_models(self) -> list[str]:
         """Names of the models this scene asks for, as ``"section:model"`` or ``"section"``

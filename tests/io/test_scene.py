@@ -286,3 +286,18 @@ def test_forces_section_is_read_through_the_registry(tmp_path):
     assert (info.value.file, info.value.key) == (str(scene_path), "forces.exclud")
     scene_path, _ = write_case(tmp_path)                  # no forces: section
     assert load_quietly(scene_path).forces is None
+
+
+def test_frequency_domain_section_is_read_through_the_registry(tmp_path):
+    pytest.importorskip("floatmoor.io.fd_section")
+    scene_path, _ = write_case(tmp_path, {"frequency_domain": {"duration": 3600.0,
+                                                               "drift": "newman"}})
+    scene = load_quietly(scene_path)
+    assert scene.frequency_domain.duration == 3600.0 and scene.frequency_domain.drift == "newman"
+    assert "frequency domain: duration 3600 s" in scene.describe()
+    scene_path, _ = write_case(tmp_path, {"frequency_domain": {"duration": -1.0}})
+    with pytest.raises(SceneError) as info:
+        load_scene(scene_path)
+    assert (info.value.file, info.value.key) == (str(scene_path), "frequency_domain.duration")
+    scene_path, _ = write_case(tmp_path)
+    assert load_quietly(scene_path).frequency_domain is None
