@@ -59,12 +59,20 @@ def _current(z, cur_z, cur_u):
 
 
 @njit(cache=True)
-def _tension(eps, c1, c2, c3):
-    """Elastic tension and dT/deps (zero in compression)."""
+def _tension(eps, c1, c2, c3, e0):
+    """Elastic tension and dT/deps: zero in compression, the axial law beyond the small strain
+    ``e0``, and in between the cubic ``A eps^2 + B eps^3`` matching the law's value and slope
+    at ``e0`` (C1 at the slack transition, so Newton does not cycle on it)."""
     if eps <= 0.0:
         return 0.0, 0.0
-    return (c1 * eps + c2 * eps * eps + c3 * eps * eps * eps,
-            c1 + 2.0 * c2 * eps + 3.0 * c3 * eps * eps)
+    if eps >= e0:
+        return (c1 * eps + c2 * eps * eps + c3 * eps * eps * eps,
+                c1 + 2.0 * c2 * eps + 3.0 * c3 * eps * eps)
+    T0 = c1 * e0 + c2 * e0 * e0 + c3 * e0 * e0 * e0
+    D0 = c1 + 2.0 * c2 * e0 + 3.0 * c3 * e0 * e0
+    B = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
+    A = (T0 - B * e0 * e0 * e0) / (e0 * e0)
+    return A * eps * eps + B * eps * eps * eps, 2.0 * A * eps + 3.0 * B * eps * eps
 
 
 @njit(cache=True)
@@ -162,15 +170,22 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
         ez = dz / ll
         L0 = E[j, EL_L0]
         eps = ll / L0 - 1.0
-        T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3])
+        # slack transition strain: the element's weight over its axial stiffness
+        e0 = max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / E[j, EL_C1]
+        T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3], e0)
         B = 0.0
         dvx = v[j + 1, 0] - v[j, 0]
         dvy = v[j + 1, 1] - v[j, 1]
         dvz = v[j + 1, 2] - v[j, 2]
         ldot = ex * dvx + ey * dvy + ez * dvz
         if eps > 0.0:
-            B = E[j, EL_B]
+            # internal damping faded in over the slack transition (smooth step)
+            xs = eps / e0
+            sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
+            dsm = 6.0 * xs * (1.0 - xs) / e0 if xs < 1.0 else 0.0
+            B = E[j, EL_B] * sm
             T += B * ldot / L0
+            dTde += E[j, EL_B] * dsm * ldot / L0
         tens[j] = T
         f[j, 0] += T * ex
         f[j, 1] += T * ey
@@ -250,22 +265,32 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                         if vr > 0.0:
                             val += kc * vrv[a] * vrv[b] / vr
                     Dg[i, a, b] += cC * val
-        # seabed contact
+        # seabed contact: spring force ks g(pen) with g(p) = p^2 / (2 d) below d = w / ks (the
+        # static penetration) and p - d / 2 beyond, damping faded in with the smooth step
+        # s(p / d) = 3 x^2 - 2 x^3: the force is C1 in the position, so Newton does not cycle
+        # when a node touches down (no clipping: while a node lifts off quickly the damping may
+        # pull slightly, as in MoorDyn)
         pen = zc - r[i, 2]
         if pen > 0.0 and P[i, NP_KS] > 0.0:
             ks = P[i, NP_KS]
-            # damping faded in over the static penetration w / k so that the contact force is
-            # continuous when a moving node touches down (a jump makes Newton cycle)
-            pst = max(P[i, NP_W], 1e-12) / ks
-            fade = pen / pst if pen < pst else 1.0
-            cs = P[i, NP_CS] * fade
-            Fn = ks * pen - cs * v[i, 2]
-            if Fn > 0.0:
-                f[i, 2] += Fn
-                if want_jac:
-                    Dg[i, 2, 2] += cK * (ks - (P[i, NP_CS] * v[i, 2] / pst if pen < pst else 0.0)) \
-                        + cC * cs
-            N = ks * pen
+            dpen = max(P[i, NP_W], 1e-12) / ks
+            if pen < dpen:
+                x = pen / dpen
+                gp = 0.5 * pen * x
+                dg = x
+                sm = x * x * (3.0 - 2.0 * x)
+                dsm = 6.0 * x * (1.0 - x) / dpen
+            else:
+                gp = pen - 0.5 * dpen
+                dg = 1.0
+                sm = 1.0
+                dsm = 0.0
+            cs = P[i, NP_CS]
+            N = ks * gp
+            f[i, 2] += N - cs * sm * v[i, 2]
+            if want_jac:
+                # d/dz = -d/dpen
+                Dg[i, 2, 2] += cK * (ks * dg - cs * dsm * v[i, 2]) + cC * cs * sm
             if fric != FR_NONE:
                 mua = P[i, NP_MUA]
                 mul = P[i, NP_MUL]
@@ -286,9 +311,9 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                     f[i, 0] -= N * g * mx
                     f[i, 1] -= N * g * my
                     if want_jac:
-                        # through the normal force N = ks pen: dF/dz = ks g m
-                        Dg[i, 0, 2] -= cK * ks * g * mx
-                        Dg[i, 1, 2] -= cK * ks * g * my
+                        # through the normal force N = ks g(pen): dF/dz = ks g' (f/u) m
+                        Dg[i, 0, 2] -= cK * ks * dg * g * mx
+                        Dg[i, 1, 2] -= cK * ks * dg * g * my
                         A00 = mua * ax * ax + mul * bx * bx
                         A01 = mua * ax * ay + mul * bx * by
                         A11 = mua * ay * ay + mul * by * by
@@ -336,8 +361,8 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                         f[i, 0] -= mu * N * c * dk_x
                         f[i, 1] -= mu * N * c * dk_y
                         if want_jac:
-                            Dg[i, 0, 2] -= cK * mu * ks * c * dk_x
-                            Dg[i, 1, 2] -= cK * mu * ks * c * dk_y
+                            Dg[i, 0, 2] -= cK * mu * ks * dg * c * dk_x
+                            Dg[i, 1, 2] -= cK * mu * ks * dg * c * dk_y
                         if want_jac and (kx > 0.0 or kv > 0.0):
                             w = cK * kx + cC * kv
                             Dg[i, 0, 0] += w * dk_x * dk_x
@@ -665,7 +690,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, f
         if not math.isfinite(res):
             info[1] = 1
             return -3
-        if res > res_prev and alpha > 1.0 / 64.0:
+        if res > res_prev and alpha > 1.0 / 1024.0:
             # the last correction raised the residual (a node jumping across the seabed
             # contact, a slack element): go back half of it
             alpha *= 0.5
