@@ -45,7 +45,8 @@ from ..metocean.spectra import default_omega_range
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .series import FrequencyGrid, complex_envelope, grid_for
 
-__all__ = ["WaveComponents", "wave_components", "FirstOrderWave", "DriftNewman",
+__all__ = ["WaveComponents", "wave_components", "FirstOrderWave", "DriftNewman", "DriftQTF",
+           "qtf_pair_sum",
            "body_axes_to_earth", "transfer_at"]
 
 
@@ -103,12 +104,7 @@ def transfer_at(db, variable: str, omega, direction, *, file=None) -> np.ndarray
     out = np.zeros((omega.size, 6), complex if variable == "excitation_force" else float)
     for beta in np.unique(direction):
         sel = direction == beta
-        try:
-            tab = interpolate_heading(db, variable, float(beta))  # (n_omega, 6)
-        except Exception as exc:  # DatabaseError: heading not covered
-            raise SceneError(file, f"{variable} at wave heading {math.degrees(beta):.1f} deg",
-                             "a heading inside the database's range", str(exc)) from None
-        tab = np.asarray(tab)
+        tab = _at_heading(db, variable, float(beta), file)  # (n_omega, 6)
         for d in range(6):
             if np.iscomplexobj(tab):
                 out[sel, d] = (np.interp(omega[sel], w_db, tab[:, d].real, left=0.0, right=0.0)
@@ -117,6 +113,27 @@ def transfer_at(db, variable: str, omega, direction, *, file=None) -> np.ndarray
             else:
                 out[sel, d] = np.interp(omega[sel], w_db, tab[:, d], left=0.0, right=0.0)
     return out
+
+
+def _at_heading(db, variable: str, beta: float, file, dim: str = "wave_direction"):
+    """``db[variable]`` at heading ``beta``: the database's own slice when the heading is one
+    of its headings, else linear interpolation.  NaN (not computed, e.g. below a QTF grid) is
+    taken as 0; a heading where the quantity is NaN at every frequency is a SceneError."""
+    heads = np.asarray(db[dim].values, float)
+    diff = np.abs(np.angle(np.exp(1j * (heads - beta))))
+    if diff.min() < 1e-9:
+        tab = db[variable].isel({dim: int(np.argmin(diff))}).values
+    else:
+        try:
+            tab = interpolate_heading(db, variable, beta, dim=dim)
+        except Exception as exc:  # DatabaseError: heading not covered
+            raise SceneError(file, f"{variable} at wave heading {math.degrees(beta):.1f} deg",
+                             "a heading inside the database's range", str(exc)) from None
+    tab = np.asarray(tab)
+    if np.all(np.isnan(tab)):
+        raise SceneError(file, f"{variable} at wave heading {math.degrees(beta):.1f} deg",
+                         "values at that heading (the database has NaN there)")
+    return np.nan_to_num(tab)
 
 
 def body_axes_to_earth(f: np.ndarray, yaw: float) -> np.ndarray:
@@ -214,6 +231,97 @@ class DriftNewman(_SeriesModel):
         f = body_axes_to_earth(f, ctx.yaw0)
         mean = body_axes_to_earth(mean, ctx.yaw0)
         # ramp the fluctuation only: the run starts in equilibrium with the mean drift
+        ramp = ctx.ramp_series()[:, None]
+        f = mean + ramp * (f - mean)
+        self.h = ctx.sample_dt
+        self.series = np.ascontiguousarray(f)
+        self._mean = mean
+        self._freeze()
+
+
+def qtf_pair_sum(idx: np.ndarray, A: np.ndarray, q_omega: np.ndarray, Q: np.ndarray,
+                 omega: np.ndarray, n_diff: int) -> np.ndarray:
+    """Coefficients of the difference-frequency force on the grid, per difference index.
+
+    ``idx`` (n,) grid indices of the components (increasing), ``A`` (n,) complex amplitudes
+    a e^{i phi}, ``Q`` (n_q, n_q, 6) complex QTF on ``q_omega`` (both axes), ``omega`` (n,).
+    Returns ``c`` (n_diff, 6) complex with ``F(t) = Re sum_d c_d exp(i d dw t)`` equal to
+    ``Re sum_j sum_k A_j conj(A_k) Q(w_j, w_k) exp(i (w_j - w_k) t)`` over all ordered pairs
+    (Q Hermitian: the pairs j < k are folded onto j > k, doubling them).  Q is bilinear in
+    both frequencies and zero outside its grid.
+    """
+    n = omega.size
+    nq = q_omega.size
+    pos = np.interp(omega, q_omega, np.arange(nq), left=-1.0, right=-1.0)
+    inside = pos >= 0.0
+    i0 = np.clip(np.floor(pos).astype(np.int64), 0, nq - 2)
+    fr = np.clip(pos - i0, 0.0, 1.0)
+    out = np.zeros((n_diff, 6), complex)
+    for d in range(n):
+        j = np.arange(d, n)            # component j = k + d (higher frequency)
+        k = j - d
+        shift = idx[j] - idx[k]
+        ok = inside[j] & inside[k] & (shift < n_diff)
+        if not ok.any():
+            continue
+        j, k, shift = j[ok], k[ok], shift[ok]
+        a, b = i0[j], i0[k]
+        u, w = fr[j][:, None], fr[k][:, None]
+        q = ((1 - u) * (1 - w) * Q[a, b] + u * (1 - w) * Q[a + 1, b] + (1 - u) * w * Q[a, b + 1]
+             + u * w * Q[a + 1, b + 1])
+        prod = (A[j] * np.conj(A[k]))[:, None] * q
+        if d > 0:
+            prod = 2.0 * prod
+        np.add.at(out, shift, prod)
+    return out
+
+
+@register
+class DriftQTF(_SeriesModel):
+    """Mean and slowly varying drift from the database's full difference-frequency QTF.
+
+    ``F_i(t) = Re sum_j sum_k A_j conj(A_k) Q_i(w_j, w_k) exp(i (w_j - w_k) t)`` over the wave
+    components (all ordered pairs; ``Q(w, w)`` is the mean drift coefficient), evaluated by FFT
+    over the difference frequencies (:func:`qtf_pair_sum`).  Unidirectional seas only (the
+    database holds QTFs for one heading per entry; bidirectional QTFs are not modelled).
+    """
+
+    name = "drift_qtf"
+    description = "mean + slow wave drift from the full difference-frequency QTF"
+
+    def setup(self, ctx: SetupContext):
+        v = ctx.built.vessel
+        comp = ctx.waves
+        db = v.database
+        if "difference_frequency_qtf" not in db:
+            raise SceneError(v.file, "database", "a difference_frequency_qtf for drift: qtf "
+                             "(or drift: newman)")
+        r = comp.realisation
+        dirs = np.unique(r.direction)
+        if dirs.size != 1:
+            raise SceneError(None, "environment.waves.spreading", "a unidirectional sea for "
+                             "the QTF drift model (use drift: newman with spreading)",
+                             f"{dirs.size} directions")
+        if comp.grid is None:
+            raise SceneError(None, "waves", "wave components on an FFT grid for drift: qtf")
+        Q = _at_heading(db, "difference_frequency_qtf", float(dirs[0] - ctx.yaw0), v.file,
+                        dim="qtf_wave_direction")
+        q_omega = np.asarray(db["qtf_omega"].values, float)
+        if not np.allclose(q_omega, db["qtf_omega_2"].values):
+            raise SceneError(v.file, "database", "the same frequencies on both QTF axes")
+        grid = comp.grid
+        idx = np.rint((r.omega - grid.w0) / grid.dw).astype(np.int64)
+        A = comp.coefficients()
+        n_diff = min(grid.N, int(idx.max() - idx.min()) + 1)
+        c = qtf_pair_sum(idx, A, q_omega, Q, r.omega, n_diff)
+        C = np.zeros((grid.N, 6), complex)
+        C[:n_diff] = c
+        f = (np.fft.ifft(C, axis=0) * grid.N).real
+        j = np.arange(ctx.n_samples) % grid.N
+        f = f[j]
+        mean = c[0].real.copy()
+        f = body_axes_to_earth(f, ctx.yaw0)
+        mean = body_axes_to_earth(mean, ctx.yaw0)
         ramp = ctx.ramp_series()[:, None]
         f = mean + ramp * (f - mean)
         self.h = ctx.sample_dt

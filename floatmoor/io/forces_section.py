@@ -3,7 +3,8 @@
 ```yaml
 forces:
   exclude: [drift, wind]           # models (or groups drift, damping, waves) not to build
-  drift: newman                    # newman (default when the database has mean drift) | none
+  drift: newman                    # qtf (default with a QTF) | newman (default with mean
+                                   # drift only) | none
   retardation: true                # radiation memory on (default) or off
   max_memory: 120.0                # s, longest retardation memory kept
   line_failure: {line6: 1500.0}    # transient ALS: line name -> time of failure (s)
@@ -23,7 +24,7 @@ from ..core.config import Node
 __all__ = ["ForcesSpec", "parse_forces", "FORCES_KEYS", "DRIFT_METHODS"]
 
 FORCES_KEYS = ("exclude", "drift", "retardation", "max_memory", "line_failure", "record_forces")
-DRIFT_METHODS = ("newman", "none")
+DRIFT_METHODS = ("qtf", "newman", "none")
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -101,8 +101,13 @@ def default_models(built, options=None) -> list[str]:
     if env.waves is not None:
         names.append("wave1")
         drift = getattr(options, "drift", None)
-        if drift is None:
-            drift = "newman" if "mean_drift_force" in v.database else "none"
+        if drift is None:  # the full QTF when the database has one, else Newman
+            if "difference_frequency_qtf" in v.database:
+                drift = "qtf"
+            elif "mean_drift_force" in v.database:
+                drift = "newman"
+            else:
+                drift = "none"
         if drift != "none":
             names.append(f"drift_{drift}")
     if env.wind is not None:

@@ -131,3 +131,64 @@ def test_newman_mean_and_ramp(floatel):
     assert np.all(a2.models["wave1"].series[0] == 0.0)
     assert np.array_equal(a2.models["wave1"].series[400:], a.models["wave1"].series[400:])
     assert np.allclose(a2.models["drift_newman"].series[0], drift.mean_force())
+
+
+OC4 = ROOT / "vessels" / "oc4_semi"
+
+
+@pytest.fixture(scope="module")
+def oc4(tmp_path_factory):
+    if not (OC4 / "database.nc").is_file():
+        pytest.skip("oc4_semi database not present")
+    p = tmp_path_factory.mktemp("oc4") / "s.yaml"
+    p.write_text(f"name: oc4\nsite: {{water_depth: 200.0}}\nvessel: {OC4 / 'vessel.yaml'}\n"
+                 "environment:\n  waves: {spectrum: jonswap, hs: 4.0, tp: 8.0, "
+                 "discretisation: {omega_min: 0.4, omega_max: 2.8}}\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return build(load_scene(p))
+
+
+def test_qtf_drift_with_newman_qtf_equals_newman(oc4):
+    """The full-QTF model fed with Newman's QTF Q(w1, w2) = (D(w1) + D(w2))/2 (D the database's
+    mean drift) reproduces the Newman model's series (all wave components inside the QTF's
+    frequency range, where both definitions agree); with the database's own QTF its mean is
+    sum a^2 Q(w, w) and it is the default drift model of a database with a QTF."""
+    from dataclasses import replace
+
+    import xarray as xr
+
+    from floatmoor.solvers.time_domain import default_models
+
+    assert "drift_qtf" in default_models(oc4) and "drift_newman" not in default_models(oc4)
+    db = oc4.vessel.database
+    qw = db["qtf_omega"].values
+    D = db["mean_drift_force"].sel(wave_direction=0.0).values  # (omega, dof)
+    D = np.nan_to_num(D)
+    Dq = np.stack([np.interp(qw, db["omega"].values, D[:, d]) for d in range(6)], 1)
+    Qn = 0.5 * (Dq[:, None, :] + Dq[None, :, :])
+    q = db["difference_frequency_qtf"].copy(data=Qn[:, :, None, :].astype(complex))
+    db2 = db.assign(difference_frequency_qtf=q)
+    # Newman on the same D restricted to the QTF grid (zero below it, as the QTF model)
+    md = db["mean_drift_force"].copy(data=np.where(
+        (db["omega"].values >= qw[0] - 1e-9)[:, None, None], np.nan_to_num(db["mean_drift_force"].values), 0.0))
+    db2 = db2.assign(mean_drift_force=md)
+    b2 = replace(oc4, vessel=replace(oc4.vessel, database=db2))
+    kw = dict(seed=4, dt=0.2, duration=1500.0)
+    aq = assemble(b2, models=["hydrostatics", "drift_qtf"], **kw)
+    an = assemble(b2, models=["hydrostatics", "drift_newman"], **kw)
+    sq = aq.models["drift_qtf"].series
+    sn = an.models["drift_newman"].series
+    for d in (0, 2, 4):
+        scale = np.abs(sn[:, d]).max()
+        assert np.max(np.abs(sq[:, d] - sn[:, d])) < 2e-3 * scale, d
+    # database QTF: mean drift = sum a^2 Q(w, w)
+    a = assemble(oc4, models=["hydrostatics", "drift_qtf"], **kw)
+    m = a.models["drift_qtf"]
+    r = a.waves.realisation
+    Qdiag = np.array([np.interp(r.omega, qw, np.real(np.diagonal(
+        db["difference_frequency_qtf"].isel(qtf_wave_direction=0).values[:, :, d])),
+        left=0.0, right=0.0) for d in range(6)]).T
+    # the model interpolates Q bilinearly in (w1, w2); between the nodes that differs from the
+    # linear interpolation along the diagonal used here by a fraction of a percent
+    assert m.mean_force()[0] == pytest.approx(np.sum(r.amplitude ** 2 * Qdiag[:, 0]), rel=0.01)
