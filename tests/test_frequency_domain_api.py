@@ -322,3 +322,17 @@ def test_relative_flow_damping_against_finite_differences():
         dv[j] = 1e-4
         fd = -(force(dv) - force(-dv)) / 2e-4
         np.testing.assert_allclose(B[:, j], fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())
+
+
+def test_failed_line_is_nan_and_neighbour_takes_more(tmp_path, oc3):
+    """ALS: with line 1 of the OC3 spar removed the mean offset grows and the failed line's
+    columns are NaN (it carries nothing)."""
+    from floatmoor.io.build import build
+    path, ds = oc3
+    ds_f = frequency_domain(build(path, failed_lines=["line1"]))
+    j = list(ds_f.line.values).index("line1")
+    assert bool(ds_f.line_failed.values[j])
+    assert np.isnan(ds_f.tension_max_total.values[j]) and np.isnan(ds_f.safety_factor.values[j])
+    others = [k for k in range(ds_f.sizes["line"]) if k != j]
+    assert np.all(np.isfinite(ds_f.tension_max_total.values[others]))
+    assert abs(ds_f["mean"].values[0] - ds["mean"].values[0]) > 0.5  # the spar drifts off
