@@ -10,7 +10,7 @@ except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
 
 __all__ = ["__version__", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorError",
-           "FloatmoorWarning", "load_scene"]
+           "FloatmoorWarning", "load_scene", "simulate"]
 
 
 def __getattr__(name):
@@ -18,4 +18,7 @@ def __getattr__(name):
     if name == "load_scene":
         from .io.scene import load_scene
         return load_scene
+    if name == "simulate":
+        from .simulate import simulate
+        return simulate
     raise AttributeError(f"module 'floatmoor' has no attribute {name!r}")

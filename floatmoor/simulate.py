@@ -5,6 +5,8 @@ from __future__ import annotations
 import datetime as _dt
 import os
 import platform
+import sys
+import types
 import time as _time
 import warnings
 from pathlib import Path
@@ -179,3 +181,15 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
     for k, v in _versions().items():
         ds.attrs[f"version_{k}"] = v
     return ds
+
+
+class _CallableModule(types.ModuleType):
+    """``floatmoor.simulate`` is both this module and the function: importing the submodule
+    makes the package attribute the module, so the module forwards calls to :func:`simulate`
+    (``floatmoor.simulate(scene, seed=1)`` works in either case)."""
+
+    def __call__(self, *args, **kwargs):
+        return simulate(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule

@@ -128,3 +128,15 @@ def test_convergence_study_errors_shrink(scene_file):
     assert rows[-1]["error_offset"] == 0.0
     assert rows[0]["error_tension"] >= rows[1]["error_tension"] - 1e-12
     assert "max tension" in format_table(rows)
+
+
+def test_package_level_api(scene_file):
+    """``floatmoor.load_scene`` and ``floatmoor.simulate`` (the latter also after the submodule
+    ``floatmoor.simulate`` has been imported) give the same result."""
+    import floatmoor
+    import floatmoor.simulate as mod  # noqa: F401  (makes the package attribute the module)
+
+    scene = floatmoor.load_scene(scene_file)
+    a = floatmoor.simulate(scene, seed=2, duration=30.0)
+    b = simulate(scene, seed=2, duration=30.0)
+    assert np.array_equal(a["motion"].values, b["motion"].values)
