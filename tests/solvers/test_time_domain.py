@@ -259,3 +259,32 @@ def test_line_failure_transient(oc3):
     assert np.all(T[t < 19.95] > 5e5) and np.all(T[t > 20.05] == 0.0)
     x = ds["motion"].values[:, 0]
     assert x[-1] < x[0] - 1.0
+
+
+_NOJIT = """
+import warnings, sys, numpy as np
+warnings.simplefilter("ignore")
+from floatmoor.simulate import simulate
+ds = simulate(sys.argv[1], seed=2, duration=3.0, dt=0.1, ramp=1.0, record_forces=True)
+np.save(sys.argv[2], np.concatenate([ds["motion"].values.ravel(), ds["line_tension"].values.ravel(),
+                                     ds["force"].values.ravel()]))
+"""
+
+
+def test_kernel_runs_without_jit(tmp_path):
+    """The time loop runs as plain Python (NUMBA_DISABLE_JIT=1) and gives the compiled
+    result to round-off (30 steps of OC3 in waves)."""
+    import os
+    import subprocess
+    import sys
+
+    p = _scene(tmp_path, env="environment:\n  waves: {spectrum: jonswap, hs: 5.0, tp: 11.0}\n")
+    out = {}
+    for flag in ("0", "1"):
+        env = dict(os.environ, NUMBA_DISABLE_JIT=flag)
+        f = tmp_path / f"r{flag}.npy"
+        subprocess.run([sys.executable, "-c", _NOJIT, str(p), str(f)], env=env, check=True,
+                       timeout=300)
+        out[flag] = np.load(f)
+    scale = np.abs(out["0"]).max()
+    assert np.max(np.abs(out["0"] - out["1"])) < 1e-9 * scale
