@@ -173,6 +173,33 @@ def _coefficients(node: Node, key: str, wind: bool) -> CoefficientTable:
     return CoefficientTable(heading=np.radians(h), coefficients=C, reference_height=ref)
 
 
+def read_mass_properties(path):
+    """Rigid-body mass properties of a vessel file (with its point masses), without loading
+    the database: returns (mass kg, CoG (3,) m, 3x3 inertia about the CoG kg m^2)."""
+    node = Node.load(path)
+    return _mass_properties(node)
+
+
+def _mass_properties(node: Node):
+    mass = node.float("mass", gt=0.0, unit="kg")
+    cog = node.array("centre_of_gravity", shape=(3,), unit="m")
+    Icg = _inertia(node, "inertia_cg")
+    parts = [(mass, cog, Icg)]
+    for pm in node.item_nodes("point_masses", []):
+        pm.reject_unknown({"name", "mass", "position", "inertia_cg", "notes"})
+        m = pm.float("mass", gt=0.0, unit="kg")
+        p = pm.array("position", shape=(3,), unit="m")
+        I = _inertia(pm, "inertia_cg") if "inertia_cg" in pm else np.zeros((3, 3))
+        parts.append((m, p, I))
+    m_tot = sum(p[0] for p in parts)
+    cog_tot = sum(p[0] * p[1] for p in parts) / m_tot
+    I_tot = np.zeros((3, 3))
+    for m, p, I in parts:
+        S = _skew(p - cog_tot)
+        I_tot += I - m * S @ S
+    return m_tot, cog_tot, I_tot
+
+
 def load_vessel(path) -> Vessel:
     """Read a vessel file and its database.
 
@@ -195,23 +222,7 @@ def load_vessel(path) -> Vessel:
     node.reject_unknown(_ALLOWED)
     name = node.str("name", path.parent.name)
     ref = node.array("reference_point", np.zeros(3), shape=(3,), unit="m")
-    mass = node.float("mass", gt=0.0, unit="kg")
-    cog = node.array("centre_of_gravity", shape=(3,), unit="m")
-    Icg = _inertia(node, "inertia_cg")
-    # point masses: combine into one rigid body (about the combined CoG)
-    parts = [(mass, cog, Icg)]
-    for pm in node.item_nodes("point_masses", []):
-        pm.reject_unknown({"name", "mass", "position", "inertia_cg", "notes"})
-        m = pm.float("mass", gt=0.0, unit="kg")
-        p = pm.array("position", shape=(3,), unit="m")
-        I = _inertia(pm, "inertia_cg") if "inertia_cg" in pm else np.zeros((3, 3))
-        parts.append((m, p, I))
-    m_tot = sum(p[0] for p in parts)
-    cog_tot = sum(p[0] * p[1] for p in parts) / m_tot
-    I_tot = np.zeros((3, 3))
-    for m, p, I in parts:
-        S = _skew(p - cog_tot)
-        I_tot += I - m * S @ S
+    m_tot, cog_tot, I_tot = _mass_properties(node)
     mats = {}
     for key in _MATRIX_KEYS:
         M = node.array(key, np.zeros((6, 6)), shape=(6, 6))
