@@ -268,8 +268,7 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
         # seabed contact: spring force ks g(pen) with g(p) = p^2 / (2 d) below d = w / ks (the
         # static penetration) and p - d / 2 beyond, damping faded in with the smooth step
         # s(p / d) = 3 x^2 - 2 x^3: the force is C1 in the position, so Newton does not cycle
-        # when a node touches down (no clipping: while a node lifts off quickly the damping may
-        # pull slightly, as in MoorDyn)
+        # when a node touches down
         pen = zc - r[i, 2]
         if pen > 0.0 and P[i, NP_KS] > 0.0:
             ks = P[i, NP_KS]
@@ -285,7 +284,10 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                 dg = 1.0
                 sm = 1.0
                 dsm = 0.0
-            cs = P[i, NP_CS]
+            # the damping acts only while the node moves into the seabed (the seabed does not
+            # pull a lifting node; a damping force fading out under a lifting node would give a
+            # negative stiffness and stall Newton)
+            cs = P[i, NP_CS] if v[i, 2] < 0.0 else 0.0
             N = ks * gp
             f[i, 2] += N - cs * sm * v[i, 2]
             if want_jac:
@@ -721,8 +723,10 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, f
                     dmax = abs(da[i, k])
                     imax = i
         info[1] = imax
-        # displacement correction beta dt^2 da below tol (m) ends the iteration
-        if dmax * beta * dt * dt <= tol:
+        # a displacement correction beta dt^2 da below tol (m) ends the iteration if the
+        # residual is also below 1e-2 node weights (for very stiff lines a tiny correction can
+        # still leave a large axial force imbalance)
+        if dmax * beta * dt * dt <= tol and math.sqrt(res) <= 1e3 * ftol:
             conv = True
             break
     if not conv:

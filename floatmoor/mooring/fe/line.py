@@ -20,11 +20,12 @@ the accepted and the new position when the body step is larger than the line can
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from ...core.errors import ConvergenceError, NumericalError
+from ...core.errors import ConvergenceError, FloatmoorWarning, NumericalError
 from ..catenary import line_profile, solve_line
 from . import kernels as K
 from .config import FRICTION_MODELS, FELineSpec
@@ -77,9 +78,16 @@ class FELine:
     spec : FELineSpec
     dynamic_ea : bool
         Use the segments' ``ea_dynamic`` in dynamics (statics always use ``ea``).
+    axial_stiffness_limit : float, optional
+        Upper limit of the axial stiffness in dynamics, N (Aqwa limits the inline stiffness of
+        dynamic cables the same way).  Needed for practically inextensible lines (EA / tension
+        above about 1e6): the displacement-based Newton iteration of the implicit step does not
+        converge for EA = 3.84e14 N; 3.84e11 N already gives strains of 1e-6.  A
+        ``FloatmoorWarning`` says when the limit is active.
     """
 
-    def __init__(self, spec: FELineSpec, *, dynamic_ea: bool = True):
+    def __init__(self, spec: FELineSpec, *, dynamic_ea: bool = True,
+                 axial_stiffness_limit: float | None = None):
         self.spec = spec
         rho = spec.water_density
         g = spec.gravity
@@ -141,6 +149,14 @@ class FELine:
         S[K.S_CURC] = math.cos(spec.current_heading)
         S[K.S_CURS] = math.sin(spec.current_heading)
         S[K.S_RHO] = rho
+        if axial_stiffness_limit is not None:
+            f = np.minimum(1.0, axial_stiffness_limit / E_dy[:, K.EL_C1])
+            if np.any(f < 1.0):
+                warnings.warn(f"line {spec.name}: axial stiffness limited to "
+                              f"{axial_stiffness_limit:.4g} N in dynamics (EA up to "
+                              f"{E_dy[:, K.EL_C1].max():.4g} N)", FloatmoorWarning, stacklevel=2)
+            for c in (K.EL_C1, K.EL_C2, K.EL_C3):
+                E_dy[:, c] *= f
         self.P = P
         self.E_static = E_st
         self.E_dynamic = E_dy
