@@ -36,8 +36,9 @@ S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO = range(6)
 N_S = 6
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
 FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC = 0, 1, 2, 3
-# friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y
-N_FS = 6
+# friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
+# branch_axial, branch_lateral (seed-000 model: 0 stick, +-1 sliding direction in this step)
+N_FS = 8
 V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
 D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
 
@@ -142,7 +143,7 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
     P : (n, N_NP) node parameters; E : (n-1, N_EL) element parameters; S : (N_S,) scalars.
     cur_z, cur_u : current profile (levels increasing, speeds m/s); direction in S.
     fric : int friction code; fs : (n, N_FS) friction state of the last accepted step (read
-        only; :func:`friction_commit` updates it).
+        only; :func:`friction_decide` and :func:`friction_commit` update it).
     q : (n, 3) scratch, node tangents on return.
     f : (n, 3) output, total force on every node (N).
     tens : (n-1,) output, element tensions (N).
@@ -358,8 +359,8 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                             else:
                                 kx = mu * N / Cd
                         else:
-                            c, kx, kv = _dispvel_coef(vk, dk, fs[i, k], fs[i, 2 + k], S[S_VR],
-                                                      Cd, mu * N)
+                            c, kx, kv = _dispvel_coef(vk, dk, fs[i, 6 + k], fs[i, k],
+                                                      fs[i, 2 + k], S[S_VR], Cd, mu * N)
                         f[i, 0] -= mu * N * c * dk_x
                         f[i, 1] -= mu * N * c * dk_y
                         if want_jac:
@@ -374,48 +375,82 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
 
 
 @njit(cache=True)
-def _dispvel_coef(vk, dk, c_prev, v_prev, Cv, Cd, muN):
-    """Seed 000 combined displacement and velocity ramp (figure 8) for one direction.
+def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
+    """Seed 000 combined displacement and velocity ramp (sec. 2.2.2, figure 8) for one
+    direction, with the branch frozen for the time step.
 
-    Returns the signed coefficient ``c`` and its tangents (N/m and N s/m) for the friction
-    magnitude ``muN``.
+    ``branch`` 0 (the node was at rest, |v| < 1e-8 m/s, at the start of the step: the previous
+    coefficient holds, stick) or the sliding direction +-1.  Sliding: ``c = s max(m1, m2,
+    floor)`` with the velocity ramp ``m1 = clip(s v / C_v, 0, 1)``, the displacement ramp
+    ``m2 = clip(s d / C_d, 0, 1)`` from the reference (last reversal) position (active beyond
+    1e-4 m), and the floor ``|c_prev|`` while the node keeps sliding the same way (no decrease
+    unless it reverses).  Freezing the branch keeps ``c`` continuous within the Newton
+    iteration.  Returns ``c`` and its tangents (N/m, N s/m) for the friction magnitude ``muN``.
     """
-    if abs(vk) < V_MEANINGFUL:
+    if branch == 0.0:
         return c_prev, 0.0, 0.0
-    kx = 0.0
-    kv = 0.0
-    c = vk / Cv
-    if c > 1.0:
-        c = 1.0
-    elif c < -1.0:
-        c = -1.0
-    else:
-        kv = muN / Cv
-    if abs(dk) > D_MEANINGFUL and dk * vk > 0.0:
-        c2 = dk / Cd
-        sat2 = False
-        if c2 > 1.0:
-            c2 = 1.0
-            sat2 = True
-        elif c2 < -1.0:
-            c2 = -1.0
-            sat2 = True
-        if abs(c2) > abs(c):
-            c = c2
-            kv = 0.0
-            kx = 0.0 if sat2 else muN / Cd
-    # no decrease unless the node reverses
-    if vk * v_prev > 0.0 and c_prev * vk > 0.0 and abs(c_prev) > abs(c):
-        c = c_prev
-        kx = 0.0
-        kv = 0.0
-    return c, kx, kv
+    sgn = 1.0 if branch > 0.0 else -1.0
+    m1 = sgn * vk / Cv
+    k1 = muN / Cv
+    if m1 <= 0.0:
+        m1 = 0.0
+        k1 = 0.0
+    elif m1 >= 1.0:
+        m1 = 1.0
+        k1 = 0.0
+    m2 = sgn * dk / Cd
+    k2 = muN / Cd
+    if m2 * Cd <= D_MEANINGFUL:
+        m2 = 0.0
+        k2 = 0.0
+    elif m2 >= 1.0:
+        m2 = 1.0
+        k2 = 0.0
+    floor = 0.0
+    if v_prev * sgn > 0.0 and c_prev * sgn > 0.0:
+        floor = abs(c_prev)
+    if m1 >= m2 and m1 >= floor:
+        return sgn * m1, 0.0, k1
+    if m2 >= floor:
+        return sgn * m2, k2, 0.0
+    return sgn * floor, 0.0, 0.0
+
+
+@njit(cache=True)
+def friction_decide(r, v, fric, fs, zc):
+    """Start of a time step: freeze the branch of the seed-000 model from the predicted
+    velocities (stick below 1e-8 m/s, else the sliding direction)."""
+    if fric != FR_DISPVEL:
+        return
+    n = r.shape[0]
+    for i in range(n):
+        qx = 0.0
+        qy = 0.0
+        for j in (i - 1, i):
+            if 0 <= j < n - 1:
+                dx = r[j + 1, 0] - r[j, 0]
+                dy = r[j + 1, 1] - r[j, 1]
+                dz = r[j + 1, 2] - r[j, 2]
+                ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+                if ll > 0.0:
+                    qx += dx / ll
+                    qy += dy / ll
+        ax, ay, bx, by = _friction_dirs(qx, qy)
+        for k in range(2):
+            if k == 0:
+                vk = v[i, 0] * ax + v[i, 1] * ay
+            else:
+                vk = v[i, 0] * bx + v[i, 1] * by
+            if abs(vk) < V_MEANINGFUL or not (r[i, 2] < zc):
+                fs[i, 6 + k] = 0.0
+            else:
+                fs[i, 6 + k] = 1.0 if vk > 0.0 else -1.0
 
 
 @njit(cache=True)
 def friction_commit(r, v, q, fric, fs, P, S, zc):
-    """End of an accepted time step: store the seed-000 friction coefficients and reference
-    positions (reset at a reversal of the sliding direction)."""
+    """End of an accepted time step: store the seed-000 friction coefficients and the last
+    sliding velocities; a reversal of the sliding direction resets the reference position."""
     if fric != FR_DISPVEL:
         return
     n = r.shape[0]
@@ -424,10 +459,8 @@ def friction_commit(r, v, q, fric, fs, P, S, zc):
     for i in range(n):
         pen = zc - r[i, 2]
         if not (pen > 0.0):
-            fs[i, 0] = 0.0
-            fs[i, 1] = 0.0
-            fs[i, 2] = 0.0
-            fs[i, 3] = 0.0
+            for k in range(4):
+                fs[i, k] = 0.0
             fs[i, 4] = r[i, 0]
             fs[i, 5] = r[i, 1]
             continue
@@ -442,7 +475,7 @@ def friction_commit(r, v, q, fric, fs, P, S, zc):
             else:
                 vk = v[i, 0] * bx + v[i, 1] * by
                 dk = dxr * bx + dyr * by
-            c, kx, kv = _dispvel_coef(vk, dk, fs[i, k], fs[i, 2 + k], Cv, Cd, 1.0)
+            c, kx, kv = _dispvel_coef(vk, dk, fs[i, 6 + k], fs[i, k], fs[i, 2 + k], Cv, Cd, 1.0)
             if abs(vk) >= V_MEANINGFUL and vk * fs[i, 2 + k] < 0.0:
                 reset = True
             fs[i, k] = c
@@ -668,6 +701,13 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, f
         v1[n - 1, k] = vf1[k]
     cK = (1.0 - af) * beta * dt * dt
     cC = (1.0 - af) * gamma * dt
+    if fric == FR_DISPVEL:
+        for i in range(1, n - 1):
+            for k in range(3):
+                r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
+                                                               + beta * a1[i, k])
+                v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
+        friction_decide(r1, v1, fric, fs, S[S_ZC])
     it = 0
     conv = False
     res_prev = math.inf
@@ -752,6 +792,7 @@ def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, fric, fs, q, f,
     node with a singular mass block / NaN."""
     n = r.shape[0]
     node_mass(r, P, q, Mb)
+    friction_decide(r, v, fric, fs, S[S_ZC])
     line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of)
     for i in range(1, n - 1):
         if not _inv3(Mb[i], W[i]):

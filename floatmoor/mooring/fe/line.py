@@ -244,10 +244,12 @@ class FELine:
     def solve_static(self, fairlead=None, *, friction: bool = True, reference=None,
                      tol: float | None = None, maxit: int = 200, restart: bool = False
                      ) -> StaticSolution:
-        """Static equilibrium (Newton with backtracking) for the fairlead at ``fairlead`` (m).
+        """Static equilibrium (damped Newton) for the fairlead at ``fairlead`` (m).
 
         Starts from the current positions (the catenary shape after construction, or the last
-        solution: use it for continuation), or from the catenary when ``restart``.  Seabed
+        solution: use it for continuation), or from the catenary when ``restart``.  When
+        Newton fails the axial stiffness is ramped up (continuation) and the fairlead move is
+        split in halves.  Seabed
         friction in statics is the displacement ramp (seed 000 sec. 2.2.1) measured from
         ``reference`` node positions (default: the positions before this call) when the
         line's friction model is not ``none`` and ``friction`` is true.
@@ -257,19 +259,7 @@ class FELine:
         ConvergenceError
             Naming the line, the node with the largest imbalance and a remedy.
         """
-        if fairlead is not None:
-            F = np.asarray(fairlead, float)
-            if restart:
-                self.r[:] = self.initial_shape(F)
-            else:
-                # move the nodes with the fairlead in proportion to the arc length
-                d = F - self.r[-1]
-                t = self.s_nodes / self.s_nodes[-1]
-                self.r += t[:, None] * d[None, :]
-                self.r[-1] = F
-        elif restart:
-            self.r[:] = self.initial_shape()
-        ref = self.r if reference is None else np.asarray(reference, float)
+        ref = self.r.copy() if reference is None else np.asarray(reference, float)
         self.fs[:] = 0.0
         self.fs[:, 4:6] = ref[:, 0:2]
         code = K.FR_STATIC if (friction and self.fric_code != 0) else K.FR_NONE
@@ -279,21 +269,14 @@ class FELine:
             # 1e-6 of a node weight, but not below the round-off of the axial force
             tol = max(1e-6 * wmax, 1e-13 * eamax)
         v0 = np.zeros_like(self.r)
-        r_start = self.r.copy()
-        st = self._newton(self.E_static, code, tol, maxit, v0)
-        if st != 0:
-            # continuation in the axial stiffness: very stiff lines (EA / weight ~ 1e6 and more:
-            # the catenary start is off by the chord-arc difference, ~ l^2 kappa^2 / 24 in
-            # strain) are solved first with EA = 1e3 x the line weight, then stiffened by 4x
-            self.r[:] = r_start
-            f = min(1.0, 1e3 * float(np.sum(np.abs(self.P[:, K.NP_W]))) / max(eamax, 1e-300))
-            Ec = self.E_static.copy()
-            while True:
-                Ec[:, K.EL_C1:K.EL_C3 + 1] = self.E_static[:, K.EL_C1:K.EL_C3 + 1] * f
-                st = self._newton(Ec, code, max(tol * f, 1e-6 * wmax) if f < 1 else tol, maxit, v0)
-                if st != 0 or f >= 1.0:
-                    break
-                f = min(1.0, 4.0 * f)
+        args = (code, tol, maxit, v0, wmax, eamax)
+        if restart:
+            self.r[:] = self.initial_shape(fairlead)
+            st = self._solve_here(*args)
+        elif fairlead is not None:
+            st = self._move_and_solve(np.asarray(fairlead, float), 0, args)
+        else:
+            st = self._solve_here(*args)
         if st != 0:
             raise ConvergenceError(
                 f"FE statics: {'singular tangent' if st == -2 else 'no convergence'} "
@@ -307,6 +290,41 @@ class FELine:
                               fairlead_force=self._ends[3:6].copy(),
                               anchor_force=self._ends[0:3].copy(),
                               iterations=int(self._info[0]), residual=float(self._info[1]))
+
+    def _move_and_solve(self, F, depth, args):
+        """Move the fairlead to ``F`` (nodes shifted in proportion to the arc length) and solve;
+        on failure go back and get there in two halves (down to 1/16 of the move)."""
+        r_prev = self.r.copy()
+        d = F - self.r[-1]
+        t = self.s_nodes / self.s_nodes[-1]
+        self.r += t[:, None] * d[None, :]
+        self.r[-1] = F
+        st = self._solve_here(*args)
+        if st != 0 and depth < 4:
+            self.r[:] = r_prev
+            st = self._move_and_solve(0.5 * (r_prev[-1] + F), depth + 1, args)
+            if st == 0:
+                st = self._move_and_solve(F, depth + 1, args)
+        return st
+
+    def _solve_here(self, code, tol, maxit, v0, wmax, eamax):
+        r_start = self.r.copy()
+        st = self._newton(self.E_static, code, tol, maxit, v0)
+        if st != 0:
+            # continuation in the axial stiffness: very stiff lines (EA / weight ~ 1e6 and more:
+            # the catenary start is off by the chord-arc difference, ~ l^2 kappa^2 / 24 in
+            # strain) are solved first with EA = 1e3 x the line weight, then stiffened by 4x
+            self.r[:] = r_start
+            f = min(1.0, 1e3 * float(np.sum(np.abs(self.P[:, K.NP_W]))) / max(eamax, 1e-300))
+            Ec = self.E_static.copy()
+            while True:
+                Ec[:, K.EL_C1:K.EL_C3 + 1] = self.E_static[:, K.EL_C1:K.EL_C3 + 1] * f
+                st = self._newton(Ec, code, max(tol * f, 1e-6 * wmax) if f < 1 else tol, maxit,
+                                  v0)
+                if st != 0 or f >= 1.0:
+                    break
+                f = min(1.0, 4.0 * f)
+        return st
 
     def _newton(self, E, code, tol, maxit, v0):
         return K.static_newton(self.r, self.P, E, self.S, self.cur_z, self.cur_u, code, self.fs,
