@@ -140,3 +140,17 @@ def test_package_level_api(scene_file):
     a = floatmoor.simulate(scene, seed=2, duration=30.0)
     b = simulate(scene, seed=2, duration=30.0)
     assert np.array_equal(a["motion"].values, b["motion"].values)
+
+
+def test_forces_section_of_the_scene_is_used(tmp_path):
+    """``forces:`` in the scene file: excluded models are not built, a line failure happens."""
+    p = _scene(tmp_path, extra="forces: {exclude: [radiation], line_failure: {line2: 10.0}, "
+                               "record_forces: true}\n")
+    ds = simulate(p, seed=1, duration=30.0)
+    assert "radiation" not in ds.attrs["models"] and "mooring" in ds.attrs["models"]
+    assert "force" in ds
+    t = ds["time"].values
+    assert np.all(ds["line_tension"].sel(line="line2").values[t > 10.05] == 0.0)
+    p2 = _scene(tmp_path, extra="forces: {exclude: [windd]}\n")
+    with pytest.raises(SceneError, match="forces.exclude"):
+        simulate(p2, seed=1, duration=30.0)

@@ -329,3 +329,12 @@ def test_radiation_only_decay_against_frequency_domain(tmp_path):
     zeta_fd = B / (2 * w * (M + A))
     assert abs(T_td * w / (2 * math.pi) - 1.0) < 0.005
     assert abs(zeta_td / zeta_fd - 1.0) < 0.10, (zeta_td, zeta_fd)
+
+
+def test_tension_guard_names_line_and_time(oc3):
+    """A fairlead tension above tension_guard x MBS stops the run naming the line and time
+    (guard lowered here so that the OC3 pretension of ~0.9 MN trips it: MBS 6 MN x 0.1)."""
+    a = assemble(oc3, seed=1, dt=0.1, duration=10.0)
+    with pytest.raises(NumericalError, match=r"line tension above 0.1 x MBS .* at t = 0.000 s "
+                                             r"in line 'line1'"):
+        integrate(a, built=oc3, tension_guard=0.1)
