@@ -266,22 +266,23 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                         if vr > 0.0:
                             val += kc * vrv[a] * vrv[b] / vr
                     Dg[i, a, b] += cC * val
-        # seabed contact: spring force ks g(pen) with g(p) = p^2 / (2 d) below d = w / ks (the
-        # static penetration) and p - d / 2 beyond, damping faded in with the smooth step
+        # seabed contact: spring force ks g(pen) with g(p) = p for p >= d = w / (2 ks) (half the
+        # static penetration) and the cubic 2 p^2 / d - p^3 / d^2 below (same value and slope
+        # at d, zero slope at contact); damping faded in with the smooth step
         # s(p / d) = 3 x^2 - 2 x^3: the force is C1 in the position, so Newton does not cycle
         # when a node touches down
         pen = zc - r[i, 2]
         if pen > 0.0 and P[i, NP_KS] > 0.0:
             ks = P[i, NP_KS]
-            dpen = max(P[i, NP_W], 1e-12) / ks
+            dpen = 0.5 * max(P[i, NP_W], 1e-12) / ks
             if pen < dpen:
                 x = pen / dpen
-                gp = 0.5 * pen * x
-                dg = x
+                gp = pen * x * (2.0 - x)
+                dg = x * (4.0 - 3.0 * x)
                 sm = x * x * (3.0 - 2.0 * x)
                 dsm = 6.0 * x * (1.0 - x) / dpen
             else:
-                gp = pen - 0.5 * dpen
+                gp = pen
                 dg = 1.0
                 sm = 1.0
                 dsm = 0.0
