@@ -336,3 +336,25 @@ def test_failed_line_is_nan_and_neighbour_takes_more(tmp_path, oc3):
     others = [k for k in range(ds_f.sizes["line"]) if k != j]
     assert np.all(np.isfinite(ds_f.tension_max_total.values[others]))
     assert abs(ds_f["mean"].values[0] - ds["mean"].values[0]) > 0.5  # the spar drifts off
+
+
+def test_scene_section_sets_options_and_cli_main(tmp_path, capsys):
+    """A scene's frequency_domain: section is used (duration), and `floatmoor fd` runs through
+    the registered command with exit status 0 (2 for a scene without a mooring)."""
+    from floatmoor.cli import main
+    sc = {"name": "oc3-fd-section", "site": {"water_depth": 320.0},
+          "vessel": str(OC3 / "vessel.yaml"), "mooring": str(OC3 / "mooring.yaml"),
+          "environment": OC3_ENV,
+          "frequency_domain": {"duration": 3600.0, "lf_cutoff_period": 25.0}}
+    p = tmp_path / "scene.yaml"
+    p.write_text(yaml.safe_dump(sc, sort_keys=False))
+    ds = frequency_domain(p)
+    assert ds.attrs["duration"] == 3600.0
+    assert ds.attrs["lf_cutoff_frequency"] == pytest.approx(2 * math.pi / 25.0)
+    assert frequency_domain(p, duration=7200.0).attrs["duration"] == 7200.0  # keyword wins
+    assert main(["fd", str(p)]) == 0
+    assert "MAXIMUM LINE TENSIONS" in capsys.readouterr().out
+    del sc["mooring"]
+    p.write_text(yaml.safe_dump(sc, sort_keys=False))
+    assert main(["fd", str(p)]) == 2
+    assert "mooring" in capsys.readouterr().err
