@@ -24,7 +24,7 @@ import numpy as np
 from ..core.errors import SceneError
 from ..metocean.current import current_speed
 from ..metocean.realisation import realise_wind
-from ..metocean.wind import wind_mean_speed
+from ..metocean.wind import wind_mean_speed, wind_spectrum
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .kernels import relative_flow_force_into
 from .series import complex_envelope, grid_for
@@ -102,9 +102,10 @@ class Wind(_FlowModel):
             spec_ref = replace(spec, reference_height=float(ref))
             # the realisation's default upper frequency, then an FFT grid with bins <= 1/duration
             f_hi = spec.f_max
-            if f_hi is None:
-                from ..metocean.realisation import _default_f_max
-                f_hi = _default_f_max(spec_ref, 1e-3)
+            if f_hi is None:  # where S(f) falls below 1e-3 of its maximum (as realise_wind)
+                f = np.logspace(-5, 1.5, 3000)
+                s = wind_spectrum(spec_ref, f)
+                f_hi = float(f[np.nonzero(s >= 1e-3 * s.max())[0][-1]])
             f_hi = min(float(f_hi), 0.5 / h)
             grid = grid_for(0.0, 2.0 * math.pi / duration, h, duration)
             n = max(1, int(math.ceil(2.0 * math.pi * f_hi / grid.dw)))
