@@ -36,7 +36,9 @@ What is computed (seed 002, Wang 2016, section 2.2.2 eq. 2.34-2.49 and section 2
    displacement along the line's direction); their std, Tz and maxima as above, combined with
    eq. 2.49.  Columns as figure 5.9: static, std LF, max LF, WF base, std WF, max WF, max total,
    safety factor MBS / max total; WF base = max total - max WF (eq. 2.60: the tension at the
-   offset X_max - X_WF,max, from which the WF maximum is added).
+   offset X_max - X_WF,max, from which the WF maximum is added).  ``tension_max_total_catenary``
+   re-evaluates the catenary at the most likely pose giving that excursion (the conditional
+   mean pose of the Gaussian responses), which shows the effect of the line's nonlinearity.
 """
 
 from __future__ import annotations
@@ -458,6 +460,23 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
                                                            "max_total"))
     t_branch, mbs, sf = cols["branch"], np.asarray(mooring.mbs, float), cols["safety_factor"]
     nan_failed = lambda x: np.where(active, x, np.nan)  # noqa: E731
+    # Nonlinear check: the catenary tension at the most likely pose giving each line's eq. 2.49
+    # tension excursion (the conditional mean of the Gaussian pose given the linear tension
+    # process g . x at that value: dx = C g a / sigma per band, C the pose covariance).
+    g0 = np.nan_to_num(grad)
+    k_lf = np.where(t_lf_std > 0, t_lf_max / np.where(t_lf_std > 0, t_lf_std, 1.0), 0.0)
+    k_wf = np.where(t_wf_std > 0, t_wf_max / np.where(t_wf_std > 0, t_wf_std, 1.0), 0.0)
+    a_lf = np.where(t_branch == 1, k_lf, 2.0)
+    a_wf = np.where(t_branch == 1, 2.0, k_wf)
+    t_cat = np.full(len(names), np.nan)
+    for i in np.nonzero(active)[0]:
+        dx = np.zeros(6)
+        if t_lf_std[i] > 0:
+            dx += sol.lf_covariance @ g0[i] * (a_lf[i] / t_lf_std[i])
+        if t_wf_std[i] > 0:
+            dx += sol.wf_covariance @ g0[i] * (a_wf[i] / t_wf_std[i])
+        t_cat[i] = mooring.tensions(mean + dx)["fairlead_tension"].values[i]
+    mooring.tensions(mean)
 
     # -- the Dataset ---------------------------------------------------------------------------
     def v(dims, x, units, long_name, **extra):
@@ -550,6 +569,9 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
         "tension_max_total": v("line", nan_failed(t_max), "N", "maximum tension, eq. 2.49 on "
                                "the quasi-static tension"),
         "tension_branch": v("line", t_branch, "1", "eq. 2.49 branch for the tension"),
+        "tension_max_total_catenary": v(
+            "line", nan_failed(t_cat), "N", "catenary tension at the most likely pose of the "
+            "eq. 2.49 tension excursion (nonlinear quasi-static check of max total)"),
         "mbs": v("line", mbs, "N", "minimum breaking strength"),
         "safety_factor": v("line", nan_failed(sf), "1", "MBS / maximum tension"),
         "line_failed": v("line", ~active, "1", "line removed (failed)"),
@@ -604,8 +626,8 @@ def format_table(ds: xr.Dataset) -> str:
                                               "wf_max", "max_total", "min_total")]
         out.append(f"  {d:6s}" + "".join(f"{x:9.2f}" for x in vals))
     out += ["", "* MAXIMUM LINE TENSIONS. LF AND WF MOTION *  (kN)",
-            "  Line       Static  StD LF  Max LF WF Base  StD WF  Max WF Max Tot  Safety",
-            "                                                                      factor"]
+            "  Line       Static  StD LF  Max LF WF Base  StD WF  Max WF Max Tot  Safety  Max Tot",
+            "                                                                      factor  catenary"]
     cols = ("tension_static", "tension_std_lf", "tension_max_lf", "tension_wf_base",
             "tension_std_wf", "tension_max_wf", "tension_max_total")
     for j, name in enumerate(ds["line"].values):
@@ -614,7 +636,10 @@ def format_table(ds: xr.Dataset) -> str:
             continue
         vals = [ds[c].values[j] / 1e3 for c in cols]
         out.append(f"  {str(name):9s}" + "".join(f"{x:8.1f}" for x in vals)
-                   + f"{ds['safety_factor'].values[j]:8.2f}")
+                   + f"{ds['safety_factor'].values[j]:8.2f}"
+                   + f"{ds['tension_max_total_catenary'].values[j] / 1e3:9.1f}")
+    out += ["  (Max Tot: eq. 2.49 on the linearised quasi-static tension; Max Tot catenary: the "
+            "catenary at the most likely pose of that excursion)"]
     if ds.attrs.get("notes"):
         out += ["", "notes: " + ds.attrs["notes"]]
     return "\n".join(out)

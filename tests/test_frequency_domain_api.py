@@ -358,3 +358,17 @@ def test_scene_section_sets_options_and_cli_main(tmp_path, capsys):
     p.write_text(yaml.safe_dump(sc, sort_keys=False))
     assert main(["fd", str(p)]) == 2
     assert "mooring" in capsys.readouterr().err
+
+
+def test_catenary_check_tends_to_linear_combination_for_small_waves(tmp_path):
+    """tension_max_total_catenary -> tension_max_total as the sea state vanishes; the relative
+    gap is a second-order effect, so it scales with the excursion (about with Hs)."""
+    gaps = []
+    for hs in (6.0, 0.5):
+        env = {"waves": {"spectrum": "jonswap", "hs": hs, "tp": 10.0, "heading_deg": 0.0}}
+        ds = frequency_domain(_scene(tmp_path, OC3, 320.0, env, f"oc3-{hs}"))
+        lin = ds.tension_max_total.values - ds.tension_static.values
+        cat = ds.tension_max_total_catenary.values - ds.tension_static.values
+        gaps.append(np.max(np.abs(cat / lin - 1.0)))
+    assert gaps[1] < 0.01
+    assert 6.0 < gaps[0] / gaps[1] < 20.0  # Hs ratio 12
