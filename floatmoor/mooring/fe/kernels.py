@@ -820,3 +820,36 @@ def end_forces(r, v, P, f, tens, out):
     for k in range(3):
         out[k] = f[0, k]
         out[3 + k] = f[n - 1, k]
+
+
+@njit(cache=True)
+def record_into(r, f, tens, zc, s_nodes, out):
+    """Output channels of one step into ``out`` (13,): fairlead force (3), anchor force (3),
+    max element tension, its element, touchdown element tension, touchdown x, y, grounded
+    length (m, unstretched to the last node in seabed contact), touchdown node (-1: none)."""
+    n = r.shape[0]
+    for k in range(3):
+        out[k] = f[n - 1, k]
+        out[3 + k] = f[0, k]
+    jm = 0
+    for j in range(1, n - 1):
+        if tens[j] > tens[jm]:
+            jm = j
+    out[6] = tens[jm]
+    out[7] = jm
+    itd = -1
+    for i in range(n - 1, -1, -1):
+        if r[i, 2] < zc:
+            itd = i
+            break
+    if itd >= 0:
+        out[8] = tens[min(itd, n - 2)]
+        out[9] = r[itd, 0]
+        out[10] = r[itd, 1]
+        out[11] = s_nodes[itd]
+    else:
+        out[8] = math.sqrt(f[0, 0] ** 2 + f[0, 1] ** 2 + f[0, 2] ** 2)
+        out[9] = r[0, 0]
+        out[10] = r[0, 1]
+        out[11] = 0.0
+    out[12] = itd

@@ -34,8 +34,11 @@ class HarmonicMotion:
     phase: float = 0.0
     ramp: float = 0.0
 
+    def __post_init__(self):
+        object.__setattr__(self, "_A", np.asarray(self.amplitude, float))
+
     def __call__(self, t):
-        A = np.asarray(self.amplitude, float)
+        A = self._A
         w = 2.0 * math.pi / self.period
         s = math.sin(w * t + self.phase)
         c = math.cos(w * t + self.phase)
@@ -90,14 +93,6 @@ def fairlead_track_from_body(t, poses, fairlead_body, reference_pose=None) -> Ti
     return TimeSeriesMotion(t=np.asarray(t, float), xyz=pos - ref)
 
 
-def _touchdown(r, zc, s_nodes):
-    below = np.nonzero(r[:, 2] < zc)[0]
-    if below.size == 0:
-        return -1, 0.0
-    i = int(below.max())
-    return i, float(s_nodes[i])
-
-
 def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: int = 1,
                    snapshot_times=(), record_every: int = 1) -> xr.Dataset:
     """Run a FE line with the fairlead following ``motion`` (a callable ``t -> (disp, vel)``,
@@ -128,29 +123,24 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     zc = line.S[K.S_ZC]
     t0 = line.time
 
-    def record(k, t, F):
+    rec = np.zeros(13)
+
+    def record(k, t, f):
         times[k] = t
-        Ff[k] = F
-        K.end_forces(line.r, line.v, line.P, line.fn, line._tens, line._ends)
-        Fa[k] = line._ends[0:3]
-        tens = line._tens
-        j = int(np.argmax(tens))
-        tmax[k] = tens[j]
-        imax[k] = j
-        i, s = _touchdown(line.r, zc, line.s_nodes)
-        lg[k] = s
-        if i >= 0:
-            ttd[k] = tens[min(i, tens.size - 1)]
-            xtd[k], ytd[k] = line.r[i, 0], line.r[i, 1]
-        else:
-            ttd[k] = np.linalg.norm(Fa[k])
-            xtd[k], ytd[k] = line.r[0, 0], line.r[0, 1]
+        K.record_into(line.r, f, line._tens, zc, line.s_nodes, rec)
+        Ff[k] = rec[0:3]
+        Fa[k] = rec[3:6]
+        tmax[k] = rec[6]
+        imax[k] = int(rec[7])
+        ttd[k] = rec[8]
+        xtd[k] = rec[9]
+        ytd[k] = rec[10]
+        lg[k] = rec[11]
 
     K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u,
                   line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
                   line._Dg, line._Of)
-    K.end_forces(line.r, line.v, line.P, line._f1, line._tens, line._ends)
-    record(0, t0, line._ends[3:6].copy())
+    record(0, t0, line._f1)
     si = 0
     if snap_steps and snap_steps[0] == 0:
         snaps_r[0] = line.r
@@ -159,9 +149,9 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     for k in range(1, n + 1):
         t = t0 + k * dt
         d, v = motion(t - t0)
-        F = line.step(t, dt, r0 + d, v, substeps=substeps)
+        line.step(t, dt, r0 + d, v, substeps=substeps)
         if k % record_every == 0:
-            record(k // record_every, t, F)
+            record(k // record_every, t, line.fn)
         if si < len(snap_steps) and snap_steps[si] == k:
             snaps_r[si] = line.r
             snaps_t[si] = line._tens

@@ -48,10 +48,13 @@ ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 """
 
 
-def run_moordyn(motion, t_end, dt, *, nseg=20, dtm=1e-3, ea=384.243e6, ba=-0.8):
+def run_moordyn(motion, t_end, dt, *, nseg=20, dtm=1e-3, ea=384.243e6, ba=-0.8, timing=False):
     """Fairlead force history (N, (nt, 3)) and times of MoorDyn for the OC3 line 1 with the
     fairlead at (5.2, 0, -70) + ``motion(t)[0]``.  Returns ``(t, F)``; ``F`` is the force of the
-    line on the fairlead."""
+    line on the fairlead.  With ``timing`` also the wall time of the time steps alone (s, the
+    initial-condition solve excluded)."""
+    import time
+
     import moordyn
 
     with tempfile.TemporaryDirectory() as d:
@@ -67,13 +70,17 @@ def run_moordyn(motion, t_end, dt, *, nseg=20, dtm=1e-3, ea=384.243e6, ba=-0.8):
             n = int(round(t_end / dt))
             t_out = np.zeros(n + 1)
             F = np.zeros((n + 1, 3))
+            t0 = time.perf_counter()
             for k in range(1, n + 1):
                 t = k * dt
                 dsp, vel = motion(t)
                 f = moordyn.Step(system, (x0 + dsp).tolist(), list(map(float, vel)), t - dt, dt)
                 t_out[k] = t
                 F[k] = f
+            wall = time.perf_counter() - t0
             moordyn.Close(system)
         finally:
             os.chdir(cwd)
+    if timing:
+        return t_out[1:], F[1:], wall
     return t_out[1:], F[1:]
