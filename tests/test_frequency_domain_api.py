@@ -372,3 +372,16 @@ def test_catenary_check_tends_to_linear_combination_for_small_waves(tmp_path):
         gaps.append(np.max(np.abs(cat / lin - 1.0)))
     assert gaps[1] < 0.01
     assert 6.0 < gaps[0] / gaps[1] < 20.0  # Hs ratio 12
+
+
+def test_floatel_wave_drift_damping_option(floatel, tmp_path):
+    """With wave drift damping switched on the LF surge damping grows by the Aranha term and the
+    LF surge std falls; the WF and mean results do not change."""
+    p = _scene(tmp_path, FLOATEL, 150.0, FLOATEL_ENV, "floatel-wdd")
+    ds = frequency_domain(p, wave_drift_damping=True)
+    b = ds.lf_damping_wave_drift.values[0, 0]
+    assert b > 0.0 and floatel.lf_damping_wave_drift.values[0, 0] == 0.0
+    assert ds.lf_damping.values[0, 0] == pytest.approx(floatel.lf_damping.values[0, 0] + b)
+    assert ds.lf_std.values[0] < floatel.lf_std.values[0]
+    np.testing.assert_allclose(ds.wf_std.values, floatel.wf_std.values, rtol=1e-12)
+    np.testing.assert_allclose(ds["mean"].values, floatel["mean"].values, atol=1e-9)
