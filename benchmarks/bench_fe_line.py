@@ -77,9 +77,9 @@ def main(quick=False):
             e_rng, e_max = metrics(T, ref)
             rows.append(("floatmoor gen-alpha", n, dt, e_rng, e_max, wall))
     try:
-        sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "mooring", "fe"))
-        from tests.mooring.fe.moordyn_ref import run_moordyn
         import moordyn  # noqa: F401
+
+        from tests.mooring.fe.moordyn_ref import run_moordyn
         have_md = True
     except ImportError:
         have_md = False

@@ -373,7 +373,7 @@ class FELine:
         self._v1[:] = self.v
         self._a1[:] = self.a
         self._fs1[:] = self.fs
-        rA, vA, aA, fA = self._r1, self._v1, self._a1, self._f1
+        rA, vA, fA = self._r1, self._v1, self._f1
         fnA = self._Rr  # scratch copy of fn
         fnA[:] = self.fn
         rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
@@ -381,7 +381,6 @@ class FELine:
         vf0[:] = self.v[-1]
         h = dt / substeps
         t0 = t1 - dt
-        rB, vB, aB = self._rB, self._vB, self._aB
         for k in range(1, substeps + 1):
             s = k / substeps
             for c in range(3):
@@ -395,7 +394,10 @@ class FELine:
                 if bad >= 0:
                     self._fail(tk, bad, "explicit step diverged (NaN)",
                                "reduce dt below the axial-wave limit or use generalized_alpha")
+                # the explicit step reports the forces at the start of its (short) step
                 fnA[:] = fA
+                K.friction_commit(rA, vA, self._q, self.fric_code, self._fs1, self.P, self.S,
+                                  self.S[K.S_ZC])
                 continue
             self._ga_split(tk, h, rf, vf, 0)
         self._t1 = t1

@@ -94,7 +94,7 @@ def fairlead_track_from_body(t, poses, fairlead_body, reference_pose=None) -> Ti
 
 
 def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: int = 1,
-                   snapshot_times=(), record_every: int = 1) -> xr.Dataset:
+                   snapshot_times=(), record_every: int = 1, track_nodes=()) -> xr.Dataset:
     """Run a FE line with the fairlead following ``motion`` (a callable ``t -> (disp, vel)``,
     displacement about the static fairlead position, m and m/s).
 
@@ -103,7 +103,8 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     ``anchor_tension``, ``fairlead_force`` (time, axis), ``max_tension``,
     ``max_tension_element``, ``touchdown_tension``, ``touchdown_x``, ``touchdown_y``,
     ``grounded_length`` and profile snapshots ``profile_position`` (snapshot, node, axis),
-    ``profile_tension`` (snapshot, element) at the steps nearest to ``snapshot_times``.
+    ``profile_tension`` (snapshot, element) at the steps nearest to ``snapshot_times``, and
+    ``node_position`` (time, tracked_node, axis) of the nodes in ``track_nodes``.
     """
     n = int(round(t_end / dt))
     r0 = line.r[-1].copy()
@@ -124,6 +125,8 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     t0 = line.time
 
     rec = np.zeros(13)
+    tracked = np.asarray(track_nodes, dtype=np.int64)
+    pos_tr = np.zeros((nrec, tracked.size, 3))
 
     def record(k, t, f):
         times[k] = t
@@ -136,6 +139,8 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
         xtd[k] = rec[9]
         ytd[k] = rec[10]
         lg[k] = rec[11]
+        if tracked.size:
+            pos_tr[k] = line.r[tracked]
 
     K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u,
                   line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
@@ -181,11 +186,14 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
                                  {"units": "m", "long_name": "node positions"}),
             "profile_tension": (("snapshot", "element"), snaps_t,
                                 {"units": "N", "long_name": "element tensions"}),
+            "node_position": (("time", "tracked_node", "axis"), pos_tr,
+                              {"units": "m", "long_name": "positions of the tracked nodes"}),
         },
         coords={"time": ("time", times, {"units": "s"}),
                 "axis": ["x", "y", "z"],
                 "snapshot": ("snapshot", np.array(snap_steps, float) * dt + t0, {"units": "s"}),
-                "node": np.arange(line.n_nodes), "element": np.arange(line.n_nodes - 1)},
+                "node": np.arange(line.n_nodes), "element": np.arange(line.n_nodes - 1),
+                "tracked_node": tracked},
         attrs={"line": name, "dt": dt, "substeps": substeps,
                "integrator": getattr(line, "integrator", ""),
                "newton_iterations": int(getattr(line, "newton_iterations", 0))})

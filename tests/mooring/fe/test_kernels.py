@@ -2,8 +2,9 @@
 finite differences of the nodal forces."""
 
 import numpy as np
+import pytest
 
-from floatmoor.mooring.fe import FELine, Friction
+from floatmoor.mooring.fe import FELine
 from floatmoor.mooring.fe import kernels as K
 
 from .conftest import oc3_spec
@@ -86,3 +87,34 @@ def test_stiffness_and_damping_blocks_match_finite_differences():
                 assert np.allclose(col[i], Dg[i][:, a], atol=2e-5 * scale), (which, i, a)
                 assert np.allclose(col[i + 1], Of[i][:, a], atol=2e-5 * scale), (which, i, a)
                 assert np.allclose(col[i - 1], Of[i - 1][:, a], atol=2e-5 * scale), (which, i, a)
+
+
+_NOJIT_CODE = """
+import numpy as np
+import pytest
+from tests.mooring.fe.conftest import oc3_spec
+from floatmoor.mooring.fe import FELine
+from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
+line = FELine(oc3_spec(n=8, friction=Friction(model="displacement_velocity_ramp",
+                                              mu_axial=0.7, mu_lateral=1.0)))
+line.solve_static(friction=False)
+line.start()
+ds = run_prescribed(line, HarmonicMotion(amplitude=(1.0, 2.0, 0.5), period=8.0, ramp=4.0),
+                    2.0, 0.2)
+print(repr(float(ds.fairlead_tension.values[-1])))
+"""
+
+
+def test_kernels_run_without_jit():
+    """The kernels also run as plain Python (NUMBA_DISABLE_JIT=1) and give the same numbers."""
+    import os
+    import subprocess
+    import sys
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(__file__))))
+    vals = []
+    for flag in ("1", "0"):
+        env = dict(os.environ, NUMBA_DISABLE_JIT=flag)
+        out = subprocess.run([sys.executable, "-c", _NOJIT_CODE], env=env, cwd=root,
+                             capture_output=True, text=True, check=True)
+        vals.append(float(out.stdout.strip().splitlines()[-1]))
+    assert vals[0] == pytest.approx(vals[1], rel=1e-9)
