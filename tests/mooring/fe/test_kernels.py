@@ -90,10 +90,8 @@ def test_stiffness_and_damping_blocks_match_finite_differences():
 
 
 _NOJIT_CODE = """
-import numpy as np
-import pytest
 from tests.mooring.fe.conftest import oc3_spec
-from floatmoor.mooring.fe import FELine
+from floatmoor.mooring.fe import FELine, Friction
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
 line = FELine(oc3_spec(n=8, friction=Friction(model="displacement_velocity_ramp",
                                               mu_axial=0.7, mu_lateral=1.0)))
