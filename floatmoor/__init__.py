@@ -10,7 +10,7 @@ except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
 
 __all__ = ["__version__", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorError",
-           "FloatmoorWarning", "load_scene", "simulate"]
+           "FloatmoorWarning", "load_scene", "simulate", "frequency_domain", "statics"]
 
 
 def __getattr__(name):
@@ -21,4 +21,8 @@ def __getattr__(name):
     if name == "simulate":
         from .simulate import simulate
         return simulate
+    if name in ("frequency_domain", "statics"):
+        # submodules; floatmoor.frequency_domain is callable: frequency_domain(scene) runs it
+        import importlib
+        return importlib.import_module(f"{__name__}.{name}")
     raise AttributeError(f"module 'floatmoor' has no attribute {name!r}")

@@ -182,6 +182,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
             _check_arguments, _check_run),
     Command("environment", "realise the scene's waves, wind and current and print statistics",
             _environment_arguments, _environment_run),
+    ("statics", "floatmoor.commands.statics"),
     ("run", "floatmoor.commands.run"),
     ("fd", "floatmoor.commands.fd"),
     ("convergence", "floatmoor.commands.convergence"),
