@@ -2,11 +2,19 @@
 
 Line model, seabed contact and friction, statics from the catenary start, generalised-alpha
 and explicit time integration, prescribed fairlead motion and the dynamic amplification factor.
+See :mod:`floatmoor.mooring.fe.line` for the stepping interface a floater solver calls.
 """
 
+from .analytic import transverse_friction_static
 from .config import (FRICTION_MODELS, SEABED_MODELS, FELineSpec, FESegment, Friction, PointBody,
                      Seabed)
+from .from_system import spec_from_linedef, specs_from_system
 from .line import FELine, StaticSolution, gen_alpha_coefficients
+from .prescribed import (HarmonicMotion, TimeSeriesMotion, daf, fairlead_track_from_body,
+                         quasi_static_tension, run_prescribed)
 
 __all__ = ["FELineSpec", "FESegment", "Friction", "PointBody", "Seabed", "FRICTION_MODELS",
-           "SEABED_MODELS", "FELine", "StaticSolution", "gen_alpha_coefficients"]
+           "SEABED_MODELS", "FELine", "StaticSolution", "gen_alpha_coefficients",
+           "HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
+           "quasi_static_tension", "daf", "transverse_friction_static", "spec_from_linedef",
+           "specs_from_system"]

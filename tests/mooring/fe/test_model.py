@@ -134,3 +134,25 @@ def test_fairlead_track_from_body_poses():
     d, _ = tr(5.0)
     assert d[0] == pytest.approx(2.0 * np.sin(5.0) + 5.2 * (np.cos(0.05) - 1.0), abs=1e-12)
     assert d[1] == pytest.approx(5.2 * np.sin(0.05), abs=1e-12)
+
+
+def test_specs_from_the_oc3_mooring_file_match_the_quasi_static_system():
+    """The OC3 mooring file (vessels/oc3_hywind/mooring.yaml) through the ``mooring:`` parser,
+    converted to FE lines: static fairlead tensions within 0.2 % of the quasi-static system
+    (which carries the MAP++ seabed friction 0.001; the FE statics use friction only where the
+    grounded part is displaced, here nowhere)."""
+    from pathlib import Path
+
+    from floatmoor.core.config import Node
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe.from_system import specs_from_system
+
+    root = Path(__file__).resolve().parents[3]
+    ms = parse_mooring(Node.load(root / "vessels" / "oc3_hywind" / "mooring.yaml"),
+                       water_depth=320.0)
+    ref = ms.tensions().fairlead_tension.values
+    specs = specs_from_system(ms, element_length=18.0)
+    assert [s.name for s in specs] == list(ms.names)
+    for spec, T in zip(specs, ref):
+        s = FELine(spec).solve_static()
+        assert s.fairlead_tension == pytest.approx(T, rel=2e-3)

@@ -1,0 +1,101 @@
+"""FE line specifications from the quasi-static mooring description (``LineDef`` of
+:class:`floatmoor.mooring.MooringSystem`, as built by the ``mooring:`` section parser), so a
+scene can switch lines to ``model: finite-element`` without a second description.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Mapping
+
+import numpy as np
+
+from ...core.frames import rotation_matrix_into
+from ..line_types import STEEL_DENSITY, LineType
+from ..system import LineDef, MooringSystem
+from .config import FELineSpec, FESegment, Friction, PointBody, Seabed
+
+__all__ = ["spec_from_linedef", "specs_from_system"]
+
+
+def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
+                      element_length: float = 20.0, line_types: Mapping[str, LineType] | None = None,
+                      friction: Friction | None = None, seabed: Seabed | None = None,
+                      internal_damping: float = 0.0, water_density: float = 1025.0,
+                      gravity: float = 9.80665, **current) -> FELineSpec:
+    """FE specification of one quasi-static line.
+
+    Parameters
+    ----------
+    line : LineDef
+        Anchor (earth), fairlead (body axes), segments from the anchor.
+    water_depth : float
+        m.
+    pose : (6,), optional
+        Body pose for the initial fairlead position (default zero).
+    element_length : float
+        Target element length, m: each segment gets ``max(1, round(L / element_length))``.
+    line_types : mapping, optional
+        Line types by name for the hydrodynamic coefficients (``cdn, cdt, can, cat``); a
+        segment whose type is missing keeps the ``LineType`` defaults.  Mass, diameter, EA and
+        the submerged weight always come from the segment.
+    friction : Friction, optional
+        Default: no friction when ``line.cb`` is 0, else the velocity ramp with ``cb`` as axial
+        and lateral coefficient.
+    seabed : Seabed, optional
+        Default: MoorDyn-like springs at ``water_depth``.
+    internal_damping : float
+        Axial damping of every segment (N s, or ``-zeta``).
+    **current
+        ``current_z``, ``current_speed``, ``current_heading`` passed on to :class:`FELineSpec`.
+
+    Notes
+    -----
+    A point load ``P`` at a joint becomes a clump of steel (``P > 0``: mass ``P / (g (1 - rho /
+    7850))``, volume ``mass / 7850``) or a massless buoy of volume ``-P / (rho g)`` (``P < 0``):
+    the submerged weight is exact, the inertia an assumption.
+    """
+    pose = np.zeros(6) if pose is None else np.asarray(pose, float)
+    R = np.zeros((3, 3))
+    rotation_matrix_into(pose[3], pose[4], pose[5], R)
+    fair = pose[:3] + R @ np.asarray(line.fairlead, float)
+    segs = []
+    bodies = []
+    node = 0
+    for k, s in enumerate(line.segments):
+        base = (line_types or {}).get(s.line_type)
+        mass = s.mass_per_length if s.mass_per_length > 0 else (base.mass_per_length if base else 0.0)
+        d = s.diameter if s.diameter > 0 else (base.diameter if base else 0.0)
+        vol = max(mass - s.w / gravity, 0.0) / water_density
+        kw = dict(name=s.line_type or f"{line.name}_seg{k}", material=base.material if base else "user",
+                  diameter=d, mass_per_length=mass, displaced_volume=vol, ea=s.ea,
+                  ea_dynamic=s.ea_dynamic if s.ea_dynamic else s.ea, mbs=s.mbs)
+        lt = replace(base, **kw) if base is not None else LineType(**kw)
+        n = max(1, int(round(s.length / element_length)))
+        segs.append(FESegment(line_type=lt, length=s.length, n_elements=n,
+                              internal_damping=internal_damping))
+        node += n
+        if k < len(line.segments) - 1 and s.point_load != 0.0:
+            P = s.point_load
+            if P > 0.0:
+                m = P / (gravity * (1.0 - water_density / STEEL_DENSITY))
+                bodies.append(PointBody(node=node, mass=m, volume=m / STEEL_DENSITY))
+            else:
+                bodies.append(PointBody(node=node, mass=0.0, volume=-P / (water_density * gravity)))
+    if friction is None:
+        friction = (Friction(model="velocity_ramp", mu_axial=line.cb, mu_lateral=line.cb)
+                    if line.cb > 0 else Friction())
+    return FELineSpec(name=line.name, anchor=tuple(map(float, line.anchor)),
+                      fairlead=tuple(map(float, fair)), segments=tuple(segs),
+                      seabed=seabed or Seabed(depth=water_depth), friction=friction,
+                      point_bodies=tuple(bodies), water_density=water_density, gravity=gravity,
+                      **current)
+
+
+def specs_from_system(system: MooringSystem, *, pose=None, **kw) -> list[FELineSpec]:
+    """:func:`spec_from_linedef` for every active line of a :class:`MooringSystem`."""
+    return [spec_from_linedef(l, water_depth=system.water_depth, pose=pose,
+                              water_density=system.water_density, gravity=system.gravity, **kw)
+            for l, a in zip(system.lines, system.active) if a]
+
+
