@@ -6,6 +6,7 @@ See :mod:`floatmoor.mooring.fe.line` for the stepping interface a floater solver
 """
 
 from .analytic import transverse_friction_static
+from .body import FEMooring
 from .config import (FRICTION_MODELS, SEABED_MODELS, FELineSpec, FESegment, Friction, PointBody,
                      Seabed)
 from .from_system import spec_from_linedef, specs_from_system
@@ -17,4 +18,4 @@ __all__ = ["FELineSpec", "FESegment", "Friction", "PointBody", "Seabed", "FRICTI
            "SEABED_MODELS", "FELine", "StaticSolution", "gen_alpha_coefficients",
            "HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
            "quasi_static_tension", "daf", "transverse_friction_static", "spec_from_linedef",
-           "specs_from_system"]
+           "specs_from_system", "FEMooring"]

@@ -1,0 +1,93 @@
+"""Several FE lines on one rigid body: the entry point for a coupled floater time step.
+
+:class:`FEMooring` turns the body's pose and velocity at the end of a body step into fairlead
+positions and velocities, advances every line (:meth:`FELine.advance`) and returns the
+generalised force on the body: force (N, earth axes) and moment about the displaced reference
+point (N m, earth axes), the convention of :meth:`floatmoor.mooring.MooringSystem.force`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...core.frames import rotation_matrix_into
+from .line import FELine
+
+__all__ = ["FEMooring"]
+
+
+class FEMooring:
+    """FE lines attached to one body.
+
+    Parameters
+    ----------
+    specs : sequence of FELineSpec
+        The lines; their ``fairlead`` is the earth position at ``pose0``.
+    fairleads_body : (n, 3)
+        Fairleads in body axes relative to the body reference point, m.
+    pose0 : (6,), optional
+        Pose at which the specs' fairleads are given (default zero).
+    **line_kw
+        Passed to :class:`FELine` (``dynamic_ea``, ``axial_stiffness_limit``).
+    """
+
+    def __init__(self, specs, fairleads_body, pose0=None, **line_kw):
+        self.lines = [FELine(s, **line_kw) for s in specs]
+        self.fairleads_body = np.asarray(fairleads_body, float).reshape(len(self.lines), 3)
+        self._R = np.zeros((3, 3))
+        self._pose0 = np.zeros(6) if pose0 is None else np.asarray(pose0, float)
+        self._Q = np.zeros(6)
+        self._line_forces = np.zeros((len(self.lines), 3))
+
+    def fairlead_kinematics(self, pose, velocity=None):
+        """Earth positions (n, 3) and velocities (n, 3) of the fairleads; ``velocity`` is
+        ``[u, v, w, omega_x, omega_y, omega_z]`` with the angular velocity in earth axes (rad/s;
+        equal to the Euler-angle rates for small angles)."""
+        pose = np.asarray(pose, float)
+        rotation_matrix_into(pose[3], pose[4], pose[5], self._R)
+        arm = self.fairleads_body @ self._R.T
+        pos = pose[:3] + arm
+        if velocity is None:
+            return pos, np.zeros_like(pos)
+        vel = np.asarray(velocity, float)
+        return pos, vel[:3] + np.cross(vel[3:6], arm)
+
+    def _sum(self, pose, forces):
+        rotation_matrix_into(pose[3], pose[4], pose[5], self._R)
+        arm = self.fairleads_body @ self._R.T
+        self._Q[:3] = forces.sum(axis=0)
+        self._Q[3:] = np.cross(arm, forces).sum(axis=0)
+        return self._Q.copy()
+
+    def solve_static(self, pose=None) -> np.ndarray:
+        """Static equilibrium of every line with the body at ``pose``; returns the generalised
+        force (6,)."""
+        pose = self._pose0 if pose is None else np.asarray(pose, float)
+        pos, _ = self.fairlead_kinematics(pose)
+        for i, ln in enumerate(self.lines):
+            self._line_forces[i] = ln.solve_static(fairlead=pos[i]).fairlead_force
+        return self._sum(pose, self._line_forces)
+
+    def start(self, **kw):
+        """Start the dynamics of every line (see :meth:`FELine.start`)."""
+        for ln in self.lines:
+            ln.start(**kw)
+
+    def advance(self, t1, dt, pose1, velocity1, *, substeps: int = 1) -> np.ndarray:
+        """Trial step of every line to ``t1`` with the body at ``pose1`` moving with
+        ``velocity1``; returns the generalised force on the body (6,).  Repeatable until
+        :meth:`accept`."""
+        pose1 = np.asarray(pose1, float)
+        pos, vel = self.fairlead_kinematics(pose1, velocity1)
+        for i, ln in enumerate(self.lines):
+            self._line_forces[i] = ln.advance(t1, dt, pos[i], vel[i], substeps=substeps)
+        return self._sum(pose1, self._line_forces)
+
+    def accept(self):
+        for ln in self.lines:
+            ln.accept()
+
+    @property
+    def line_forces(self) -> np.ndarray:
+        """Force of every line on its fairlead at the last evaluation, (n, 3) N."""
+        return self._line_forces.copy()
