@@ -16,6 +16,10 @@ rad/s step 0.05, all on WAMIT's 0.01 rad/s grid, so no interpolation), Capytaine
 Capytaine's own added mass and damping are stored as ``capytaine_added_mass`` and
 ``capytaine_radiation_damping`` for the comparison of the tests (5 % over the wave band).
 
+Mesh convergence (radiation at omega = 0.3, 0.9, 1.3 rad/s; WAMIT A11 = 9.127e6 kg at 0.3):
+panel size 3 m (927 panels) A11 = 9.628e6 kg, 2 m (1911 panels) 9.346e6 kg; Richardson
+extrapolation (observed order 2.0) gives 9.12e6 kg.  The default panel size is 2 m.
+
 Usage:  OMP_NUM_THREADS=1 python make_database.py [reference_dir] [panel_size]
 """
 
@@ -32,9 +36,11 @@ import xarray as xr
 import yaml
 
 import capytaine as cpt
+from capytaine.post_pro.mean_drift_force import far_field_mean_drift_force
 
 from floatmoor.hydro import from_capytaine_dataset, read_wamit, save_database
 from floatmoor.hydro.database import _set_attrs, matrix_units
+from floatmoor.hydro.vessel import gravity_stiffness, read_mass_properties, rigid_body_mass_matrix
 
 HERE = Path(__file__).resolve().parent
 RHO, G, DEPTH = 1025.0, 9.80665, 200.0
@@ -137,7 +143,35 @@ def build_mesh(raft_yaml: Path, h: float):
     return mesh, lid
 
 
-def main(ref: Path, h: float = 3.0, out=HERE / "database.nc"):
+def far_field_drift(cds, C_hst):
+    """Capytaine's far-field (Maruo / Kochin) mean drift, with the free-floating RAOs of the
+    rigid body of vessel.yaml (Capytaine's A, B, excitation; WAMIT's C plus -m g z_G; no
+    mooring, no viscous damping).  Returns (n_omega, n_heading, 6), N/m^2 (surge, sway, yaw)."""
+    m, cog, Icg = read_mass_properties(HERE / "vessel.yaml")
+    M = rigid_body_mass_matrix(m, cog, Icg)
+    C = C_hst + gravity_stiffness(m, cog, G)
+    dofs = [str(d) for d in cds.radiating_dof.values]
+    sel = dict(influenced_dof=dofs, radiating_dof=dofs)
+    A = cds.added_mass.transpose("omega", "influenced_dof", "radiating_dof").sel(**sel).values
+    B = cds.radiation_damping.transpose("omega", "influenced_dof", "radiating_dof").sel(**sel).values
+    F = (cds.Froude_Krylov_force + cds.diffraction_force).transpose(
+        "omega", "wave_direction", "influenced_dof").sel(influenced_dof=dofs).values
+    omegas = cds.omega.values
+    xi = np.empty_like(F)
+    for k, w in enumerate(omegas):  # Capytaine's exp(-i w t) equation of motion
+        Z = -w ** 2 * (M + A[k]) - 1j * w * B[k] + C
+        xi[k] = np.linalg.solve(Z, F[k].T).T
+    X = xr.DataArray(xi, dims=("omega", "wave_direction", "radiating_dof"),
+                     coords={"omega": omegas, "wave_direction": cds.wave_direction.values,
+                             "radiating_dof": dofs})
+    drift = far_field_mean_drift_force(X, cds)
+    md = np.full((omegas.size, cds.wave_direction.size, 6), np.nan)
+    for name, k in (("drift_force_surge", 0), ("drift_force_sway", 1), ("drift_force_yaw", 5)):
+        md[:, :, k] = np.real(np.diagonal(drift[name].values, axis1=1, axis2=2))
+    return md
+
+
+def main(ref: Path, h: float = 2.0, out=HERE / "database.nc"):
     t0 = time.time()
     omegas = np.round(np.arange(0.10, 3.0001, 0.05), 2)
     headings_deg = np.array([0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0])
@@ -146,15 +180,19 @@ def main(ref: Path, h: float = 3.0, out=HERE / "database.nc"):
     body = cpt.FloatingBody(mesh=mesh, lid_mesh=lid,
                             dofs=cpt.rigid_body_dofs(rotation_center=(0, 0, 0)),
                             center_of_mass=(0, 0, 0), name="oc4_semi")
+    theta = np.linspace(-2 * 2 * np.pi / 72, 2 * np.pi + 2 * 2 * np.pi / 72, 77)
     test = xr.Dataset(coords={"omega": omegas, "wave_direction": np.radians(headings_deg),
                               "radiating_dof": list(body.dofs), "water_depth": [DEPTH],
-                              "rho": [RHO], "g": [G]})
+                              "rho": [RHO], "g": [G], "theta": theta})
     cds = cpt.BEMSolver().fill_dataset(test, body, hydrostatics=False).squeeze(drop=False)
     print(f"BEM done in {time.time() - t0:.0f} s", flush=True)
-    cap = from_capytaine_dataset(cds, where="vessels/oc4_semi/make_database.py")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # "no excitation file": expected, replaced below
         wam = read_wamit(ref / "marin_semi", ulen=1.0, rho=RHO, g=G, water_depth=DEPTH)
+    cap_drift = far_field_drift(cds, wam.hydrostatic_stiffness.values)
+    cds = cds.drop_vars([v for v in cds.data_vars if v.startswith("kochin")] + ["theta"],
+                        errors="ignore")
+    cap = from_capytaine_dataset(cds, where="vessels/oc4_semi/make_database.py")
     # WAMIT A, B on the Capytaine frequencies (exact grid points)
     idx = [int(np.argmin(np.abs(wam.omega.values - w))) for w in omegas]
     if not np.allclose(wam.omega.values[idx], omegas, atol=1e-6):
@@ -172,6 +210,11 @@ def main(ref: Path, h: float = 3.0, out=HERE / "database.nc"):
     for d in range(6):
         md[inside, 0, d] = np.interp(omegas[inside], wq, qd[:, d])
     ds["mean_drift_force"] = (("omega", "wave_direction", "influenced_dof"), md)
+    ds["capytaine_mean_drift_force"] = (("omega", "wave_direction", "influenced_dof"), cap_drift)
+    ds["capytaine_mean_drift_force"].attrs.update({
+        "units": "N/m^2 (force), N m/m^2 (moment)",
+        "long_name": "Capytaine far-field (Kochin) mean drift with free-floating RAOs "
+                     "(surge, sway, yaw only; for comparison with the WAMIT QTF diagonal)"})
     for name in ("added_mass", "radiation_damping"):
         ds["capytaine_" + name] = (("omega", "influenced_dof", "radiating_dof"), cap[name].values)
         ds["capytaine_" + name].attrs.update({"units": matrix_units(name),
@@ -195,10 +238,14 @@ def main(ref: Path, h: float = 3.0, out=HERE / "database.nc"):
             i = ["surge", "sway", "heave", "roll", "pitch", "yaw"].index(dof)
             err = np.max(np.abs(c[:, i, i] - a[:, i, i])) / np.max(np.abs(a[:, i, i]))
             print(f"{name} {dof}: max |Capytaine - WAMIT| / max|WAMIT| = {100 * err:.1f} %")
+    k0 = (omegas >= 0.5) & (omegas <= 2.0)
+    print("surge drift 0 deg, WAMIT QTF diagonal vs Capytaine far field (N/m^2):")
+    for w, a, c in zip(omegas[k0][::3], md[k0, 0, 0][::3], cap_drift[k0, 0, 0][::3]):
+        print(f"  {w:5.2f} {a:12.0f} {c:12.0f}")
     return ds
 
 
 if __name__ == "__main__":
     ref = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/work/shared/reference/OC4_DeepCwind_semi")
-    h = float(sys.argv[2]) if len(sys.argv) > 2 else 3.0
+    h = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
     main(ref, h)
