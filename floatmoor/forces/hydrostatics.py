@@ -1,13 +1,15 @@
 """Hydrostatic and gravity restoring, additional stiffness, and linear / quadratic damping.
 
-Hydrostatics: ``F = F_0 - C x`` with ``C`` the vessel's ``total_restoring`` (hydrostatic +
+Hydrostatics: ``F = F_0 - C x`` in the yaw-following frame (roll and pitch are angles about
+its axes), turned into earth axes, with ``C`` the vessel's ``total_restoring`` (hydrostatic +
 gravity + additional stiffness, about the reference point, linear about the zero pose: roll and
 pitch are small rotations here) and ``F_0`` the constant buoyancy-minus-weight force at the zero
 pose (:func:`floatmoor.io.build.net_buoyancy_force`, the same ``static_force`` the statics use).
 
-Damping: ``F = -D_l v`` and ``F_i = -sum_j D_q,ij v_j |v_j|`` with the vessel's matrices
-(earth-axis velocities of the reference point; exact for small yaw, and for yaw-symmetric
-damping at any yaw).
+Damping: ``F = -D_l nu`` and ``F_i = -sum_j D_q,ij nu_j |nu_j|`` with the vessel's matrices and
+the velocity ``nu`` in the yaw-following frame (the damping turns with the body), turned into
+earth axes.  ``force(t, pose, velocity, out)`` takes the pose rate and returns earth axes, as the
+time-domain kernel does.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from .base import ForceModel, KernelAssembly, SetupContext, register
-from .kernels import matvec_sub_into, quadratic_damping_into
+from .kernels import matvec_sub_into, quadratic_damping_into, to_earth, to_yaw_frame
 
 __all__ = ["Hydrostatics", "LinearDamping", "QuadraticDamping"]
 
@@ -32,8 +34,9 @@ class Hydrostatics(ForceModel):
         self._freeze()
 
     def force(self, t, pose, velocity, out):
-        out += self.const_force
-        matvec_sub_into(self.restoring, np.asarray(pose, float), out)
+        f = self.const_force.copy()
+        matvec_sub_into(self.restoring, np.asarray(pose, float), f)
+        out += to_earth(f, float(pose[5]))
 
     def stiffness(self, pose=None):
         return self.restoring.copy()
@@ -56,7 +59,9 @@ class LinearDamping(ForceModel):
         self._freeze()
 
     def force(self, t, pose, velocity, out):
-        matvec_sub_into(self.matrix, np.asarray(velocity, float), out)
+        f = np.zeros(6)
+        matvec_sub_into(self.matrix, to_yaw_frame(velocity, float(pose[5])), f)
+        out += to_earth(f, float(pose[5]))
 
     def damping_linearized(self, *args, **kwargs):
         return self.matrix.copy()
@@ -76,7 +81,9 @@ class QuadraticDamping(ForceModel):
         self._freeze()
 
     def force(self, t, pose, velocity, out):
-        quadratic_damping_into(self.matrix, np.asarray(velocity, float), out)
+        f = np.zeros(6)
+        quadratic_damping_into(self.matrix, to_yaw_frame(velocity, float(pose[5])), f)
+        out += to_earth(f, float(pose[5]))
 
     def damping_linearized(self, velocity_std):
         """Stochastic linearisation for Gaussian velocity of std sigma: D_q sqrt(8/pi) sigma_j."""

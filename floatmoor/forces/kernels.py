@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 __all__ = ["table_at_into", "relative_flow_force_into", "quadratic_damping_into",
-           "matvec_sub_into"]
+           "matvec_sub_into", "turn_horizontal", "to_yaw_frame", "to_earth"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -87,3 +88,36 @@ def matvec_sub_into(a, x, out):
         for j in range(6):
             s += a[i, j] * x[j]
         out[i] -= s
+
+
+@njit(cache=True)
+def turn_horizontal(f, cy, sy):
+    """Turn the horizontal components (0, 1) and (3, 4) of a 6-vector in place by the angle
+    whose cosine is ``cy`` and sine ``sy`` (yaw-following frame -> earth for +yaw)."""
+    a = f[0]
+    b = f[1]
+    f[0] = cy * a - sy * b
+    f[1] = sy * a + cy * b
+    a = f[3]
+    b = f[4]
+    f[3] = cy * a - sy * b
+    f[4] = sy * a + cy * b
+
+
+def to_yaw_frame(v, yaw: float):
+    """A pose rate (6,) as the velocity in the yaw-following frame (new array): the horizontal
+    velocity turned by -yaw; heave, roll, pitch and yaw rates unchanged (the roll and pitch
+    angles are measured about the yaw-following axes)."""
+    out = np.array(v, float).reshape(6)
+    c, s = math.cos(yaw), math.sin(yaw)
+    out[0] = c * v[0] + s * v[1]
+    out[1] = -s * v[0] + c * v[1]
+    return out
+
+
+def to_earth(f, yaw: float):
+    """A yaw-frame generalized force (6,) in earth axes (new array): the horizontal force and
+    the roll/pitch moment vector turned by +yaw."""
+    out = np.array(f, float).reshape(6)
+    turn_horizontal(out, math.cos(yaw), math.sin(yaw))
+    return out

@@ -20,6 +20,7 @@ import numpy as np
 from ..hydro.retardation import (cutoff_time, fit_infinite_frequency_added_mass,
                                  retardation_function)
 from .base import ForceModel, KernelAssembly, SetupContext, register
+from .kernels import to_earth, to_yaw_frame
 
 __all__ = ["Radiation", "infinite_frequency_added_mass", "retardation_matrix"]
 
@@ -80,17 +81,21 @@ class Radiation(ForceModel):
         self._freeze()
 
     def force(self, t, pose, velocity, out, history=None):
-        """Add ``-int K(t - tau) v(tau) dtau``; ``history`` (m, 6): velocities at t - dt, t - 2dt,
-        ... (most recent first; missing = at rest).  Trapezoidal rule as in the solver."""
-        v = np.asarray(velocity, float)
+        """Add ``-int K(t - tau) nu(tau) dtau`` (earth axes); ``velocity`` the pose rate now,
+        ``history`` (m, 6): yaw-frame velocities at t - dt, t - 2dt, ... (most recent first;
+        missing = at rest).  Trapezoidal rule as in the solver."""
+        yaw = float(pose[5])
+        v = to_yaw_frame(velocity, yaw)
         hist = np.zeros((0, 6)) if history is None else np.asarray(history, float)
         n_k = self.kernel.shape[1]
+        f = np.zeros(6)
         for p in range(self.pair_i.size):
             i, j = self.pair_i[p], self.pair_j[p]
             s = 0.5 * self.kernel[p, 0] * v[j]
             m = min(n_k - 1, hist.shape[0])
             s += np.dot(self.kernel[p, 1:m + 1], hist[:m, j])
-            out[i] -= self.dt * s
+            f[i] -= self.dt * s
+        out += to_earth(f, yaw)
 
     def contribute(self, asm: KernelAssembly):
         asm.ret_kernel = self.kernel

@@ -1,10 +1,14 @@
 """The numba time loop of the coupled 6-DOF time-domain solver (one kernel, no allocation).
 
-Equation of motion (seed 002 eq. 2.56; Cummins form), pose ``x`` = [x, y, z, roll, pitch, yaw]
-of the body reference point, velocity ``v = x'``:
+Equation of motion (seed 002 eq. 2.56; Cummins form) for the pose ``x`` = [x, y, z, roll,
+pitch, yaw] of the body reference point and its velocity ``nu`` in the yaw-following frame
+(``x'`` = [Rz(yaw) nu_xy, nu_z, nu_roll, nu_pitch, nu_yaw], small roll and pitch):
 
-    (M + A_inf) x'' = F_0 - C x + F_moor(x) - D_l v - D_q v|v| - int_0^t K(t - s) v(s) ds
-                      + F_wave1(t) + F_drift(t) + F_wind(t, x, v) + F_current(x, v)
+    (M + A_inf) nu' + [w x P ; w x H + u x P] = T' (F_0 - C x) + T' F_moor(x) - D_l nu
+        - D_q nu|nu| - int_0^t K(t - s) nu(s) ds + T' (F_wave1 + F_drift + F_wind + F_current)
+
+with [P; H] = (M + A_inf) nu, u = nu[:3], w = nu[3:], and T' turning earth-axis forces and
+moments into the yaw-following frame (the hydrostatic term is formed directly in that frame).
 
 Integrator: classical 4th-order Runge-Kutta with a fixed step ``dt``.  The precomputed series
 (waves, drift, wind speed) are sampled every dt/2 so every stage reads an exact sample.  The
@@ -40,7 +44,7 @@ from numba import njit
 from ..forces.base import (PART_CURRENT, PART_DAMPING_LINEAR, PART_DAMPING_QUADRATIC,
                            PART_HYDROSTATICS, PART_MOORING, PART_RADIATION, PART_SERIES,
                            PART_WIND)
-from ..forces.kernels import relative_flow_force_into
+from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.system import system_force_kernel
 
@@ -56,18 +60,22 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
          cur_speed, cur_heading, cur_th, cur_tab, has_moor, anchors, fairleads, seg_L, seg_EA,
          seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
          parts, f):
-    """Total force ``f`` (6,) and its parts (N_PARTS, 6) at sample j (time j dt/2), stage
-    fraction c.  Returns -1, or the index of a line whose catenary failed."""
+    """Total force ``f`` (6,) and its parts (N_PARTS, 6), all in earth axes (moments about
+    the displaced reference point), at sample j (time j dt/2), stage fraction c, pose ``x`` and
+    yaw-frame velocity ``v``.  Returns -1, or the index of a line whose catenary failed."""
+    cy = math.cos(x[5])
+    sy = math.sin(x[5])
     for p in range(parts.shape[0]):
         for k in range(6):
             parts[p, k] = 0.0
-    # hydrostatics
+    # hydrostatics (yaw-following frame: roll and pitch are about its axes), then to earth
     for i in range(6):
         s = const_force[i]
         for k in range(6):
             s -= restoring[i, k] * x[k]
         parts[PART_HYDROSTATICS, i] = s
-    # mooring
+    turn_horizontal(parts[PART_HYDROSTATICS], cy, sy)
+    # mooring (earth axes)
     if has_moor:
         bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
                                   cb, seabed, active, warm, False, work, rot, line_out, fm, stiff)
@@ -75,31 +83,37 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
             return bad
         for i in range(6):
             parts[PART_MOORING, i] = fm[i]
-    # damping
+    # damping on the yaw-frame velocities
     if has_dl:
         for i in range(6):
             s = 0.0
             for k in range(6):
                 s += dl[i, k] * v[k]
             parts[PART_DAMPING_LINEAR, i] = -s
+        turn_horizontal(parts[PART_DAMPING_LINEAR], cy, sy)
     if has_dq:
         for i in range(6):
             s = 0.0
             for k in range(6):
                 s += dq[i, k] * v[k] * abs(v[k])
             parts[PART_DAMPING_QUADRATIC, i] = -s
-    # radiation memory
-    for p in range(ret_i.shape[0]):
-        i = ret_i[p]
-        jj = ret_j[p]
-        parts[PART_RADIATION, i] -= dt * (0.5 * ret_kernel[p, 0] * v[jj] + (1.0 - c) * s0[p]
-                                          + c * s1[p])
-    # wind and current
+        turn_horizontal(parts[PART_DAMPING_QUADRATIC], cy, sy)
+    # radiation memory on the yaw-frame velocity history
+    if ret_i.shape[0] > 0:
+        for p in range(ret_i.shape[0]):
+            i = ret_i[p]
+            jj = ret_j[p]
+            parts[PART_RADIATION, i] -= dt * (0.5 * ret_kernel[p, 0] * v[jj] + (1.0 - c) * s0[p]
+                                              + c * s1[p])
+        turn_horizontal(parts[PART_RADIATION], cy, sy)
+    # wind and current: relative to the earth velocity of the reference point
+    vx = cy * v[0] - sy * v[1]
+    vy = sy * v[0] + cy * v[1]
     if has_wind:
-        relative_flow_force_into(wind_speed[j], wind_heading, v[0], v[1], x[5], 1.0, wind_th,
+        relative_flow_force_into(wind_speed[j], wind_heading, vx, vy, x[5], 1.0, wind_th,
                                  wind_tab, coef, parts[PART_WIND])
     if has_cur:
-        relative_flow_force_into(cur_speed, cur_heading, v[0], v[1], x[5], 1.0, cur_th, cur_tab,
+        relative_flow_force_into(cur_speed, cur_heading, vx, vy, x[5], 1.0, cur_th, cur_tab,
                                  coef, parts[PART_CURRENT])
     # precomputed series
     for q in range(series.shape[0]):
@@ -114,27 +128,67 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
 
 
 @njit(cache=True)
-def _solve_acc(minv, f, a):
+def _accel(x, v, f, inertia, minv, mom, g, a):
+    """Yaw-frame acceleration ``a`` from the earth-axis force ``f``: turn it into the
+    yaw-following frame and solve (M + A_inf) a = f_h - [w x P ; w x H + u x P] with the
+    generalized momentum [P; H] = (M + A_inf) v, u = v[:3], w = v[3:] (Kirchhoff's equations;
+    with roll and pitch rates small the frame is the body frame to first order).  ``mom``, ``g``
+    (6,) scratch."""
+    cy = math.cos(x[5])
+    sy = math.sin(x[5])
+    for i in range(6):
+        g[i] = f[i]
+    turn_horizontal(g, cy, -sy)
     for i in range(6):
         s = 0.0
         for k in range(6):
-            s += minv[i, k] * f[k]
+            s += inertia[i, k] * v[k]
+        mom[i] = s
+    u0, u1, u2 = v[0], v[1], v[2]
+    w0, w1, w2 = v[3], v[4], v[5]
+    P0, P1, P2 = mom[0], mom[1], mom[2]
+    H0, H1, H2 = mom[3], mom[4], mom[5]
+    g[0] -= w1 * P2 - w2 * P1
+    g[1] -= w2 * P0 - w0 * P2
+    g[2] -= w0 * P1 - w1 * P0
+    g[3] -= w1 * H2 - w2 * H1 + u1 * P2 - u2 * P1
+    g[4] -= w2 * H0 - w0 * H2 + u2 * P0 - u0 * P2
+    g[5] -= w0 * H1 - w1 * H0 + u0 * P1 - u1 * P0
+    for i in range(6):
+        s = 0.0
+        for k in range(6):
+            s += minv[i, k] * g[k]
         a[i] = s
 
 
 @njit(cache=True)
-def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq, has_dq,
-              ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading, wind_th,
-              wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor, anchors,
-              fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, fail_time,
-              mbs, warm, guard, tension_guard, record_parts, motion, velocity, t_fair, t_anchor,
-              parts_out, status):
-    """Integrate ``n_steps`` RK4 steps from (x0, v0); fill the outputs at every step.
+def _pose_rate(x, v, out):
+    """Pose rate from the yaw-frame velocity: horizontal velocity turned by yaw; heave and the
+    (small-angle) roll, pitch and yaw rates as they are."""
+    cy = math.cos(x[5])
+    sy = math.sin(x[5])
+    out[0] = cy * v[0] - sy * v[1]
+    out[1] = sy * v[0] + cy * v[1]
+    for k in range(2, 6):
+        out[k] = v[k]
 
-    Outputs: motion, velocity (n_steps+1, 6); t_fair, t_anchor (n_steps+1, n_lines) in N;
-    parts_out (n_steps+1, N_PARTS, 6) when ``record_parts`` else (1, N_PARTS, 6) scratch;
-    status (3,) int64.  ``hist`` (6, 2 n_k) ring buffer of step velocities, stored twice (zeros on entry);
-    ``guard`` (6,) largest |x - x0| allowed per DOF.
+
+@njit(cache=True)
+def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
+              has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading,
+              wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
+              anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active,
+              fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity, t_fair,
+              t_anchor, parts_out, status):
+    """Integrate ``n_steps`` RK4 steps from pose ``x0`` and pose rate ``v0``; fill the outputs
+    at every step.
+
+    ``inertia`` = M + A_inf and ``minv`` its inverse (6, 6), yaw-following frame.  Outputs:
+    motion (pose) and velocity (pose rate) (n_steps+1, 6); t_fair, t_anchor (n_steps+1,
+    n_lines) in N; parts_out (n_steps+1, N_PARTS, 6) (earth axes) when ``record_parts`` else
+    (1, N_PARTS, 6) scratch; status (3,) int64.  ``hist`` (6, 2 n_k) ring buffer of the
+    yaw-frame step velocities, stored twice (zeros on entry); ``guard`` (6,) largest
+    |x - x0| allowed per DOF.
     """
     n_parts = parts_out.shape[1]
     parts = np.zeros((n_parts, 6))
@@ -151,16 +205,25 @@ def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
     s1 = np.zeros(n_pairs)
     x = x0.copy()
     v = v0.copy()
+    # pose rate -> yaw-frame velocity (horizontal velocity only: roll/pitch rates are already
+    # about the yaw-following axes)
+    cy0 = math.cos(x[5])
+    sy0 = math.sin(x[5])
+    v[0] = cy0 * v0[0] + sy0 * v0[1]
+    v[1] = -sy0 * v0[0] + cy0 * v0[1]
     xs = np.zeros(6)
     vs = np.zeros(6)
     f = np.zeros(6)
+    mom = np.zeros(6)
+    g = np.zeros(6)
     a1 = np.zeros(6)
     a2 = np.zeros(6)
     a3 = np.zeros(6)
     a4 = np.zeros(6)
-    v1 = np.zeros(6)
-    v2 = np.zeros(6)
-    v3 = np.zeros(6)
+    q1 = np.zeros(6)
+    q2 = np.zeros(6)
+    q3 = np.zeros(6)
+    q4 = np.zeros(6)
     for k in range(6):
         hist[k, 0] = v[k]
         hist[k, n_k] = v[k]
@@ -193,9 +256,10 @@ def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
             status[1] = n
             status[2] = bad
             return
+        _pose_rate(x, v, q1)
         for k in range(6):
             motion[n, k] = x[k]
-            velocity[n, k] = v[k]
+            velocity[n, k] = q1[k]
         for i in range(n_lines):
             tf = math.sqrt(line_out[i, OUT_HF] ** 2 + line_out[i, OUT_VF] ** 2)
             t_fair[n, i] = tf
@@ -211,12 +275,11 @@ def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
                 parts_out[r, p, k] = parts[p, k]
         if n == n_steps:
             break
-        _solve_acc(minv, f, a1)
+        _accel(x, v, f, inertia, minv, mom, g, a1)
+        # stage 2
         for k in range(6):
-            v1[k] = v[k]
-            xs[k] = x[k] + 0.5 * dt * v1[k]
+            xs[k] = x[k] + 0.5 * dt * q1[k]
             vs[k] = v[k] + 0.5 * dt * a1[k]
-            v2[k] = vs[k]
         bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
@@ -227,11 +290,12 @@ def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
             status[1] = n
             status[2] = bad
             return
-        _solve_acc(minv, f, a2)
+        _pose_rate(xs, vs, q2)
+        _accel(xs, vs, f, inertia, minv, mom, g, a2)
+        # stage 3
         for k in range(6):
-            xs[k] = x[k] + 0.5 * dt * v2[k]
+            xs[k] = x[k] + 0.5 * dt * q2[k]
             vs[k] = v[k] + 0.5 * dt * a2[k]
-            v3[k] = vs[k]
         bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
@@ -242,9 +306,11 @@ def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
             status[1] = n
             status[2] = bad
             return
-        _solve_acc(minv, f, a3)
+        _pose_rate(xs, vs, q3)
+        _accel(xs, vs, f, inertia, minv, mom, g, a3)
+        # stage 4
         for k in range(6):
-            xs[k] = x[k] + dt * v3[k]
+            xs[k] = x[k] + dt * q3[k]
             vs[k] = v[k] + dt * a3[k]
         bad = _rhs(2 * n + 2, 1.0, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
@@ -256,9 +322,10 @@ def td_kernel(n_steps, dt, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
             status[1] = n
             status[2] = bad
             return
-        _solve_acc(minv, f, a4)
+        _pose_rate(xs, vs, q4)
+        _accel(xs, vs, f, inertia, minv, mom, g, a4)
         for k in range(6):
-            x[k] += dt / 6.0 * (v1[k] + 2.0 * v2[k] + 2.0 * v3[k] + vs[k])
+            x[k] += dt / 6.0 * (q1[k] + 2.0 * q2[k] + 2.0 * q3[k] + q4[k])
             v[k] += dt / 6.0 * (a1[k] + 2.0 * a2[k] + 2.0 * a3[k] + a4[k])
         for k in range(6):
             if not (math.isfinite(x[k]) and math.isfinite(v[k])):

@@ -8,18 +8,26 @@ is :func:`floatmoor.simulate`.
 
 Assumptions (documented limits)
 -------------------------------
-* Large horizontal motions and large yaw: mooring at the exact fairlead positions (full
-  rotation), wind and current coefficients at the relative heading of the flow to the body.
-* Roll and pitch are small rotations in the hydrostatic restoring (linear ``C``) and in the
-  mass, added-mass, radiation and damping terms, which act on the pose rates in earth axes
-  (exact for yaw-symmetric matrices such as a spar's, an approximation for large yaw of a
-  non-symmetric hull).
-* Wave forces are evaluated at the mean position and the start heading (see
-  :mod:`floatmoor.forces.waves`).
+* State: the pose ``x`` (earth position of the reference point, Euler angles) and the velocity
+  ``nu`` in the yaw-following frame (surge/sway velocity along the body's horizontal axes,
+  heave rate, roll/pitch/yaw rates).  Large horizontal motions and any yaw: the inertia
+  M + A_inf, the linear and quadratic damping and the radiation memory act on ``nu`` (they
+  turn with the body); Kirchhoff's gyroscopic terms ``w x P`` and ``w x H + u x P`` of the
+  generalized momentum (M + A_inf) nu are included, so a free body conserves its earth-frame
+  momentum and its energy at any yaw (tested).  The mooring acts at the exact fairlead
+  positions (full rotation); wind and current coefficients follow the relative heading.
+* Roll and pitch are small rotations: the frame rotates with the yaw only, roll/pitch rates
+  equal the body rates, and the hydrostatic restoring is linear (``C`` about the zero pose).
+* Wave forces are precomputed at the mean position and the start heading and stay fixed in
+  earth axes (see :mod:`floatmoor.forces.waves`): a body that yaws far does not see the waves
+  from a new relative heading.  The radiation memory uses the history of ``nu`` in the current
+  yaw frame (slowly varying yaw).
 * Start: the static equilibrium under buoyancy - weight, mooring, mean wind and current at rest
   and mean wave drift (:func:`floatmoor.solvers.statics.equilibrium`); the fluctuating loads
   (first-order waves, slow drift, gust) are ramped in over ``ramp`` seconds, so the run starts
   without a jump; statistics should skip ``transient`` seconds.
+* Output ``velocity`` is the pose rate; ``force`` is in earth axes (moments about the
+  displaced reference point).
 """
 
 from __future__ import annotations
@@ -278,7 +286,7 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     guard = _guard_limits(built) if built is not None else np.array([1e4, 1e4, 1e3, 1.0, 1.0, 1e3])
     setup_time = _time.perf_counter() - t_start
     t0 = _time.perf_counter()
-    args = (int(n), float(dt), minv, x0, v0, asm.const_force, asm.restoring, asm.damping_linear,
+    args = (int(n), float(dt), np.asarray(a.inertia, float), minv, x0, v0, asm.const_force, asm.restoring, asm.damping_linear,
             bool(asm.has_damping_linear), asm.damping_quadratic, bool(asm.has_damping_quadratic),
             ret_kernel, asm.ret_i, asm.ret_j, hist, series, bool(asm.has_wind), wind_speed,
             float(asm.wind_heading), wind_th, wind_tab, bool(asm.has_current),

@@ -95,25 +95,39 @@ def floatel(tmp_path_factory):
 
 def test_kernel_forces_equal_model_forces(floatel):
     """The numba loop's per-model forces at recorded steps equal each model's Python
-    ``force`` at the same (t, pose, velocity) (radiation: with the same velocity history)."""
+    ``force`` at the same (t, pose, velocity) (radiation: with the same velocity history), also
+    with the body turned 0.6 rad in yaw (the damping, radiation and hydrostatic terms act in the
+    yaw-following frame, the wind and current at the relative heading)."""
+    from floatmoor.forces.kernels import to_yaw_frame
+
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        a = assemble(floatel, seed=2, dt=0.2, duration=120.0, ramp=30.0)
-        r = integrate(a, built=floatel, record_forces=True)
-    assert r.force_models == ["hydrostatics", "mooring", "radiation", "damping_linear", "wind",
-                              "current", "wave1", "drift_newman"]
-    for n in (0, 37, 412, 600):
-        t = r.time[n]
-        for q, name in enumerate(r.force_models):
-            m = a.models[name]
-            out = np.zeros(6)
-            if name == "radiation":
-                m.force(t, r.motion[n], r.velocity[n], out, history=r.velocity[n - 1::-1]
-                        if n > 0 else None)
-            else:
-                m.force(t, r.motion[n], r.velocity[n], out)
-            scale = max(np.abs(out).max(), 1.0)
-            assert np.allclose(r.forces[n, q], out, rtol=1e-9, atol=1e-9 * scale), (name, n)
+        a0 = assemble(floatel, seed=2, dt=0.2, duration=120.0, ramp=30.0)
+        for yaw in (0.0, 0.6):
+            start = a0.x0.copy()
+            start[5] += yaw
+            a = assemble(floatel, seed=2, dt=0.2, duration=120.0, ramp=30.0,
+                         start_pose=start if yaw else None)
+            r = integrate(a, built=floatel, record_forces=True)
+            assert r.force_models == ["hydrostatics", "mooring", "radiation", "damping_linear",
+                                      "wind", "current", "wave1", "drift_newman"]
+            nu = np.array([to_yaw_frame(r.velocity[n], r.motion[n, 5])
+                           for n in range(r.time.size)])
+            for n in (0, 37, 412, 600):
+                t = r.time[n]
+                for q, name in enumerate(r.force_models):
+                    m = a.models[name]
+                    out = np.zeros(6)
+                    if name == "radiation":
+                        m.force(t, r.motion[n], r.velocity[n], out,
+                                history=nu[n - 1::-1] if n > 0 else None)
+                    else:
+                        m.force(t, r.motion[n], r.velocity[n], out)
+                    scale = max(np.abs(out).max(), 1.0)
+                    assert np.allclose(r.forces[n, q], out, rtol=1e-9, atol=1e-9 * scale), \
+                        (name, n, yaw)
+            if yaw:
+                assert abs(r.motion[600, 5]) > 0.1
 
 
 def test_newman_mean_and_ramp(floatel):
