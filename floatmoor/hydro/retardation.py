@@ -245,7 +245,7 @@ def fit_infinite_frequency_added_mass(omega, added_mass, t, K, band=None):
 def _default_times(omega):
     """Time grid: step resolving the highest frequency, length resolving the lowest."""
     omega = np.asarray(omega, float)
-    dt = min(0.05, np.pi / (4.0 * omega[-1] * TAIL_EXTENT) * 4.0)
+    dt = min(0.05, np.pi / (20.0 * omega[-1]))  # 40 samples per period of w_N
     dw = np.min(np.diff(omega)) if omega.size > 1 else omega[0]
     t_end = min(max(60.0, 0.5 * np.pi / dw), 600.0)
     return np.arange(0.0, t_end + 0.5 * dt, dt)
