@@ -195,3 +195,33 @@ def test_oc3_netcdf_round_trip(oc3_db, tmp_path):
     back = load_database(p)
     for name in oc3_db.data_vars:
         np.testing.assert_array_equal(back[name].values, oc3_db[name].values)
+
+
+def test_mean_drift_file_8_is_read_and_redimensionalised(oc3_root, tmp_path):
+    # A synthetic .8 file (WAMIT's format "PER BETA1 BETA2 I |F| phase Re Im") on three of the
+    # Spar.1 periods, heading 0, plus a second heading pair that is not unidirectional (ignored).
+    # F = rho g L^m A^2 Fbar, m = 1 for forces, 2 for moments (ULEN = 2 here: factor 2 and 4).
+    shutil.copy(str(oc3_root) + ".1", tmp_path / "s.1")
+    shutil.copy(str(oc3_root) + ".hst", tmp_path / "s.hst")
+    pers = [12.5664, 6.28319, 4.18879]  # omega = 0.5, 1.0, 1.5 rad/s (Spar.1 grid)
+    lines = []
+    for p, fx in zip(pers, [0.1, 0.4, 0.9]):
+        lines.append(f"{p} 0.0 0.0 1 {fx} 0.0 {fx} 0.0")
+        lines.append(f"{p} 0.0 0.0 5 {3 * fx} 180.0 {-3 * fx} 0.0")
+        lines.append(f"{p} 0.0 90.0 1 7.0 0.0 7.0 0.0")
+    (tmp_path / "s.8").write_text("\r\n".join(lines) + "\r\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = read_wamit(tmp_path / "s", ulen=2.0)
+    md = ds.mean_drift_force.sel(wave_direction=0.0)
+    w = ds.omega.values
+    k = int(np.argmin(np.abs(w - 1.0)))
+    assert float(md.isel(omega=k).sel(influenced_dof="surge")) == pytest.approx(RHO * G * 2 * 0.4)
+    assert float(md.isel(omega=k).sel(influenced_dof="pitch")) == pytest.approx(
+        -RHO * G * 4 * 1.2)
+    # between the file's frequencies: linear; outside them: NaN (not available)
+    k2 = int(np.argmin(np.abs(w - 1.25)))
+    assert float(md.isel(omega=k2).sel(influenced_dof="surge")) == pytest.approx(
+        RHO * G * 2 * 0.65, rel=1e-3)
+    assert np.isnan(float(md.isel(omega=0).sel(influenced_dof="surge")))
+    assert "s.8" in ds.attrs["source"]
