@@ -4,11 +4,13 @@ Equation of motion (seed 002 eq. 2.56; Cummins form) for the pose ``x`` = [x, y,
 pitch, yaw] of the body reference point and its velocity ``nu`` in the yaw-following frame
 (``x'`` = [Rz(yaw) nu_xy, nu_z, nu_roll, nu_pitch, nu_yaw], small roll and pitch):
 
-    (M + A_inf) nu' + [w x P ; w x H + u x P] = T' (F_0 - C x) + T' F_moor(x) - D_l nu
-        - D_q nu|nu| - int_0^t K(t - s) nu(s) ds + T' (F_wave1 + F_drift + F_wind + F_current)
+    (M + A_inf) nu' + c(nu) = T' (F_0 - C x) + T' F_moor(x) - D_l nu - D_q nu|nu|
+        - int_0^t K(t - s) nu(s) ds + T' (F_wave1 + F_drift + F_wind + F_current)
 
-with [P; H] = (M + A_inf) nu, u = nu[:3], w = nu[3:], and T' turning earth-axis forces and
-moments into the yaw-following frame (the hydrostatic term is formed directly in that frame).
+with P = (M + A_inf) nu, c = [-r P_sway, r P_surge, 0, 0, 0, u P_sway - v P_surge] the terms of
+the frame turning at the yaw rate r (no work, earth-frame horizontal momentum kept), and T'
+turning earth-axis forces and moments into the yaw-following frame (the hydrostatic term is
+formed directly in that frame).
 
 Integrator: classical 4th-order Runge-Kutta with a fixed step ``dt``.  The precomputed series
 (waves, drift, wind speed) are sampled every dt/2 so every stage reads an exact sample.  The
@@ -130,10 +132,12 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
 @njit(cache=True)
 def _accel(x, v, f, inertia, minv, mom, g, a):
     """Yaw-frame acceleration ``a`` from the earth-axis force ``f``: turn it into the
-    yaw-following frame and solve (M + A_inf) a = f_h - [w x P ; w x H + u x P] with the
-    generalized momentum [P; H] = (M + A_inf) v, u = v[:3], w = v[3:] (Kirchhoff's equations;
-    with roll and pitch rates small the frame is the body frame to first order).  ``mom``, ``g``
-    (6,) scratch."""
+    yaw-following frame and solve (M + A_inf) a = f_h - c with the generalized momentum
+    P = (M + A_inf) v and the terms of the frame turning at the yaw rate r = v[5]:
+    c_surge = -r P_sway, c_sway = r P_surge, c_yaw = u P_sway - v P_surge (the Munk moment of
+    the horizontal velocity (u, v) and momentum).  They do no work (v . c = 0) and keep the
+    earth-frame horizontal momentum; heave, roll and pitch keep the linear seakeeping form
+    (small rotations).  ``mom``, ``g`` (6,) scratch."""
     cy = math.cos(x[5])
     sy = math.sin(x[5])
     for i in range(6):
@@ -144,16 +148,10 @@ def _accel(x, v, f, inertia, minv, mom, g, a):
         for k in range(6):
             s += inertia[i, k] * v[k]
         mom[i] = s
-    u0, u1, u2 = v[0], v[1], v[2]
-    w0, w1, w2 = v[3], v[4], v[5]
-    P0, P1, P2 = mom[0], mom[1], mom[2]
-    H0, H1, H2 = mom[3], mom[4], mom[5]
-    g[0] -= w1 * P2 - w2 * P1
-    g[1] -= w2 * P0 - w0 * P2
-    g[2] -= w0 * P1 - w1 * P0
-    g[3] -= w1 * H2 - w2 * H1 + u1 * P2 - u2 * P1
-    g[4] -= w2 * H0 - w0 * H2 + u2 * P0 - u0 * P2
-    g[5] -= w0 * H1 - w1 * H0 + u0 * P1 - u1 * P0
+    r = v[5]
+    g[0] += r * mom[1]
+    g[1] -= r * mom[0]
+    g[5] -= v[0] * mom[1] - v[1] * mom[0]
     for i in range(6):
         s = 0.0
         for k in range(6):

@@ -12,9 +12,10 @@ Assumptions (documented limits)
   ``nu`` in the yaw-following frame (surge/sway velocity along the body's horizontal axes,
   heave rate, roll/pitch/yaw rates).  Large horizontal motions and any yaw: the inertia
   M + A_inf, the linear and quadratic damping and the radiation memory act on ``nu`` (they
-  turn with the body); Kirchhoff's gyroscopic terms ``w x P`` and ``w x H + u x P`` of the
-  generalized momentum (M + A_inf) nu are included, so a free body conserves its earth-frame
-  momentum and its energy at any yaw (tested).  The mooring acts at the exact fairlead
+  turn with the body); the terms of the frame turning at the yaw rate r (surge/sway
+  ``-/+ r P`` and the Munk yaw moment ``u P_sway - v P_surge`` of the momentum
+  P = (M + A_inf) nu) are included, so a free body conserves its earth-frame horizontal momentum
+  and its energy at any yaw (tested); heave, roll and pitch keep the linear seakeeping form.  The mooring acts at the exact fairlead
   positions (full rotation); wind and current coefficients follow the relative heading.
 * Roll and pitch are small rotations: the frame rotates with the yaw only, roll/pitch rates
   equal the body rates, and the hydrostatic restoring is linear (``C`` about the zero pose).
