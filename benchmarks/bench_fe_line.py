@@ -148,5 +148,40 @@ def main(quick=False):
             print(f"gen-alpha 50 elements dt {dt} s: {e}")
 
 
+def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000):
+    """Time of FEMooring.advance/accept for 12 OC3-like lines of 50 elements around a body in
+    harmonic surge/sway/yaw, projected to a 3-hour run (the coupled solver is not part of this
+    issue's work yet: body dynamics excluded)."""
+    from floatmoor.mooring.fe import FELineSpec
+    from floatmoor.mooring.fe.body import FEMooring
+    base = oc3_spec(n=n_el, damping=BA_TOTAL / n_el)
+    specs, fair_b = [], []
+    for k in range(n_lines):
+        a = 2 * math.pi * k / n_lines
+        c, s_ = math.cos(a), math.sin(a)
+        fb = (5.2 * c, 5.2 * s_, -70.0)
+        specs.append(FELineSpec(**{**base.__dict__, "name": f"line{k + 1}",
+                                   "anchor": (853.87 * c, 853.87 * s_, -320.0), "fairlead": fb}))
+        fair_b.append(fb)
+    fm = FEMooring(specs, fair_b)
+    fm.solve_static(np.zeros(6))
+    fm.start()
+    t0 = time.perf_counter()
+    for k in range(1, n_steps + 1):
+        t = k * dt
+        w = 2 * math.pi / 12.0
+        pose = np.array([2 * math.sin(w * t), 1.5 * math.sin(w * t + 1), 0, 0, 0, 0.02 * math.sin(w * t)])
+        vel = np.array([2 * w * math.cos(w * t), 1.5 * w * math.cos(w * t + 1), 0, 0, 0,
+                        0.02 * w * math.cos(w * t)])
+        fm.advance(t, dt, pose, vel)
+        fm.accept()
+    wall = time.perf_counter() - t0
+    print(f"{n_lines} lines x {n_el} elements, {n_steps} steps of {dt} s: {wall:.2f} s -> 3 h "
+          f"({int(10800 / dt)} steps): {wall * 10800 / dt / n_steps:.0f} s (lines only)")
+
+
 if __name__ == "__main__":
     main(quick="--quick" in sys.argv)
+    print()
+    storm_projection()
+    storm_projection(dt=0.2)

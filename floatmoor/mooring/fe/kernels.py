@@ -31,8 +31,8 @@ N_NP = 12
 EL_L0, EL_C1, EL_C2, EL_C3, EL_B = range(5)
 N_EL = 5
 # scalar parameters
-S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO = range(6)
-N_S = 6
+S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC = range(7)
+N_S = 7
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
 FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC = 0, 1, 2, 3
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
@@ -40,6 +40,7 @@ FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC = 0, 1, 2, 3
 N_FS = 8
 V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
 D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
+V_SB = 0.01             # seabed damping switches off between -V_SB and +V_SB (m/s)
 
 
 @njit(cache=True)
@@ -273,7 +274,7 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
         pen = zc - r[i, 2]
         if pen > 0.0 and P[i, NP_KS] > 0.0:
             ks = P[i, NP_KS]
-            dpen = 0.5 * max(P[i, NP_W], 1e-12) / ks
+            dpen = max(0.5 * max(P[i, NP_W], 1e-12) / ks, S[S_DC])
             if pen < dpen:
                 x = pen / dpen
                 gp = pen * x * (2.0 - x)
@@ -285,15 +286,29 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
                 dg = 1.0
                 sm = 1.0
                 dsm = 0.0
-            # the damping acts only while the node moves into the seabed (the seabed does not
-            # pull a lifting node; a damping force fading out under a lifting node would give a
-            # negative stiffness and stall Newton)
-            cs = P[i, NP_CS] if v[i, 2] < 0.0 else 0.0
+            # the damping acts while the node moves into the seabed, not while it lifts off
+            # (the seabed does not pull; a damping force fading out under a lifting node gives
+            # a negative stiffness): force -cs sm h(vz), h = vz phi(vz) with phi going smoothly
+            # from 1 (vz <= -V_SB) to 0 (vz >= V_SB) so that nodes resting on the seabed
+            # (vz ~ 0) do not make Newton switch between two branches
+            cs = P[i, NP_CS]
+            vz = v[i, 2]
+            if vz <= -V_SB:
+                h = vz
+                dh = 1.0
+            elif vz >= V_SB:
+                h = 0.0
+                dh = 0.0
+            else:
+                xv = (vz + V_SB) / (2.0 * V_SB)
+                phi = 1.0 - xv * xv * (3.0 - 2.0 * xv)
+                h = vz * phi
+                dh = phi - vz * 6.0 * xv * (1.0 - xv) / (2.0 * V_SB)
             N = ks * gp
-            f[i, 2] += N - cs * sm * v[i, 2]
+            f[i, 2] += N - cs * sm * h
             if want_jac:
                 # d/dz = -d/dpen
-                Dg[i, 2, 2] += cK * (ks * dg - cs * dsm * v[i, 2]) + cC * cs * sm
+                Dg[i, 2, 2] += cK * (ks * dg - cs * dsm * h) + cC * cs * sm * dh
             if fric != FR_NONE:
                 mua = P[i, NP_MUA]
                 mul = P[i, NP_MUL]

@@ -149,6 +149,8 @@ class FELine:
         S[K.S_CURC] = math.cos(spec.current_heading)
         S[K.S_CURS] = math.sin(spec.current_heading)
         S[K.S_RHO] = rho
+        cs_ = spec.seabed.contact_smoothing
+        S[K.S_DC] = 0.5 * dmax if cs_ is None else cs_
         if axial_stiffness_limit is not None:
             f = np.minimum(1.0, axial_stiffness_limit / E_dy[:, K.EL_C1])
             if np.any(f < 1.0):

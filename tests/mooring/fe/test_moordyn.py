@@ -5,7 +5,7 @@ CaAx 0, seabed kBot 3e6 Pa/m and cBot 3e5 Pa s/m, internal damping BA given expl
 line weight with g = 9.81 (its log prints w = 698.333 N/m), so our line uses g = 9.81 here.
 
 Measured (floatmoor generalised-alpha, dt = 0.05 s; last period of four): mean tension
-+0.029 / +0.032 / +0.019 / -0.006 %, tension range +1.45 / +1.35 / +0.53 / +0.56 % (sway 1 m 5 s,
++0.032 / +0.035 / +0.023 / +0.006 %, tension range +1.42 / +1.35 / +0.33 / +0.49 % (sway 1 m 5 s,
 sway 3 m 15 s, surge 3 m 15 s, heave 1.5 m 7 s; the sway ranges are small: 2.2 and 3.0 kN)."""
 
 import math
