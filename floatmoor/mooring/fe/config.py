@@ -76,7 +76,7 @@ class FESegment:
     internal_damping : float
         Axial internal damping ``B`` (N s): damping force ``B d(eps)/dt`` (MoorDyn's BA); a
         negative value ``-zeta`` gives ``zeta`` times the critical damping of one element's axial
-        mode (``B = zeta * 2 sqrt(EA m) * l``... see :meth:`damping_coefficient`).
+        mode, ``B = zeta 2 sqrt(EA m) l`` (see :meth:`damping_coefficient`).
     """
 
     line_type: LineType

@@ -14,7 +14,10 @@ Coupling interface (for the body solver): ::
 
 ``F`` is the force of the line on the fairlead point in earth axes (pulls towards the anchor and
 down).  ``advance`` sub-steps the line (``substeps``) with the fairlead moving linearly between
-the accepted and the new position when the body step is larger than the line can take.
+the accepted and the new position when the body step is larger than the line can take, and
+splits a step by itself (up to 2^5 times) where Newton does not converge.  For several lines on
+one body, :class:`floatmoor.mooring.fe.body.FEMooring` takes the body pose and velocity and
+returns the 6-DOF generalised force.
 """
 
 from __future__ import annotations
