@@ -170,7 +170,8 @@ def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000):
     for k in range(1, n_steps + 1):
         t = k * dt
         w = 2 * math.pi / 12.0
-        pose = np.array([2 * math.sin(w * t), 1.5 * math.sin(w * t + 1), 0, 0, 0, 0.02 * math.sin(w * t)])
+        pose = np.array([2 * math.sin(w * t), 1.5 * math.sin(w * t + 1), 0, 0, 0,
+                         0.02 * math.sin(w * t)])
         vel = np.array([2 * w * math.cos(w * t), 1.5 * w * math.cos(w * t + 1), 0, 0, 0,
                         0.02 * w * math.cos(w * t)])
         fm.advance(t, dt, pose, vel)

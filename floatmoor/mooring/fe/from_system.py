@@ -19,7 +19,8 @@ __all__ = ["spec_from_linedef", "specs_from_system"]
 
 
 def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
-                      element_length: float = 20.0, line_types: Mapping[str, LineType] | None = None,
+                      element_length: float = 20.0,
+                      line_types: Mapping[str, LineType] | None = None,
                       friction: Friction | None = None, seabed: Seabed | None = None,
                       internal_damping: float = 0.0, water_density: float = 1025.0,
                       gravity: float = 9.80665, **current) -> FELineSpec:
@@ -64,10 +65,12 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
     node = 0
     for k, s in enumerate(line.segments):
         base = (line_types or {}).get(s.line_type)
-        mass = s.mass_per_length if s.mass_per_length > 0 else (base.mass_per_length if base else 0.0)
+        mass = (s.mass_per_length if s.mass_per_length > 0
+                else (base.mass_per_length if base else 0.0))
         d = s.diameter if s.diameter > 0 else (base.diameter if base else 0.0)
         vol = max(mass - s.w / gravity, 0.0) / water_density
-        kw = dict(name=s.line_type or f"{line.name}_seg{k}", material=base.material if base else "user",
+        kw = dict(name=s.line_type or f"{line.name}_seg{k}",
+                  material=base.material if base else "user",
                   diameter=d, mass_per_length=mass, displaced_volume=vol, ea=s.ea,
                   ea_dynamic=s.ea_dynamic if s.ea_dynamic else s.ea, mbs=s.mbs)
         lt = replace(base, **kw) if base is not None else LineType(**kw)

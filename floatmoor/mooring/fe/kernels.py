@@ -24,9 +24,9 @@ import math
 from numba import njit
 
 # node parameter columns
-NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL = \
-    range(12)
-N_NP = 12
+NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL, \
+    NP_MD = range(13)
+N_NP = 13
 # element parameter columns
 EL_L0, EL_C1, EL_C2, EL_C3, EL_B = range(5)
 N_EL = 5
@@ -134,7 +134,7 @@ def _friction_dirs(qx, qy):
 
 
 @njit(cache=True)
-def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of):
+def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of):
     """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
 
     Parameters
@@ -142,6 +142,8 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
     r, v : (n, 3) node positions (m) and velocities (m/s), earth axes.
     P : (n, N_NP) node parameters; E : (n-1, N_EL) element parameters; S : (N_S,) scalars.
     cur_z, cur_u : current profile (levels increasing, speeds m/s); direction in S.
+    wk : (n, 6) wave particle velocity (m/s) and acceleration (m/s^2) at the nodes (zeros
+        without waves); the velocity enters the drag, the acceleration the fluid inertia.
     fric : int friction code; fs : (n, N_FS) friction state of the last accepted step (read
         only; :func:`friction_decide` and :func:`friction_commit` update it).
     q : (n, 3) scratch, node tangents on return.
@@ -231,9 +233,9 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
         qy = q[i, 1]
         qz = q[i, 2]
         uc = _current(r[i, 2], cur_z, cur_u)
-        vrx = v[i, 0] - uc * ccos
-        vry = v[i, 1] - uc * csin
-        vrz = v[i, 2]
+        vrx = v[i, 0] - uc * ccos - wk[i, 0]
+        vry = v[i, 1] - uc * csin - wk[i, 1]
+        vrz = v[i, 2] - wk[i, 2]
         vq = vrx * qx + vry * qy + vrz * qz
         vnx = vrx - vq * qx
         vny = vry - vq * qy
@@ -244,6 +246,19 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, want_jac, cK,
         f[i, 0] -= kdn * vn * vnx + kdt * abs(vq) * vq * qx
         f[i, 1] -= kdn * vn * vny + kdt * abs(vq) * vq * qy
         f[i, 2] -= kdn * vn * vnz + kdt * abs(vq) * vq * qz
+        # fluid inertia of the wave acceleration (Froude-Krylov + added mass, Morison):
+        # (rho V l) a_w + m_an a_w,n + m_at a_w,t
+        awx = wk[i, 3]
+        awy = wk[i, 4]
+        awz = wk[i, 5]
+        if awx != 0.0 or awy != 0.0 or awz != 0.0:
+            aq = awx * qx + awy * qy + awz * qz
+            md = P[i, NP_MD]
+            man = P[i, NP_MAN]
+            mat = P[i, NP_MAT]
+            f[i, 0] += md * awx + man * (awx - aq * qx) + mat * aq * qx
+            f[i, 1] += md * awy + man * (awy - aq * qy) + mat * aq * qy
+            f[i, 2] += md * awz + man * (awz - aq * qz) + mat * aq * qz
         kc = P[i, NP_KC]
         vr = math.sqrt(vrx * vrx + vry * vry + vrz * vrz)
         if kc > 0.0:
@@ -534,7 +549,8 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
 
     Diagonal blocks ``Dg[i]``, upper blocks ``Of[i]`` (row i, column i+1) and lower blocks
     ``Of[i-1]`` (row i, column i-1): element-assembled matrices have the same coupling block on
-    both sides of the diagonal, symmetric or not.  ``W`` (n,3,3), ``Y`` (n,3), ``T1`` (3,3) scratch; solution into ``x`` (n,3).
+    both sides of the diagonal, symmetric or not.  ``W`` (n,3,3), ``Y`` (n,3), ``T1`` (3,3)
+    scratch; solution into ``x`` (n,3).
     Returns the first node whose pivot block is singular, or -1.
     """
     for i in range(i0, i1):
@@ -582,7 +598,7 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
 # statics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
-def static_newton(r, P, E, S, cur_z, cur_u, fric, fs, tol, maxit, v0, q, f, tens, Dg, Of,
+def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, tens, Dg, Of,
                   W, Y, T1, dx, rtry, info):
     """Damped Newton (Levenberg-Marquardt) for the static equilibrium of the free nodes
     (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3).
@@ -600,7 +616,7 @@ def static_newton(r, P, E, S, cur_z, cur_u, fric, fs, tol, maxit, v0, q, f, tens
     for i in range(n):
         lam_min = max(lam_min, abs(P[i, NP_W]))
     lam_min /= max(E[0, EL_L0], 1e-12)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
+    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
     res2 = _res2(f, n)
     lam = 0.0
     it = 0
@@ -618,7 +634,7 @@ def static_newton(r, P, E, S, cur_z, cur_u, fric, fs, tol, maxit, v0, q, f, tens
         if bad >= 0:
             if lam == 0.0:
                 lam = lam_min
-                line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0,
+                line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
                             Dg, Of)
                 continue
             info[2] = bad
@@ -626,7 +642,7 @@ def static_newton(r, P, E, S, cur_z, cur_u, fric, fs, tol, maxit, v0, q, f, tens
         for i in range(n):
             for a in range(3):
                 rtry[i, a] = r[i, a] + (dx[i, a] if 0 < i < n - 1 else 0.0)
-        line_forces(rtry, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0,
+        line_forces(rtry, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
                     Dg, Of)
         r2 = _res2(f, n)
         if r2 < res2 or _max_res(f, n) < tol:
@@ -639,14 +655,15 @@ def static_newton(r, P, E, S, cur_z, cur_u, fric, fs, tol, maxit, v0, q, f, tens
             lam = lam_min if lam == 0.0 else 10.0 * lam
             if lam > 1e30:
                 break
-            line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0,
+            line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
                         Dg, Of)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
+    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
     info[0] = it
     info[1] = _max_res(f, n)
     worst = 1
     for i in range(1, n - 1):
-        if abs(f[i, 0]) + abs(f[i, 1]) + abs(f[i, 2]) > abs(f[worst, 0]) + abs(f[worst, 1]) + abs(f[worst, 2]):
+        if (abs(f[i, 0]) + abs(f[i, 1]) + abs(f[i, 2])
+                > abs(f[worst, 0]) + abs(f[worst, 1]) + abs(f[worst, 2])):
             worst = i
     info[2] = worst
     return 0 if info[1] < tol else -1
@@ -677,7 +694,7 @@ def _max_res(f, n):
 # dynamics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
-def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, fs, coef, tol,
+def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, coef, tol,
                    maxit, r1, v1, a1, f1, q, tens, Mb, Dg, Of, Rr, W, Y, T1, da, info):
     """One generalised-alpha step (Chung & Hulbert 1993) of the free nodes with Newton
     iterations on the accelerations.
@@ -734,7 +751,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, f
                 r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
                                                                + beta * a1[i, k])
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-        line_forces(r1, v1, P, E, S, cur_z, cur_u, fric, fs, q, f1, tens, True, cK, cC, Dg, Of)
+        line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg, Of)
         res = 0.0
         for i in range(1, n - 1):
             for k in range(3):
@@ -790,7 +807,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, f
         for k in range(3):
             r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k] + beta * a1[i, k])
             v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-    line_forces(r1, v1, P, E, S, cur_z, cur_u, fric, fs, q, f1, tens, False, cK, cC, Dg, Of)
+    line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of)
     for i in range(n):
         for k in range(3):
             if not math.isfinite(f1[i, k]):
@@ -800,7 +817,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, fric, f
 
 
 @njit(cache=True)
-def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, Mb, Dg,
+def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, Mb, Dg,
                   Of, W):
     """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the
     fairlead node follows ``rf1, vf1``.  Updates ``r, v`` in place.  Returns -1, or the first
@@ -808,7 +825,7 @@ def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, fric, fs, q, f,
     n = r.shape[0]
     node_mass(r, P, q, Mb)
     friction_decide(r, v, fric, fs, S[S_ZC])
-    line_forces(r, v, P, E, S, cur_z, cur_u, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of)
+    line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of)
     for i in range(1, n - 1):
         if not _inv3(Mb[i], W[i]):
             return i

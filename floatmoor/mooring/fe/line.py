@@ -87,10 +87,17 @@ class FELine:
         above about 1e6): the displacement-based Newton iteration of the implicit step does not
         converge for EA = 3.84e14 N; 3.84e11 N already gives strains of 1e-6.  A
         ``FloatmoorWarning`` says when the limit is active.
+    waves : floatmoor.metocean.realisation.WaveRealisation, optional
+        Wave kinematics in dynamics (option): the particle velocity enters the drag (relative
+        velocity), the particle acceleration the fluid inertia ``(rho V l) a + m_a a`` of every
+        node (Morison).  Evaluated at the node positions of the accepted state at the end time
+        of each step (Wheeler stretching with ``wheeler``); the seabed boundary of the
+        realisation must match the line's.  Costs one kinematics evaluation per node, step and
+        wave component.
     """
 
     def __init__(self, spec: FELineSpec, *, dynamic_ea: bool = True,
-                 axial_stiffness_limit: float | None = None):
+                 axial_stiffness_limit: float | None = None, waves=None, wheeler: bool = True):
         self.spec = spec
         rho = spec.water_density
         g = spec.gravity
@@ -126,6 +133,7 @@ class FELine:
                     P[i, K.NP_KDT] += 0.5 * rho * lt.cdt * lt.diameter * h
                     P[i, K.NP_MAN] += rho * lt.can * lt.displaced_volume * h
                     P[i, K.NP_MAT] += rho * lt.cat * lt.displaced_volume * h
+                    P[i, K.NP_MD] += rho * lt.displaced_volume * h
                     if spec.seabed.model == "springs":
                         P[i, K.NP_KS] += spec.seabed.stiffness * h
                         P[i, K.NP_CS] += spec.seabed.damping * h
@@ -137,6 +145,7 @@ class FELine:
             P[pb.node, K.NP_W] += (pb.mass - rho * pb.volume) * g
             P[pb.node, K.NP_KC] += 0.5 * rho * pb.cda
             P[pb.node, K.NP_MAC] += rho * pb.ca * pb.volume
+            P[pb.node, K.NP_MD] += rho * pb.volume
         if spec.seabed.model == "mud_layer":
             for i in range(nn):
                 ks = max(P[i, K.NP_W], 0.0) / spec.seabed.mud_depth
@@ -147,7 +156,8 @@ class FELine:
         S[K.S_ZC] = -spec.seabed.depth + (spec.seabed.mud_depth
                                           if spec.seabed.model == "mud_layer" else 0.0)
         fr = spec.friction
-        S[K.S_VR] = fr.ramp_velocity if fr.ramp_velocity is not None else dmax / fr.zero_crossing_period
+        S[K.S_VR] = (fr.ramp_velocity if fr.ramp_velocity is not None
+                     else dmax / fr.zero_crossing_period)
         S[K.S_CD] = fr.ramp_displacement if fr.ramp_displacement is not None else 0.5 * dmax
         S[K.S_CURC] = math.cos(spec.current_heading)
         S[K.S_CURS] = math.sin(spec.current_heading)
@@ -174,6 +184,16 @@ class FELine:
         self.cur_z = np.ascontiguousarray(cz[order])
         self.cur_u = np.ascontiguousarray(cu[order])
         self.s_nodes = np.concatenate([[0.0], np.cumsum(E_st[:, K.EL_L0])])
+        self.waves = waves
+        self.wheeler = bool(wheeler)
+        self.wk = np.zeros((nn, 6))
+        self._wk0 = np.zeros((nn, 6))
+        if waves is not None:
+            self._kin_work = waves.kinematics_work()
+            self._kin_v = np.zeros((nn, 3))
+            self._kin_a = np.zeros((nn, 3))
+            self._kin_p = np.zeros(nn)
+            self._kin_eta = np.zeros(nn)
         # state and work arrays (allocated once)
         self.r = np.zeros((nn, 3))
         self.v = np.zeros((nn, 3))
@@ -332,8 +352,10 @@ class FELine:
         return st
 
     def _newton(self, E, code, tol, maxit, v0):
-        return K.static_newton(self.r, self.P, E, self.S, self.cur_z, self.cur_u, code, self.fs,
-                               tol, maxit, v0, self._q, self._f1, self._tens, self._Dg, self._Of,
+        # statics: no waves (zero kinematics)
+        return K.static_newton(self.r, self.P, E, self.S, self.cur_z, self.cur_u, self._wk0,
+                               code, self.fs, tol, maxit, v0, self._q, self._f1, self._tens,
+                               self._Dg, self._Of,
                                self._W, self._Y, self._T1, self._da, self._rtry, self._info)
 
     # ------------------------------------------------------------------------------------------
@@ -356,6 +378,7 @@ class FELine:
         self.fs[:, 4:6] = self.r[:, 0:2]
         self.time = float(t0)
         K.line_forces(self.r, self.v, self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u,
+                      self.wk,
                       self.fric_code, self.fs, self._q, self.fn, self._tens, False, 0.0, 0.0,
                       self._Dg, self._Of)
         self._trial = False
@@ -381,6 +404,12 @@ class FELine:
         rA, vA, fA = self._r1, self._v1, self._f1
         fnA = self._Rr  # scratch copy of fn
         fnA[:] = self.fn
+        if self.waves is not None:
+            self.waves.kinematics_into(t1, self.r, self._kin_work, self._kin_v, self._kin_a,
+                                       self._kin_p, self._kin_eta, wheeler=self.wheeler,
+                                       g=self.spec.gravity, rho=self.spec.water_density)
+            self.wk[:, 0:3] = self._kin_v
+            self.wk[:, 3:6] = self._kin_a
         rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
         rf0[:] = self.r[-1]
         vf0[:] = self.v[-1]
@@ -394,7 +423,8 @@ class FELine:
             tk = t0 + k * h
             if self.integrator == "explicit":
                 bad = K.explicit_step(tk, h, rA, vA, rf, vf, self.P, self.E_dynamic, self.S,
-                                      self.cur_z, self.cur_u, self.fric_code, self._fs1, self._q,
+                                      self.cur_z, self.cur_u, self.wk, self.fric_code,
+                                      self._fs1, self._q,
                                       fA, self._tens, self._Mb, self._Dg, self._Of, self._W)
                 if bad >= 0:
                     self._fail(tk, bad, "explicit step diverged (NaN)",
@@ -419,7 +449,8 @@ class FELine:
         # the kernel reads the trial state and writes the new one into rB, vB, aB: a failed
         # attempt leaves the trial state untouched
         it = K.gen_alpha_step(tk, h, rA, vA, aA, fnA, rf, vf, self.P, self.E_dynamic, self.S,
-                              self.cur_z, self.cur_u, self.fric_code, self._fs1, self.coef,
+                              self.cur_z, self.cur_u, self.wk, self.fric_code, self._fs1,
+                              self.coef,
                               self.tol, self.maxit, self._rB, self._vB, self._aB, fA, self._q,
                               self._tens, self._Mb, self._Dg, self._Of, self._Rk, self._W,
                               self._Yk, self._T1, self._da, self._info)

@@ -142,7 +142,7 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
         if tracked.size:
             pos_tr[k] = line.r[tracked]
 
-    K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u,
+    K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk,
                   line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
                   line._Dg, line._Of)
     record(0, t0, line._f1)

@@ -35,7 +35,8 @@ def test_block_tridiagonal_solver_matches_dense_solve():
 def _forces(line, r, v, fric=0):
     n = line.n_nodes
     f = np.zeros((n, 3))
-    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, fric, line.fs,
+    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, fric,
+                  line.fs,
                   np.zeros((n, 3)), f, np.zeros(n - 1), False, 0.0, 0.0,
                   np.zeros((n, 3, 3)), np.zeros((n - 1, 3, 3)))
     return f
@@ -45,7 +46,8 @@ def _jac(line, r, v, cK, cC, fric=0):
     n = line.n_nodes
     Dg = np.zeros((n, 3, 3))
     Of = np.zeros((n - 1, 3, 3))
-    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, fric, line.fs,
+    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, fric,
+                  line.fs,
                   np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n - 1), True, cK, cC, Dg, Of)
     return Dg, Of
 
