@@ -82,7 +82,7 @@ def test_extreme_cases_run_or_fail_clearly(tmp_path, kind):
         assert T[0].mean() < 0.8 * 946e3
 
 
-@pytest.mark.slow  # reason: 3 cases x 6 time steps x 1200 s (about a minute)
+@pytest.mark.slow  # reason: 3 cases x 6 time steps x 1200 s (15-60 s depending on load)
 @pytest.mark.parametrize("kind", ["storm", "taut", "slack"])
 def test_largest_stable_dt(tmp_path, kind):
     """The largest dt (of 0.1 ... 1.6 s) that runs and keeps the max tension within 5 % of the
