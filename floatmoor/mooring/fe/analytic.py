@@ -12,7 +12,22 @@ import math
 import numpy as np
 from scipy.optimize import fsolve
 
-__all__ = ["transverse_friction_static"]
+__all__ = ["transverse_friction_static", "SEED000_CASES"]
+
+SEED000_CASES = {
+    1: dict(length=711.3, ea=1.69e9, weight_air=3.587e3, weight_water=3.202e3, diameter=0.14,
+            span=683.26, height=82.5, depth=95.0),
+    2: dict(length=902.2, ea=3.84e8, weight_air=7.623e2, weight_water=6.981e2, diameter=0.09,
+            span=848.67, height=250.0, depth=320.0),
+    3: dict(segments=((762.0, 9.759e8, 2.673e3, 2.326e3, 0.1524),      # ground chain
+                      (1828.8, 1.212e9, 7.198e2, 5.703e2, 0.1905),     # wire
+                      (76.2, 9.759e8, 2.673e3, 2.326e3, 0.1524)),      # top chain
+            pretension=3.72e6, height=1100.0, depth=1000.0),
+}
+"""Seed 000 (Lu 2012) tables 1 and 2: the shallow (1), intermediate (2, the OC3 line) and deep
+(3, chain-wire-chain from the anchor; length m, EA N, weight in air and in water N/m, diameter m)
+lines.  ``span`` is the horizontal anchor-fairlead distance, ``height`` the fairlead height above
+the seabed (m).  Table 2 prints a 1100 m fairlead height in 1000 m water depth as given."""
 
 
 def transverse_friction_static(total_length, weight, span, height, offset, mu):

@@ -27,9 +27,10 @@ Friction models are registered by name in :data:`FRICTION_MODELS`:
     does not fall below its previous value unless the node reverses, and a reversal resets the
     reference position.  ``F_k = -mu_k N c_k``.
 
-Statics always use the displacement ramp of seed 000 sec. 2.2.1 (``C_d``, friction grows
-linearly with the displacement from the reference (start) position up to ``mu N``) when the
-friction model is not ``none``.
+Statics always use the displacement ramp of seed 000 sec. 2.2.1 (``C_d``: friction grows
+with the displacement from the reference (start) position up to ``mu N``) when the friction
+model is not ``none``; the ramp is the quadratic ``2x - x^2`` of ``x = d / C_d`` instead of
+seed 000's straight line, so that Newton does not stall on its kink.
 """
 
 from __future__ import annotations

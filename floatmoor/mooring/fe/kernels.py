@@ -381,13 +381,18 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
                         kx = 0.0   # stiffness-like tangent (N/m)
                         kv = 0.0   # damping-like tangent (N s/m)
                         if fric == FR_STATIC:
-                            c = dk / Cd
-                            if c > 1.0:
+                            # displacement ramp with the quadratic transition 2x - x^2 (C1 at
+                            # full friction, like the velocity ramp) so Newton does not stall
+                            # on the kink of a linear ramp
+                            xd = dk / Cd
+                            if xd >= 1.0:
                                 c = 1.0
-                            elif c < -1.0:
+                            elif xd <= -1.0:
                                 c = -1.0
                             else:
-                                kx = mu * N / Cd
+                                ax_ = abs(xd)
+                                c = (2.0 - ax_) * xd
+                                kx = mu * N * (2.0 - 2.0 * ax_) / Cd
                         else:
                             c, kx, kv = _dispvel_coef(vk, dk, fs[i, 6 + k], fs[i, k],
                                                       fs[i, 2 + k], S[S_VR], Cd, mu * N)

@@ -267,12 +267,14 @@ class FELine:
 
     # ------------------------------------------------------------------------------------------
     def solve_static(self, fairlead=None, *, friction: bool = True, reference=None,
-                     tol: float | None = None, maxit: int = 200, restart: bool = False
+                     tol: float | None = None, maxit: int = 3000, restart: bool = False
                      ) -> StaticSolution:
         """Static equilibrium (damped Newton) for the fairlead at ``fairlead`` (m).
 
         Starts from the current positions (the catenary shape after construction, or the last
-        solution: use it for continuation), or from the catenary when ``restart``.  When
+        solution: use it for continuation), or from the catenary when ``restart``.  With
+        friction a sliding front moves along the grounded part by about one node per iteration,
+        hence the generous ``maxit`` (an iteration costs ~10-20 us for 100 elements).  When
         Newton fails the axial stiffness is ramped up (continuation) and the fairlead move is
         split in halves.  Seabed
         friction in statics is the displacement ramp (seed 000 sec. 2.2.1) measured from

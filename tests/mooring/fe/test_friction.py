@@ -77,3 +77,37 @@ def test_lateral_friction_dissipates_energy_and_holds_the_grounded_part(model):
     assert res[model][0] > res["none"][0] > 0.0
     assert res[model][1] < 0.5 * res["none"][1]
     assert res[model][2].max() == pytest.approx(res["none"][2].max(), rel=0.01)
+
+
+def test_seed000_case1_shallow_line_static_transverse_friction():
+    """Seed 000 case 1 (95 m water, more than 500 m on the seabed), fairlead moved sideways
+    8, 16, 24 m: total tension within 1 %, sway component within 20 % of eq. 10-19.  EA raised
+    to 100 x the table value for the inextensible analytic solution.  Measured: tension
+    -0.03 / +0.07 / +0.01 %, sway -0.2 / -0.1 / -0.0 %."""
+    import math
+
+    from floatmoor.mooring.fe import FELineSpec, FESegment, Seabed
+    from floatmoor.mooring.fe.analytic import SEED000_CASES
+    from floatmoor.mooring.line_types import LineType
+
+    c = SEED000_CASES[1]
+    g, rho = 9.80665, 1025.0
+    mass = c["weight_air"] / g
+    vol = (c["weight_air"] - c["weight_water"]) / (rho * g)
+    lt = LineType(name="case1", material="chain", diameter=c["diameter"], mass_per_length=mass,
+                  displaced_volume=vol, ea=c["ea"] * 1e2, ea_dynamic=c["ea"] * 1e2, mbs=1e7)
+    zf = -c["depth"] + c["height"]
+    spec = FELineSpec(name="seed000_case1", anchor=(0.0, 0.0, -c["depth"]),
+                      fairlead=(c["span"], 0.0, zf),
+                      segments=(FESegment(line_type=lt, length=c["length"], n_elements=100),),
+                      seabed=Seabed(depth=c["depth"]),
+                      friction=Friction(model="displacement_velocity_ramp", mu_lateral=MU))
+    line = FELine(spec)
+    ref = line.solve_static(friction=False).positions
+    for Y in (8.0, 16.0, 24.0):
+        s = line.solve_static(fairlead=(c["span"], Y, zf), reference=ref)
+        a = transverse_friction_static(c["length"], lt.submerged_weight(), c["span"], c["height"],
+                                       Y, MU)
+        assert s.fairlead_tension == pytest.approx(a["tension"], rel=1e-2)
+        assert -s.fairlead_force[1] == pytest.approx(a["sway"], rel=0.2)
+    assert math.isfinite(a["T"])
