@@ -154,3 +154,23 @@ def test_forces_section_of_the_scene_is_used(tmp_path):
     p2 = _scene(tmp_path, extra="forces: {exclude: [windd]}\n")
     with pytest.raises(SceneError, match="forces.exclude"):
         simulate(p2, seed=1, duration=30.0)
+
+
+def test_run_command_failed_seed_exit_status(scene_file, tmp_path, capsys):
+    """A seed that fails: the others are written, the exit status is 3 and the failed seed is
+    named on stderr."""
+    from floatmoor.commands import run as run_cmd
+    from floatmoor.runner import seed_file
+
+    out = tmp_path / "o"
+    out.mkdir()
+    block = seed_file(out, "oc3-waves", 2)
+    block.with_name(block.name + ".tmp").mkdir()
+    p = argparse.ArgumentParser()
+    run_cmd.add_arguments(p)
+    args = p.parse_args([str(scene_file), "--seeds", "1-2", "--out", str(out), "--workers", "1"])
+    assert run_cmd.run(args) == 3
+    cap = capsys.readouterr()
+    assert "1 seed(s) failed: 2" in cap.err
+    assert seed_file(out, "oc3-waves", 1).is_file()
+    assert "statistics over 1 seed" in cap.out
