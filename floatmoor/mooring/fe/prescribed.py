@@ -21,7 +21,7 @@ from . import kernels as K
 from .line import FELine
 
 __all__ = ["HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
-           "quasi_static_tension", "daf"]
+           "quasi_static_tension", "daf", "decoupled_analysis"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -231,3 +231,73 @@ def daf(t_fe, t_qs) -> float:
     if not den > 0:
         raise ValueError("the quasi-static tension does not vary: DAF undefined")
     return float((t_fe.max() - t_fe.mean()) / den)
+
+
+def decoupled_analysis(system, t, poses, *, dt: float | None = None, discard: float = 0.0,
+                       lines=None, element_length: float = 20.0, line_kw=None,
+                       **spec_kw) -> xr.Dataset:
+    """Decoupled FE analysis of mooring lines driven by the body motion of a previous floater
+    run (seed 002 chapter 8: SIMO motions into RIFLEX), with the DAF per line.
+
+    Parameters
+    ----------
+    system : floatmoor.mooring.MooringSystem
+        The quasi-static mooring (its lines become FE lines, :func:`specs_from_system`).
+    t : (nt,) s, increasing
+    poses : (nt, 6) body poses, m and rad
+    dt : float, optional
+        FE time step (default the spacing of ``t``).
+    discard : float
+        Start-up time left out of the statistics and the DAF, s (the FE lines start from static
+        equilibrium at ``poses[0]`` with zero velocity).
+    lines : sequence of str, optional
+        Line names (default all active lines).
+    element_length : float
+        Target element length, m.
+    line_kw : dict, optional
+        Passed to :class:`FELine`.
+    **spec_kw
+        Passed to :func:`spec_from_linedef` (``line_types``, ``friction``, ``seabed``,
+        ``internal_damping``, current).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``fe_tension`` and ``qs_tension`` (line, time) in N and ``daf`` (line), with units.
+    """
+    from .from_system import spec_from_linedef
+
+    t = np.asarray(t, float)
+    poses = np.asarray(poses, float)
+    if dt is None:
+        dt = float(t[1] - t[0])
+    names = [n for n, a in zip(system.names, system.active) if a] if lines is None else list(lines)
+    fe_out, qs_out, dafs = [], [], []
+    times = None
+    for name in names:
+        ld = system.lines[system.names.index(name)]
+        spec = spec_from_linedef(ld, water_depth=system.water_depth, pose=poses[0],
+                                 element_length=element_length,
+                                 water_density=system.water_density, gravity=system.gravity,
+                                 **spec_kw)
+        line = FELine(spec, **(line_kw or {}))
+        line.solve_static()
+        line.start(t0=0.0)
+        track = fairlead_track_from_body(t - t[0], poses, ld.fairlead)
+        ds = run_prescribed(line, track, t[-1] - t[0], dt)
+        times = ds.time.values + t[0]
+        T_fe = ds.fairlead_tension.values
+        T_qs = quasi_static_tension(line, track, ds.time.values)
+        sel = ds.time.values >= discard
+        fe_out.append(T_fe)
+        qs_out.append(T_qs)
+        dafs.append(daf(T_fe[sel], T_qs[sel]))
+    return xr.Dataset(
+        {"fe_tension": (("line", "time"), np.array(fe_out),
+                        {"units": "N", "long_name": "fairlead tension, FE line"}),
+         "qs_tension": (("line", "time"), np.array(qs_out),
+                        {"units": "N", "long_name": "fairlead tension, quasi-static catenary"}),
+         "daf": ("line", np.array(dafs), {"units": "1", "long_name":
+                                          "(T_max - T_mean)_FE / (T_max - T_mean)_QS"})},
+        coords={"line": names, "time": ("time", times, {"units": "s"})},
+        attrs={"dt": dt, "discard": discard, "element_length": element_length})
