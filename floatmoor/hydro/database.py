@@ -362,6 +362,10 @@ def interpolate_heading(ds: xr.Dataset, variable: str, heading: float, *,
     wrap-around, equals the step) is treated as periodic; otherwise a heading outside
     [min, max] is a DatabaseError naming the database and the quantity.
 
+    A heading equal to a database heading (within 1e-9 rad) returns the stored values
+    unchanged, NaN only where that heading holds NaN; between headings NaN propagates from
+    either neighbour (the interpolation needs both).
+
     Returns the array with the heading dimension removed (same order of the other dims).
     """
     where = ds.attrs.get("source", "<database>")
@@ -400,6 +404,11 @@ def interpolate_heading(ds: xr.Dataset, variable: str, heading: float, *,
                                 f"{np.degrees(heading):.1f} deg",
                                 "extend the diffraction run or mirror a symmetric hull")
         b, v = beta, vals
+    # an exact database heading (within 1e-9 rad) is returned as stored: the linear weights
+    # would otherwise give 0 x NaN = NaN where only the neighbouring heading holds NaN
+    hit = np.flatnonzero(np.abs(b - x) < 1e-9)
+    if hit.size:
+        return np.array(v[hit[0]], copy=True)
     k = int(np.clip(np.searchsorted(b, x) - 1, 0, b.size - 2))
     f = (x - b[k]) / (b[k + 1] - b[k])
     return (1 - f) * v[k] + f * v[k + 1]

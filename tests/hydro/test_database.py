@@ -127,3 +127,28 @@ def test_interpolate_heading_inside_periodic_and_outside():
     np.testing.assert_allclose(wrap, 0.5 * (Xf[:, 3] + Xf[:, 0]))
     np.testing.assert_allclose(interpolate_heading(full, "excitation_force", np.radians(-90)),
                                Xf[:, 3])
+
+
+def test_interpolate_heading_exact_hit_ignores_nan_neighbour():
+    # regression: OC4 mean drift known at heading 0 only (marin_semi.12d), NaN at the other
+    # headings; the linear weights gave 0 x NaN = NaN at exactly 0 deg.
+    from floatmoor.hydro.database import interpolate_heading
+    ds = _toy(nb=3)  # headings 0, 45, 90 deg
+    ds.mean_drift_force.values[:, 1:] = np.nan
+    D = ds.mean_drift_force.values
+    at0 = interpolate_heading(ds, "mean_drift_force", 0.0)
+    np.testing.assert_array_equal(at0, D[:, 0])
+    assert np.all(np.isfinite(at0))
+    # the same direction written as 360 deg, and a periodic database hit at its wrap point
+    np.testing.assert_array_equal(interpolate_heading(ds, "mean_drift_force", 2 * np.pi), D[:, 0])
+    # NaN where the interpolation really needs the NaN neighbour
+    assert np.all(np.isnan(interpolate_heading(ds, "mean_drift_force", np.radians(10))))
+    # exact hits of finite headings are unchanged in the middle of the range
+    np.testing.assert_array_equal(interpolate_heading(ds, "excitation_force", np.radians(45)),
+                                  ds.excitation_force.values[:, 1])
+    full = _toy(nb=4).assign_coords(wave_direction=np.radians([0, 90, 180, 270]))
+    full.mean_drift_force.values[:, 1:] = np.nan
+    np.testing.assert_array_equal(interpolate_heading(full, "mean_drift_force", 0.0),
+                                  full.mean_drift_force.values[:, 0])
+    np.testing.assert_array_equal(interpolate_heading(full, "mean_drift_force", -2 * np.pi),
+                                  full.mean_drift_force.values[:, 0])
