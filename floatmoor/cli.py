@@ -92,7 +92,8 @@ def _check_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", metavar="SCENE.yaml", help="the scene file")
     p.add_argument("--quick", action="store_true",
                    help="validate the scene and its environment only; do not read the vessel "
-                        "file, its hydrodynamic database and the mooring")
+                        "file, its hydrodynamic database and the mooring, and print no "
+                        "hydrodynamic consistency report")
 
 
 def _check_run(args: argparse.Namespace) -> int:
@@ -125,6 +126,7 @@ def _read_references(scene) -> list[str]:
             if v.fairleads:
                 text += f", {len(v.fairleads)} fairleads"
             lines.append(text)
+            lines.append(_hydro_report(v))
     if scene.mooring is not None:
         try:
             from .io.mooring_section import parse_mooring
@@ -145,6 +147,20 @@ def _read_references(scene) -> list[str]:
                 text += "; failed: " + ", ".join(failed)
             lines.append(text)
     return lines
+
+
+def _hydro_report(vessel) -> str:
+    """The retardation-function consistency report of the vessel's hydrodynamic database
+    (:func:`floatmoor.hydro.consistency_report`, issue 4).  Its warnings (undecayed damping,
+    irregular-frequency spikes) are part of the printed table, so they are not repeated on
+    stderr.  Takes about 0.1 s for the shipped vessels; nothing is cached."""
+    from .hydro import consistency_report, format_consistency
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FloatmoorWarning)
+        report = consistency_report(vessel.database)
+    report.attrs.setdefault("source", str(vessel.database_path))
+    return format_consistency(report)
 
 
 # -- environment ----------------------------------------------------------------------------------
