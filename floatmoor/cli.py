@@ -202,6 +202,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("run", "floatmoor.commands.run"),
     ("fd", "floatmoor.commands.fd"),
     ("convergence", "floatmoor.commands.convergence"),
+    ("report", "floatmoor.commands.report"),
 ]
 """The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
 ``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""

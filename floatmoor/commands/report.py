@@ -1,0 +1,306 @@
+"""``floatmoor report RESULTS_DIR``: DNV-OS-E301 ULS/ALS design report of ``floatmoor run`` seeds.
+
+Reads the per-seed netCDF files that ``floatmoor run`` wrote in RESULTS_DIR (seeds that failed,
+``*.error.txt``, are left out and listed), removes the transient recorded in the files
+(``transient`` attribute), fits a Gumbel distribution to the seed maxima of every line, takes
+its 90 % value as the characteristic tension (seed 002 section 5.4.4) and checks the design
+equation S_C >= T_C-mean gamma_mean + T_C-dyn gamma_dyn of DNV-OS-E301 (October 2008) with the
+partial factors of the consequence class and analysis type.  The MBS per line comes from the
+results (``mbs`` variable), else from the scene's mooring.
+
+ALS: ``--als-dir DIR`` is a second folder of ``floatmoor run`` results of the same mooring with
+one line failed (a scene whose ``mooring`` lists ``failed_lines``, or whose ``forces`` has
+``line_failure``: the transient after the failure is then part of the statistics when the
+failure time is after ``analysis.transient``).  The failed line is found in the results (its
+tension is zero at the end of every seed) or named with ``--failed-line NAME``.
+
+``--fd FILE`` adds the frequency-domain result of ``floatmoor fd SCENE --out FILE`` beside the
+time-domain values (per-line maximum tension and safety factor, offsets).
+
+Writes report.html (self-contained: no network needed), report.md (+ PNG plots), summary.csv
+and summary.nc into ``--out`` (default RESULTS_DIR/report), and prints a short summary.
+
+Exit status (for scripts):
+  0  every line passes the design equation in every limit state checked
+  1  at least one line fails the design equation (the report is still written)
+  2  bad input: missing folder, no result files, results of different scenes or durations,
+     unknown line, unreadable file (message on stderr, no traceback)
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from pathlib import Path
+
+HELP = "DNV-OS-E301 ULS/ALS design report of floatmoor run results (HTML, Markdown, CSV, netCDF)"
+
+STANDARDS = ("dnv-os-e301",)
+EXIT_PASS = 0
+EXIT_FAIL = 1
+"""Exit status when a line fails the design equation."""
+
+_VARIABLES = ("motion", "line_tension", "mbs")
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """Arguments of ``floatmoor report``."""
+    p.add_argument("results_dir", metavar="RESULTS_DIR",
+                   help="folder of per-seed netCDF files written by floatmoor run")
+    p.add_argument("--standard", choices=STANDARDS, default="dnv-os-e301",
+                   help="design standard (default dnv-os-e301: DNV-OS-E301, October 2008)")
+    p.add_argument("--consequence-class", type=int, choices=(1, 2), default=2,
+                   help="consequence class 1 or 2 (default 2)")
+    p.add_argument("--analysis", choices=("dynamic", "quasi-static"), default="dynamic",
+                   help="analysis of the WF line tension, selects the partial factors "
+                        "(default dynamic)")
+    p.add_argument("--als-dir", metavar="DIR", default=None,
+                   help="folder of floatmoor run results with a failed line (ALS check)")
+    p.add_argument("--failed-line", metavar="NAME", action="append", default=None,
+                   help="name of the failed line in the --als-dir results (repeat for several; "
+                        "default: found from the results)")
+    p.add_argument("--fd", metavar="FILE.nc", default=None,
+                   help="frequency-domain result of the same scene (floatmoor fd --out FILE.nc) "
+                        "to show beside the time-domain values")
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="output folder (default RESULTS_DIR/report)")
+
+
+def _scene_error(file, key, expected, found, hint=None):
+    from ..core.errors import SceneError
+    return SceneError(file, key, expected, found, hint) if hint else \
+        SceneError(file, key, expected, found)
+
+
+def _seed_of(path: Path) -> str:
+    m = re.search(r"_seed(\d+)", path.name)
+    return str(int(m.group(1))) if m else path.name
+
+
+def read_results(folder, key: str = "RESULTS_DIR"):
+    """Read the per-seed results of ``floatmoor run`` in ``folder``.
+
+    Parameters
+    ----------
+    folder : path
+        Folder holding ``<scene>_seedNNNN.nc`` files (and ``*.error.txt`` of failed seeds).
+    key : str
+        Name of the input in error messages.
+
+    Returns
+    -------
+    (datasets, failed) : list of xarray.Dataset (``motion``, ``line_tension``, ``mbs`` loaded
+        in memory, attributes kept; sorted by seed) and a list of "seed N: first error line"
+        strings of the failed seeds.
+
+    Raises
+    ------
+    SceneError
+        No such folder, no result file, a file that is not a floatmoor run result, results of
+        different scenes, durations, time steps or line sets, or a seed twice.
+    """
+    import xarray as xr
+
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise _scene_error(folder, key, "a folder of floatmoor run results",
+                           "no such folder" if not folder.exists() else "not a folder")
+    files = sorted(folder.glob("*.nc"))
+    failed = []
+    for err in sorted(folder.glob("*.error.txt")):
+        if err.with_suffix("").with_suffix(".nc").exists():
+            continue                       # an old error of a seed that later succeeded
+        first = err.read_text(errors="replace").strip().splitlines()
+        failed.append(f"seed {_seed_of(err)}: {first[0] if first else 'failed'}")
+    if not files:
+        extra = f" ({len(failed)} failed seed(s): see *.error.txt)" if failed else ""
+        raise _scene_error(folder, key, "per-seed result files *.nc written by floatmoor run",
+                           "none" + extra)
+    datasets = []
+    for f in files:
+        try:
+            with xr.open_dataset(f) as ds:
+                if "line_tension" not in ds or "time" not in ds.dims:
+                    raise _scene_error(f, key, "a floatmoor run result (line_tension(time, "
+                                       "line) in N)", "variables " + ", ".join(map(str, ds.data_vars)))
+                ds = ds[[v for v in _VARIABLES if v in ds]].load()
+        except (OSError, ValueError) as exc:
+            raise _scene_error(f, key, "a readable netCDF file", f"{type(exc).__name__}: {exc}")
+        ds.attrs["source_file"] = str(f)
+        datasets.append(ds)
+    _check_consistent(datasets, key)
+    datasets.sort(key=lambda d: int(d.attrs.get("seed", 0)))
+    return datasets, failed
+
+
+def _check_consistent(datasets, key):
+    """Refuse a folder mixing scenes, durations, time steps or line sets (or a seed twice)."""
+    import numpy as np
+
+    def describe(attr, fn=str):
+        groups = {}
+        for ds in datasets:
+            v = ds.attrs.get(attr)
+            groups.setdefault(None if v is None else fn(v), []).append(
+                Path(ds.attrs["source_file"]).name)
+        return groups
+
+    for attr, what, fn in (("scene_name", "scene", str), ("scene", "scene file text", str),
+                           ("duration", "duration (s)", lambda v: f"{float(v):g}"),
+                           ("dt", "time step (s)", lambda v: f"{float(v):g}"),
+                           ("transient", "transient (s)", lambda v: f"{float(v):g}")):
+        groups = describe(attr, fn)
+        if len(groups) > 1:
+            if attr == "scene":
+                found = "; ".join(f"{len(v)} file(s) of one version, e.g. {v[0]}"
+                                  for v in groups.values())
+            else:
+                found = "; ".join(f"{k!s}: {len(v)} file(s), e.g. {v[0]}"
+                                  for k, v in groups.items())
+            raise _scene_error(Path(datasets[0].attrs["source_file"]).parent, key,
+                               f"results of one scene run alike (one {what})", found,
+                               "put each scene's (or each run's) results in its own folder")
+    lines0 = [str(v) for v in datasets[0]["line"].values]
+    for ds in datasets[1:]:
+        if [str(v) for v in ds["line"].values] != lines0:
+            raise _scene_error(ds.attrs["source_file"], key, f"the lines {lines0}",
+                               [str(v) for v in ds["line"].values])
+    seeds = [ds.attrs.get("seed") for ds in datasets]
+    if None in seeds:
+        bad = datasets[seeds.index(None)].attrs["source_file"]
+        raise _scene_error(bad, key, "a result with a 'seed' attribute (floatmoor run)", "none")
+    dup = sorted({int(s) for s in seeds if seeds.count(s) > 1})
+    if dup:
+        raise _scene_error(Path(datasets[0].attrs["source_file"]).parent, key,
+                           "one file per seed", f"seed(s) {dup} more than once")
+    if "mbs" in datasets[0]:
+        m0 = datasets[0]["mbs"].values
+        for ds in datasets[1:]:
+            if "mbs" in ds and not np.allclose(ds["mbs"].values, m0, rtol=1e-12, atol=0.0):
+                raise _scene_error(ds.attrs["source_file"], f"{key}.mbs",
+                                   f"the MBS of the other seeds {list(m0)} N", list(ds["mbs"].values))
+
+
+def mbs_of(datasets):
+    """MBS per line (N): the results' ``mbs`` variable, else the mooring of the scene file named
+    in the results' ``scene_file`` attribute."""
+    import numpy as np
+
+    ds = datasets[0]
+    if "mbs" in ds:
+        return np.asarray(ds["mbs"].values, float), "results (mbs variable)"
+    scene_file = ds.attrs.get("scene_file")
+    if not scene_file or not Path(scene_file).is_file():
+        raise _scene_error(ds.attrs.get("source_file"), "mbs",
+                           "an 'mbs' variable in the results, or the scene file they name",
+                           f"no mbs variable; scene file {scene_file!r} not found")
+    from ..io.mooring_section import parse_mooring
+    from ..io.scene import load_scene
+
+    scene = load_scene(scene_file)
+    if scene.mooring is None:
+        raise _scene_error(scene_file, "mooring", "a mooring section (for the MBS)", "none")
+    site = scene.site
+    ms = parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
+                       water_density=site.water_density, gravity=site.gravity)
+    names = [str(n) for n in ms.names]
+    lines = [str(v) for v in ds["line"].values]
+    if names != lines:
+        raise _scene_error(scene_file, "mooring", f"the lines of the results {lines}", names)
+    mbs = np.asarray(ms.mbs, float)
+    return mbs, f"scene mooring ({scene_file})"
+
+
+def _read_fd(path, td_scene):
+    import xarray as xr
+
+    from ..post.report import scene_name
+
+    path = Path(path)
+    if not path.is_file():
+        raise _scene_error(path, "--fd", "a frequency-domain result file (floatmoor fd --out)",
+                           "no such file")
+    try:
+        with xr.open_dataset(path) as ds:
+            fd = ds.load()
+    except (OSError, ValueError) as exc:
+        raise _scene_error(path, "--fd", "a readable netCDF file", f"{type(exc).__name__}: {exc}")
+    if "tension_max_total" not in fd:
+        raise _scene_error(path, "--fd", "a floatmoor fd result (tension_max_total per line)",
+                           "variables " + ", ".join(list(map(str, fd.data_vars))[:8]))
+    fd_scene = fd.attrs.get("scene_name")
+    if fd_scene and fd_scene != td_scene:
+        raise _scene_error(path, "--fd", f"a frequency-domain result of scene {td_scene!r}",
+                           f"scene {fd_scene!r}")
+    return fd
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``floatmoor report``; returns the exit status (0 pass, 1 a line fails)."""
+    from ..cli import UsageError
+    from ..post import dnv_os_e301 as dnv
+    from ..post.report import build_report, scene_name
+
+    if args.failed_line and not args.als_dir:
+        raise UsageError("--failed-line names the failed line of the ALS results: give the "
+                         "folder of those results with --als-dir (run them with floatmoor run "
+                         "on a scene whose mooring lists failed_lines)")
+    results, failed = read_results(args.results_dir, "RESULTS_DIR")
+    als = als_failed = None
+    if args.als_dir:
+        als, als_failed = read_results(args.als_dir, "--als-dir")
+        lines = [str(v) for v in results[0]["line"].values]
+        als_lines = [str(v) for v in als[0]["line"].values]
+        if als_lines != lines:
+            raise _scene_error(args.als_dir, "--als-dir",
+                               f"results of the same mooring (lines {lines})", als_lines)
+        if args.failed_line:
+            unknown = [n for n in args.failed_line if n not in lines]
+            if unknown:
+                raise UsageError(f"--failed-line {', '.join(unknown)}: unknown line; lines: "
+                                 + ", ".join(lines))
+    mbs, mbs_source = mbs_of(results)
+    scene = scene_name(results[0])
+    fd = _read_fd(args.fd, scene) if args.fd else None
+    out = Path(args.out) if args.out else Path(args.results_dir) / "report"
+    extra = [("results folder", str(Path(args.results_dir).resolve())), ("MBS from", mbs_source)]
+    if als is not None:
+        extra.append(("ALS results folder", f"{Path(args.als_dir).resolve()} (scene "
+                      f"{scene_name(als[0])})"))
+        if als_failed:
+            extra.append(("ALS failed seeds (left out)", "; ".join(als_failed)))
+    if fd is not None:
+        extra.append(("frequency-domain file", str(Path(args.fd).resolve())))
+    files = build_report(results, mbs, out, als_results=als, failed_lines=args.failed_line,
+                         consequence_class=args.consequence_class, analysis=args.analysis,
+                         fd=fd, failed_seeds=failed, extra_meta=extra)
+    checks = files.checks
+    stats = files.statistics
+    print(f"scene: {scene}  ({len(results)} seeds from {args.results_dir}"
+          + (f"; {len(failed)} failed seed(s) left out: "
+             + ", ".join(f.split(":")[0] for f in failed) if failed else "") + ")")
+    print(f"{dnv.EDITION}, consequence class {args.consequence_class}, {args.analysis} "
+          f"analysis; statistics window {stats.attrs['window_start_s']:g} - "
+          f"{stats.attrs['window_end_s']:g} s")
+    for ls in checks["limit_state"].values:
+        c = checks.sel(limit_state=ls)
+        gov = str(c["governing_line"].item())
+        j = [str(v) for v in c["line"].values].index(gov)
+        n_fail = int((c["checked"].values & ~c["passed"].values).sum())
+        text = (f"{ls}: governing line {gov}, T_C {c['t_c'].values[j] / 1e3:.0f} kN "
+                f"(T_C-mean {c['t_c_mean'].values[j] / 1e3:.0f}), design tension "
+                f"{c['design_tension'].values[j] / 1e3:.0f} kN, S_C {c['s_c'].values[j] / 1e3:.0f} kN, "
+                f"utilisation {c['utilisation'].values[j]:.3f} "
+                f"{'PASS' if c['passed'].values[j] else 'FAIL'}")
+        if ls == "ALS":
+            text += f" (failed line {checks.attrs.get('failed_lines', '?')})"
+        if n_fail:
+            text += f"; {n_fail} line(s) fail"
+        print(text)
+    passed = bool(checks.attrs["all_passed"])
+    print("verdict: " + ("all lines pass" if passed else
+                         "at least one line FAILS the design equation (exit status 1)"))
+    print(f"report: {files.html}  (also report.md, summary.csv, summary.nc)")
+    sys.stdout.flush()
+    return EXIT_PASS if passed else EXIT_FAIL
