@@ -78,6 +78,9 @@ class FESegment:
         Axial internal damping ``B`` (N s): damping force ``B d(eps)/dt`` (MoorDyn's BA); a
         negative value ``-zeta`` gives ``zeta`` times the critical damping of one element's axial
         mode, ``B = zeta 2 sqrt(EA m) l`` (see :meth:`damping_coefficient`).
+    bending_stiffness : float
+        EI, N m^2 (optional; 0 for chain, wire and fibre mooring lines): discrete elastica
+        energy ``EI / L_mean (1 - cos theta)`` at every interior node, pinned ends.
     """
 
     line_type: LineType
@@ -85,9 +88,11 @@ class FESegment:
     n_elements: int
     tension_poly: tuple = ()
     internal_damping: float = 0.0
+    bending_stiffness: float = 0.0
 
     def __post_init__(self):
         _pos("segment.length", self.length)
+        _pos("segment.bending_stiffness", self.bending_stiffness, allow_zero=True)
         if int(self.n_elements) != self.n_elements or self.n_elements < 1:
             raise SceneError(None, "segment.n_elements", "an integer >= 1", self.n_elements)
         if len(self.tension_poly) > 3:

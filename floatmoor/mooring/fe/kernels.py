@@ -25,14 +25,14 @@ from numba import njit
 
 # node parameter columns
 NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL, \
-    NP_MD = range(13)
-N_NP = 13
+    NP_MD, NP_CB = range(14)
+N_NP = 14
 # element parameter columns
 EL_L0, EL_C1, EL_C2, EL_C3, EL_B = range(5)
 N_EL = 5
 # scalar parameters
-S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC = range(7)
-N_S = 7
+S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC, S_BEND = range(8)
+N_S = 8
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
 FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC = 0, 1, 2, 3
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
@@ -134,7 +134,8 @@ def _friction_dirs(qx, qy):
 
 
 @njit(cache=True)
-def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of):
+def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
+                BX):
     """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
 
     Parameters
@@ -150,7 +151,10 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
     f : (n, 3) output, total force on every node (N).
     tens : (n-1,) output, element tensions (N).
     want_jac : bool; cK, cC : weights; Dg : (n, 3, 3), Of : (n-1, 3, 3) outputs (overwritten):
-        diagonal and upper off-diagonal blocks of ``cK K + cC C``.
+        diagonal and upper off-diagonal blocks of ``cK K + cC C`` (element blocks: the lower
+        block equals the upper one).  BX : (7, n, 3, 3): with bending (``S[S_BEND] > 0``)
+        ``BX[0]`` lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]``
+        the upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
     """
     n = r.shape[0]
     node_tangents(r, q)
@@ -224,6 +228,9 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
                     Dg[j, a, b] += val
                     Dg[j + 1, a, b] += val
                     Of[j, a, b] = -val
+    # ---- bending (pinned ends): discrete elastica energy c_i (1 - e_a . e_b) at interior nodes
+    if S[S_BEND] > 0.0:
+        _bending(r, P, f, want_jac, cK, Dg, Of, BX)
     # ---- nodes: drag, clump drag, seabed, friction
     zc = S[S_ZC]
     ccos = S[S_CURC]
@@ -521,6 +528,159 @@ def friction_commit(r, v, q, fric, fs, P, S, zc):
             fs[i, 5] = r[i, 1]
 
 
+@njit(cache=True)
+def _hab(ea, eb, a, b):
+    """(P_a P_b)[a, b] with P = I - e e^T."""
+    s = 0.0
+    for m in range(3):
+        s += (((1.0 if a == m else 0.0) - ea[a] * ea[m])
+              * ((1.0 if m == b else 0.0) - eb[m] * eb[b]))
+    return s
+
+
+@njit(cache=True)
+def _bending(r, P, f, want_jac, cK, Dg, Of, BX):
+    """Bending at the interior nodes from the discrete elastica energy
+    ``U_i = c_i (1 - e_a . e_b)``, ``c_i = EI / L_mean`` (``U ~ EI kappa^2 L / 2`` for small
+    angles), ``e_a, e_b`` the directions of the elements before and after node i; the ends are
+    pinned (seed 001 eq. 9-47).  Forces ``-dU/dx`` and the exact Hessian (block bandwidth 2:
+    blocks (i-1, i+1) go to ``BX[1]`` / ``BX[2]``).  No allocation."""
+    n = r.shape[0]
+    if want_jac:
+        for k in range(3):
+            for j in range(n):
+                for a in range(3):
+                    for b in range(3):
+                        BX[k, j, a, b] = 0.0
+    for i in range(1, n - 1):
+        c = P[i, NP_CB]
+        if c <= 0.0:
+            continue
+        ax = r[i, 0] - r[i - 1, 0]
+        ay = r[i, 1] - r[i - 1, 1]
+        az = r[i, 2] - r[i - 1, 2]
+        bx = r[i + 1, 0] - r[i, 0]
+        by = r[i + 1, 1] - r[i, 1]
+        bz = r[i + 1, 2] - r[i, 2]
+        la = math.sqrt(ax * ax + ay * ay + az * az)
+        lb = math.sqrt(bx * bx + by * by + bz * bz)
+        ea = (ax / la, ay / la, az / la)
+        eb = (bx / lb, by / lb, bz / lb)
+        p = ea[0] * eb[0] + ea[1] * eb[1] + ea[2] * eb[2]
+        # dp/d(delta_a) = P_a e_b / l_a, dp/d(delta_b) = P_b e_a / l_b
+        ga = ((eb[0] - p * ea[0]) / la, (eb[1] - p * ea[1]) / la, (eb[2] - p * ea[2]) / la)
+        gb = ((ea[0] - p * eb[0]) / lb, (ea[1] - p * eb[1]) / lb, (ea[2] - p * eb[2]) / lb)
+        for k in range(3):
+            f[i - 1, k] -= c * ga[k]
+            f[i, k] += c * (ga[k] - gb[k])
+            f[i + 1, k] += c * gb[k]
+        if not want_jac:
+            continue
+        # Hessian of p: H_aa = -(p P_a + e_a u_a^T + u_a e_a^T) / l_a^2 with u_a = P_a e_b,
+        # H_ab = P_a P_b / (l_a l_b), H_bb likewise; K = -c Hess(p)
+        w = -c * cK
+        for a in range(3):
+            for b in range(3):
+                d = 1.0 if a == b else 0.0
+                haa = -(p * (d - ea[a] * ea[b]) + (ea[a] * ga[b] + ga[a] * ea[b]) * la) / (la * la)
+                hbb = -(p * (d - eb[a] * eb[b]) + (eb[a] * gb[b] + gb[a] * eb[b]) * lb) / (lb * lb)
+                hab = _hab(ea, eb, a, b) / (la * lb)
+                hba = _hab(ea, eb, b, a) / (la * lb)
+                # H_aa and H_bb are symmetric
+                haa_t = haa
+                hbb_t = hbb
+                Dg[i - 1, a, b] += w * haa
+                Dg[i, a, b] += w * (haa - hab - hba + hbb)
+                Dg[i + 1, a, b] += w * hbb
+                # first off-diagonal: upper (i-1, i) = -(Haa - Hab), lower (i, i-1) its
+                # transpose; upper (i, i+1) = Hab - Hbb, lower (i+1, i) its transpose
+                up = -w * (haa - hab)
+                lo = -w * (haa_t - hba)
+                Of[i - 1, a, b] += up
+                BX[0, i - 1, a, b] += lo - up
+                up = w * (hab - hbb)
+                lo = w * (hba - hbb_t)
+                Of[i, a, b] += up
+                BX[0, i, a, b] += lo - up
+                # second off-diagonal: (i-1, i+1) = -Hab, (i+1, i-1) its transpose
+                BX[1, i - 1, a, b] += -w * hab
+                BX[2, i - 1, a, b] += -w * hba
+
+
+@njit(cache=True)
+def solve_blocks(Dg, Of, BX, bend, rhs, i0, i1, W, Y, T1, x):
+    """Solve the iteration system: block-tridiagonal, or block bandwidth 2 with bending."""
+    if bend:
+        return block_band_solve(Dg, Of, BX, rhs, i0, i1, Y, T1, x)
+    return block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x)
+
+
+@njit(cache=True)
+def block_band_solve(Dg, Of, BX, rhs, i0, i1, Y, T1, x):
+    """Block Gaussian elimination (no pivoting between blocks, exact 3x3 inverses) for block
+    bandwidth 2: diagonal ``Dg``, first upper ``Of[i]`` (i, i+1), first lower ``Of[i] +
+    BX[0, i]`` (i+1, i), second upper ``BX[1, i]`` (i, i+2), second lower ``BX[2, i]``
+    (i+2, i).  Scratch ``BX[3:7]``; ``Y`` (n, 3), ``T1`` (3, 3).  Returns -1 or the first
+    singular pivot node."""
+    Wi = BX[3]
+    D = BX[4]
+    U1 = BX[5]
+    L1 = BX[6]
+    n = Dg.shape[0]
+    for i in range(i0, i1):
+        for a in range(3):
+            Y[i, a] = rhs[i, a]
+            for b in range(3):
+                D[i, a, b] = Dg[i, a, b]
+                if i < n - 1:
+                    U1[i, a, b] = Of[i, a, b]
+                    L1[i, a, b] = Of[i, a, b] + BX[0, i, a, b]
+    for k in range(i0, i1):
+        if not _inv3(D[k], Wi[k]):
+            return k
+        for i in (k + 1, k + 2):
+            if i >= i1:
+                continue
+            # M = A_ik W_k
+            for a in range(3):
+                for b in range(3):
+                    s = 0.0
+                    for m in range(3):
+                        aik = L1[k, a, m] if i == k + 1 else BX[2, k, a, m]
+                        s += aik * Wi[k, m, b]
+                    T1[a, b] = s
+            for a in range(3):
+                Y[i, a] -= T1[a, 0] * Y[k, 0] + T1[a, 1] * Y[k, 1] + T1[a, 2] * Y[k, 2]
+            for j in (k + 1, k + 2):
+                if j >= i1:
+                    continue
+                for a in range(3):
+                    for b in range(3):
+                        s = 0.0
+                        for m in range(3):
+                            akj = U1[k, m, b] if j == k + 1 else BX[1, k, m, b]
+                            s += T1[a, m] * akj
+                        if i == j:
+                            D[i, a, b] -= s
+                        elif j == i + 1:
+                            U1[i, a, b] -= s
+                        else:  # j == i - 1: lower block (i, i-1) stored at L1[i-1]
+                            L1[j, a, b] -= s
+    for k in range(i1 - 1, i0 - 1, -1):
+        for a in range(3):
+            s = Y[k, a]
+            if k + 1 < i1:
+                s -= (U1[k, a, 0] * x[k + 1, 0] + U1[k, a, 1] * x[k + 1, 1]
+                      + U1[k, a, 2] * x[k + 1, 2])
+            if k + 2 < i1:
+                s -= (BX[1, k, a, 0] * x[k + 2, 0] + BX[1, k, a, 1] * x[k + 2, 1]
+                      + BX[1, k, a, 2] * x[k + 2, 2])
+            T1[0, a] = s
+        for a in range(3):
+            x[k, a] = Wi[k, a, 0] * T1[0, 0] + Wi[k, a, 1] * T1[0, 1] + Wi[k, a, 2] * T1[0, 2]
+    return -1
+
+
 # --------------------------------------------------------------------------------------------
 # linear algebra
 # --------------------------------------------------------------------------------------------
@@ -604,7 +764,7 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
 def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, tens, Dg, Of,
-                  W, Y, T1, dx, rtry, info):
+                  BX, W, Y, T1, dx, rtry, info):
     """Damped Newton (Levenberg-Marquardt) for the static equilibrium of the free nodes
     (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3).
 
@@ -621,7 +781,7 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
     for i in range(n):
         lam_min = max(lam_min, abs(P[i, NP_W]))
     lam_min /= max(E[0, EL_L0], 1e-12)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
+    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of, BX)
     res2 = _res2(f, n)
     lam = 0.0
     it = 0
@@ -635,12 +795,12 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
             for i in range(1, n - 1):
                 for a in range(3):
                     Dg[i, a, a] += lam
-        bad = block_tridiag_solve(Dg, Of, f, 1, n - 1, W, Y, T1, dx)
+        bad = solve_blocks(Dg, Of, BX, S[S_BEND] > 0.0, f, 1, n - 1, W, Y, T1, dx)
         if bad >= 0:
             if lam == 0.0:
                 lam = lam_min
                 line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                            Dg, Of)
+                            Dg, Of, BX)
                 continue
             info[2] = bad
             return -2
@@ -648,7 +808,7 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
             for a in range(3):
                 rtry[i, a] = r[i, a] + (dx[i, a] if 0 < i < n - 1 else 0.0)
         line_forces(rtry, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                    Dg, Of)
+                    Dg, Of, BX)
         r2 = _res2(f, n)
         if r2 < res2 or _max_res(f, n) < tol:
             for i in range(n):
@@ -661,8 +821,8 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
             if lam > 1e30:
                 break
             line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                        Dg, Of)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of)
+                        Dg, Of, BX)
+    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of, BX)
     info[0] = it
     info[1] = _max_res(f, n)
     worst = 1
@@ -700,7 +860,7 @@ def _max_res(f, n):
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
 def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, coef, tol,
-                   maxit, r1, v1, a1, f1, q, tens, Mb, Dg, Of, Rr, W, Y, T1, da, info):
+                   maxit, r1, v1, a1, f1, q, tens, Mb, Dg, Of, BX, Rr, W, Y, T1, da, info):
     """One generalised-alpha step (Chung & Hulbert 1993) of the free nodes with Newton
     iterations on the accelerations.
 
@@ -714,9 +874,10 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
     """
     am = coef[0]
     af = coef[1]
+    # force scale: the largest node weight (in air if the net weight vanishes)
     ftol = 0.0
     for i in range(r.shape[0]):
-        ftol = max(ftol, 1e-5 * abs(P[i, NP_W]))
+        ftol = max(ftol, 1e-5 * abs(P[i, NP_W]), 1e-5 * 9.80665 * P[i, NP_MASS])
     beta = coef[2]
     gamma = coef[3]
     n = r.shape[0]
@@ -756,7 +917,8 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
                 r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
                                                                + beta * a1[i, k])
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-        line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg, Of)
+        line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg, Of,
+                    BX)
         res = 0.0
         for i in range(1, n - 1):
             for k in range(3):
@@ -784,7 +946,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
             # position corrections from settling
             conv = True
             break
-        bad = block_tridiag_solve(Dg, Of, Rr, 1, n - 1, W, Y, T1, da)
+        bad = solve_blocks(Dg, Of, BX, S[S_BEND] > 0.0, Rr, 1, n - 1, W, Y, T1, da)
         if bad >= 0:
             info[1] = bad
             return -2
@@ -812,7 +974,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
         for k in range(3):
             r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k] + beta * a1[i, k])
             v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-    line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of)
+    line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of, BX)
     for i in range(n):
         for k in range(3):
             if not math.isfinite(f1[i, k]):
@@ -823,14 +985,14 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
 
 @njit(cache=True)
 def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, Mb, Dg,
-                  Of, W):
+                  Of, BX, W):
     """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the
     fairlead node follows ``rf1, vf1``.  Updates ``r, v`` in place.  Returns -1, or the first
     node with a singular mass block / NaN."""
     n = r.shape[0]
     node_mass(r, P, q, Mb)
     friction_decide(r, v, fric, fs, S[S_ZC])
-    line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of)
+    line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of, BX)
     for i in range(1, n - 1):
         if not _inv3(Mb[i], W[i]):
             return i

@@ -140,6 +140,10 @@ class FELine:
                     P[i, K.NP_MUA] = spec.friction.mu_axial
                     P[i, K.NP_MUL] = spec.friction.mu_lateral
                 j += 1
+        EI = np.array([spec.segments[k].bending_stiffness for k in seg_of])
+        for i in range(1, nn - 1):
+            P[i, K.NP_CB] = (0.5 * (EI[i - 1] + EI[i])
+                             / (0.5 * (E_st[i - 1, K.EL_L0] + E_st[i, K.EL_L0])))
         for pb in spec.point_bodies:
             P[pb.node, K.NP_MASS] += pb.mass
             P[pb.node, K.NP_W] += (pb.mass - rho * pb.volume) * g
@@ -162,6 +166,7 @@ class FELine:
         S[K.S_CURC] = math.cos(spec.current_heading)
         S[K.S_CURS] = math.sin(spec.current_heading)
         S[K.S_RHO] = rho
+        S[K.S_BEND] = 1.0 if np.any(P[:, K.NP_CB] > 0.0) else 0.0
         cs_ = spec.seabed.contact_smoothing
         S[K.S_DC] = 0.5 * dmax if cs_ is None else cs_
         if axial_stiffness_limit is not None:
@@ -216,6 +221,7 @@ class FELine:
         self._Mb = np.zeros((nn, 3, 3))
         self._Dg = np.zeros((nn, 3, 3))
         self._Of = np.zeros((nn - 1, 3, 3))
+        self._BX = np.zeros((7, nn, 3, 3))
         self._W = np.zeros((nn, 3, 3))
         self._T1 = np.zeros((3, 3))
         self._info = np.zeros(3)
@@ -357,7 +363,7 @@ class FELine:
         # statics: no waves (zero kinematics)
         return K.static_newton(self.r, self.P, E, self.S, self.cur_z, self.cur_u, self._wk0,
                                code, self.fs, tol, maxit, v0, self._q, self._f1, self._tens,
-                               self._Dg, self._Of,
+                               self._Dg, self._Of, self._BX,
                                self._W, self._Y, self._T1, self._da, self._rtry, self._info)
 
     # ------------------------------------------------------------------------------------------
@@ -382,7 +388,7 @@ class FELine:
         K.line_forces(self.r, self.v, self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u,
                       self.wk,
                       self.fric_code, self.fs, self._q, self.fn, self._tens, False, 0.0, 0.0,
-                      self._Dg, self._Of)
+                      self._Dg, self._Of, self._BX)
         self._trial = False
         self._started = True
         self.newton_iterations = 0
@@ -427,7 +433,8 @@ class FELine:
                 bad = K.explicit_step(tk, h, rA, vA, rf, vf, self.P, self.E_dynamic, self.S,
                                       self.cur_z, self.cur_u, self.wk, self.fric_code,
                                       self._fs1, self._q,
-                                      fA, self._tens, self._Mb, self._Dg, self._Of, self._W)
+                                      fA, self._tens, self._Mb, self._Dg, self._Of, self._BX,
+                                      self._W)
                 if bad >= 0:
                     self._fail(tk, bad, "explicit step diverged (NaN)",
                                "reduce dt below the axial-wave limit or use generalized_alpha")
@@ -454,7 +461,8 @@ class FELine:
                               self.cur_z, self.cur_u, self.wk, self.fric_code, self._fs1,
                               self.coef,
                               self.tol, self.maxit, self._rB, self._vB, self._aB, fA, self._q,
-                              self._tens, self._Mb, self._Dg, self._Of, self._Rk, self._W,
+                              self._tens, self._Mb, self._Dg, self._Of, self._BX, self._Rk,
+                              self._W,
                               self._Yk, self._T1, self._da, self._info)
         if it < 0:
             if depth < self.MAX_SPLIT:

@@ -144,7 +144,7 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
 
     K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk,
                   line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
-                  line._Dg, line._Of)
+                  line._Dg, line._Of, line._BX)
     record(0, t0, line._f1)
     si = 0
     if snap_steps and snap_steps[0] == 0:

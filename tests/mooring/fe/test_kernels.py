@@ -38,7 +38,7 @@ def _forces(line, r, v, fric=0):
     K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, fric,
                   line.fs,
                   np.zeros((n, 3)), f, np.zeros(n - 1), False, 0.0, 0.0,
-                  np.zeros((n, 3, 3)), np.zeros((n - 1, 3, 3)))
+                  np.zeros((n, 3, 3)), np.zeros((n - 1, 3, 3)), np.zeros((7, n, 3, 3)))
     return f
 
 
@@ -48,7 +48,8 @@ def _jac(line, r, v, cK, cC, fric=0):
     Of = np.zeros((n - 1, 3, 3))
     K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, fric,
                   line.fs,
-                  np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n - 1), True, cK, cC, Dg, Of)
+                  np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n - 1), True, cK, cC, Dg, Of,
+                  np.zeros((7, n, 3, 3)))
     return Dg, Of
 
 

@@ -21,7 +21,7 @@ def _forces(line, r, v, wk):
     f = np.zeros((n, 3))
     K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, wk, 0, line.fs,
                   np.zeros((n, 3)), f, np.zeros(n - 1), False, 0.0, 0.0, np.zeros((n, 3, 3)),
-                  np.zeros((n - 1, 3, 3)))
+                  np.zeros((n - 1, 3, 3)), np.zeros((7, n, 3, 3)))
     return f
 
 
