@@ -32,6 +32,7 @@ from __future__ import annotations
 import argparse
 import re
 import sys
+import warnings
 from pathlib import Path
 
 HELP = "DNV-OS-E301 ULS/ALS design report of floatmoor run results (HTML, Markdown, CSV, netCDF)"
@@ -272,9 +273,17 @@ def run(args: argparse.Namespace) -> int:
             extra.append(("ALS failed seeds (left out)", "; ".join(als_failed)))
     if fd is not None:
         extra.append(("frequency-domain file", str(Path(args.fd).resolve())))
-    files = build_report(results, mbs, out, als_results=als, failed_lines=args.failed_line,
-                         consequence_class=args.consequence_class, analysis=args.analysis,
-                         fd=fd, failed_seeds=failed, extra_meta=extra)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        files = build_report(results, mbs, out, als_results=als, failed_lines=args.failed_line,
+                             consequence_class=args.consequence_class, analysis=args.analysis,
+                             fd=fd, failed_seeds=failed, extra_meta=extra)
+    seen = set()
+    for w in caught:                       # one line per distinct warning (not one per line)
+        key = (w.category, str(w.message))
+        if key not in seen:
+            seen.add(key)
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     checks = files.checks
     stats = files.statistics
     print(f"scene: {scene}  ({len(results)} seeds from {args.results_dir}"

@@ -83,6 +83,53 @@ def _check_results(results, key):
     return results
 
 
+def transient_of(results) -> float | None:
+    """Start of the statistics window from the results' ``transient`` attribute (s): the largest
+    over the seeds, None when no result has one."""
+    vals = [float(ds.attrs["transient"]) for ds in results if "transient" in ds.attrs]
+    return max(vals) if vals else None
+
+
+def detect_failed_lines(results) -> list:
+    """Lines failed in every one of ``results``: tension exactly zero at the last sample.
+
+    A line removed from the start (mooring ``failed_lines``) has zero tension throughout; one
+    broken during the run (``forces.line_failure``) is zero from the failure on.  A line of an
+    intact mooring never reaches exactly zero at the fairlead (it carries its own weight).
+    """
+    dead = None
+    for ds in results:
+        last = np.asarray(ds["line_tension"].isel(time=-1).values) <= 0.0
+        dead = last if dead is None else dead & last
+    return [ln for ln, d in zip(results[0]["line"].values, dead) if d]
+
+
+def scene_name(ds: xr.Dataset) -> str:
+    """Short scene name of a result: ``scene_name`` attribute, else the ``scene`` attribute when
+    it is one line, else "unnamed scene"."""
+    if ds.attrs.get("scene_name"):
+        return str(ds.attrs["scene_name"])
+    sc = str(ds.attrs.get("scene", "")).strip()
+    return sc if sc and "\n" not in sc else "unnamed scene"
+
+
+def _prepared(ds: xr.Dataset) -> xr.Dataset:
+    """Add the horizontal offset ``offset = hypot(surge, sway)`` (m) when ``motion`` has them."""
+    if "motion" in ds and "dof" in ds["motion"].dims and "offset" not in ds:
+        dofs = [str(d) for d in ds["dof"].values]
+        if "surge" in dofs and "sway" in dofs:
+            m = ds["motion"]
+            off = np.hypot(m.isel(dof=dofs.index("surge")).values,
+                           m.isel(dof=dofs.index("sway")).values)
+            ds = ds.assign(offset=(m.isel(dof=0).dims, off,
+                                   {"units": "m", "long_name": "horizontal offset"}))
+    return ds
+
+
+def _variables(ds: xr.Dataset) -> list[str]:
+    return [v for v in ("motion", "offset", "line_tension") if v in ds]
+
+
 def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Dataset] | None = None,
               failed_lines: Sequence | None = None, consequence_class: int = 2,
               analysis: str = "dynamic", start: float | None = None, end: float | None = None,
@@ -99,10 +146,11 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         Seeds with one line failed (ALS); the failed line(s) are excluded from the ALS check.
     failed_lines : sequence, optional
         Names of the failed lines in ``als_results`` (default: the results' ``failed_lines``
-        attribute, else lines whose tension is zero throughout).
+        attribute, else :func:`detect_failed_lines`).
     consequence_class, analysis : see :func:`floatmoor.post.dnv_os_e301.partial_factors`.
     start, end : float, optional
-        Statistics window in s.
+        Statistics window in s (default: from the ``transient`` attribute of the results,
+        the largest over the seeds; the ALS seeds use their own).
     cutoff : float
         LF/WF cut-off in Hz.
     p : float
@@ -116,15 +164,20 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         :func:`~floatmoor.post.dnv_os_e301.check_lines` output; per-seed statistics; the ULS
         characteristic tensions (:func:`~floatmoor.post.dnv_os_e301.characteristic_tensions`).
     """
-    results = _check_results(results, "results")
-    stats = per_seed_statistics(results, start=start, end=end, cutoff=cutoff)
+    start_given = start
+    results = [_prepared(ds) for ds in _check_results(results, "results")]
+    if start is None:
+        start = transient_of(results)
+    stats = per_seed_statistics(results, start=start, end=end, cutoff=cutoff,
+                                variables=_variables(results[0]))
     ct = dnv.characteristic_tensions(stats["line_tension_max"], stats["line_tension_mean"],
                                      p=p, method=method)
     lines = list(ct["line"].values)
     als_mean = als_max = None
     if als_results is not None:
         als_results = _check_results(als_results, "als_results")
-        astats = per_seed_statistics(als_results, start=start, end=end, cutoff=cutoff,
+        als_start = transient_of(als_results) if start_given is None else start_given
+        astats = per_seed_statistics(als_results, start=als_start, end=end, cutoff=cutoff,
                                      variables=["line_tension"])
         if list(astats["line"].values) != lines:
             raise _bad("als_results", f"the same lines as the intact results {lines}",
@@ -134,8 +187,11 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
             if attr is not None:
                 failed_lines = list(np.atleast_1d(attr))
             else:
-                dead = np.all(astats["line_tension_max"].values <= 0.0, axis=0)
-                failed_lines = [ln for ln, d in zip(lines, dead) if d]
+                failed_lines = detect_failed_lines(als_results)
+                if not failed_lines:
+                    raise _bad("als_results", "results with a failed line (a line whose "
+                               "tension is zero at the end of every ALS seed), or the failed "
+                               "line named (failed_lines)", "no failed line found")
         failed = {str(f) for f in failed_lines}
         if not failed <= {str(ln) for ln in lines}:
             raise _bad("failed_lines", f"names of lines among {lines}", sorted(failed))
@@ -154,6 +210,8 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
     checks.attrs["gumbel_method"] = method
     checks.attrs["n_seeds"] = len(results)
     if als_results is not None:
+        checks.attrs["n_seeds_als"] = len(als_results)
+    if als_results is not None:
         checks.attrs["failed_lines"] = ", ".join(sorted(failed))
     return checks, stats, ct
 
@@ -170,6 +228,7 @@ tr.governing td{background:#ffe08a;font-weight:bold}
 td.fail{color:#b00;font-weight:bold}td.pass{color:#070}
 .meta td{text-align:left}figure{display:inline-block;margin:0.5em}figcaption{font-size:0.85em}
 .note{font-size:0.85em;color:#555}
+pre{background:#f6f6f6;padding:0.6em;font-size:0.8em;overflow-x:auto}
 """
 
 
@@ -251,28 +310,127 @@ def _line_table(checks, ct, stats, ls):
     return _Table(f"lines_{ls.lower()}", caption, header, rows, highlight=hl, status_col=14)
 
 
+_ROTATIONS = ("roll", "pitch", "yaw")
+
+
+def _dof_scale(dof) -> tuple[str, float]:
+    """Display unit and factor of a DOF (rotations in degrees)."""
+    return ("deg", 180.0 / np.pi) if str(dof) in _ROTATIONS else ("m", 1.0)
+
+
+def _gumbel_or_nan(maxima):
+    """(MPM, 90 % value) of a Gumbel fit of the seed maxima; NaN when it cannot be fitted."""
+    mx = np.asarray(maxima, float)
+    if mx.size < 3 or np.ptp(mx) <= 0:
+        return np.nan, np.nan
+    try:
+        fit = gumbel_fit(mx)
+    except SceneError:
+        return np.nan, np.nan
+    return fit.mpm, fit.p90
+
+
+def _motion_rows(stats):
+    """Per channel (horizontal offset, then each DOF): name, unit, factor, per-seed stats."""
+    rows = []
+    if "offset_mean" in stats:
+        rows.append(("horizontal offset", "m", 1.0,
+                     {k: stats[f"offset_{k}"].values for k in
+                      ("mean", "std", "max", "min", "lf_max", "wf_sig")}))
+    if "motion_mean" in stats:
+        for j, dof in enumerate(stats["dof"].values):
+            unit, f = _dof_scale(dof)
+            rows.append((str(dof), unit, f, {k: stats[f"motion_{k}"].values[:, j] for k in
+                                             ("mean", "std", "max", "min", "lf_max", "wf_sig")}))
+    return rows
+
+
 def _motion_table(stats):
+    rows_in = _motion_rows(stats)
+    if not rows_in:
+        return None
+    header = ["DOF", "unit", "mean", "std", "max", "min", "LF max", "WF sig",
+              "Gumbel MPM of max", "Gumbel 90% of max"]
+    rows = []
+    for name, unit, f, v in rows_in:
+        mpm, p90 = _gumbel_or_nan(v["max"] * f)
+        rows.append([name, unit, _fmt(float(v["mean"].mean()) * f, 3),
+                     _fmt(float(v["std"].mean()) * f, 3), _fmt(float(np.max(v["max"])) * f, 3),
+                     _fmt(float(np.min(v["min"])) * f, 3), _fmt(float(v["lf_max"].mean()) * f, 3),
+                     _fmt(float(v["wf_sig"].mean()) * f, 3), _fmt(mpm, 3), _fmt(p90, 3)])
+    return _Table("offsets", "Offsets and motions: mean over seeds of mean, std, LF max (mean "
+                  "included) and WF significant value; max/min over all seeds; Gumbel most "
+                  "probable and 90 % values of the seed maxima (rotations in degrees)",
+                  header, rows)
+
+
+def _fd_lines_table(fd, checks, ct, stats):
+    """Frequency-domain line tensions (seed figure 5.9 columns) beside the TD Gumbel values."""
+    c = checks.sel(limit_state="ULS")
+    header = ["line", "TD mean [kN]", "FD static [kN]", "TD Gumbel MPM [kN]",
+              "TD Gumbel 90% [kN]", "FD max total [kN]", "FD max / TD MPM",
+              "SF TD = MBS/T_C", "SF FD = MBS/FD max"]
+    rows, hl = [], []
+    for j, line in enumerate(c["line"].values):
+        k = _line_key(fd, line)
+        failed = bool(fd["line_failed"].sel(line=k)) if "line_failed" in fd else False
+        fmax = float(fd["tension_max_total"].sel(line=k))
+        mpm = float(ct["gumbel_mpm"].values[j])
+        row = [str(line), _fmt(ct["t_c_mean"].values[j] * _KN),
+               _fmt(float(fd["tension_static"].sel(line=k)) * _KN), _fmt(mpm * _KN),
+               _fmt(ct["gumbel_p90"].values[j] * _KN)]
+        if failed:
+            row += ["failed", "", _fmt(c["safety_factor"].values[j], 2), ""]
+        else:
+            row += [_fmt(fmax * _KN), _fmt(fmax / mpm, 3), _fmt(c["safety_factor"].values[j], 2),
+                    _fmt(float(fd["safety_factor"].sel(line=k)), 2)]
+        rows.append(row)
+        hl.append(bool(c["governing"].values[j]))
+    dur = fd.attrs.get("duration", float("nan"))
+    caption = (f"Frequency domain beside time domain: per-line maximum tension (FD: eq. 2.49 "
+               f"with Rayleigh maxima over {_fmt(float(dur), 0)} s, the columns of seed figure "
+               f"5.9; TD: Gumbel fit of the seed maxima over the statistics window "
+               f"{stats.attrs['window_start_s']:g} - {stats.attrs['window_end_s']:g} s)")
+    return _Table("fd_lines", caption, header, rows, highlight=hl)
+
+
+def _fd_offsets_table(fd, stats):
+    """Frequency-domain motions (mean, eq. 2.49 max/min) beside the TD statistics."""
     if "motion_mean" not in stats:
         return None
-    header = ["DOF", "unit", "mean", "std", "max", "min", "LF max", "WF sig", "Gumbel 90% of max"]
+    header = ["DOF", "unit", "TD mean", "FD mean", "TD Gumbel MPM of max", "TD Gumbel 90% of max",
+              "FD max total", "TD min (all seeds)", "FD min total"]
     rows = []
+    fd_dofs = [str(d) for d in fd["dof"].values]
     for j, dof in enumerate(stats["dof"].values):
-        mx = stats["motion_max"].values[:, j]
-        unit = stats["motion_mean"].attrs.get("units", "")
-        try:
-            g90 = _fmt(gumbel_fit(mx).p90, 3) if np.ptp(mx) > 0 else "n/a"
-        except SceneError:
-            g90 = "n/a"
-        rows.append([str(dof), unit] + [
-            _fmt(float(stats[f"motion_{k}"].values[:, j].mean()), 3)
-            for k in ("mean", "std")] + [
-            _fmt(float(np.max(stats["motion_max"].values[:, j])), 3),
-            _fmt(float(np.min(stats["motion_min"].values[:, j])), 3),
-            _fmt(float(stats["motion_lf_max"].values[:, j].mean()), 3),
-            _fmt(float(stats["motion_wf_sig"].values[:, j].mean()), 3), g90])
-    return _Table("offsets", "Motions: mean over seeds of mean, std, LF max (mean included) and "
-                  "WF significant value; max/min over all seeds; Gumbel 90 % value of the seed "
-                  "maxima", header, rows)
+        if str(dof) not in fd_dofs:
+            continue
+        i = fd_dofs.index(str(dof))
+        unit, f = _dof_scale(dof)
+        mpm, p90 = _gumbel_or_nan(stats["motion_max"].values[:, j] * f)
+        rows.append([str(dof), unit, _fmt(float(stats["motion_mean"].values[:, j].mean()) * f, 3),
+                     _fmt(float(fd["mean"].values[i]) * f, 3), _fmt(mpm, 3), _fmt(p90, 3),
+                     _fmt(float(fd["max_total"].values[i]) * f, 3),
+                     _fmt(float(np.min(stats["motion_min"].values[:, j])) * f, 3),
+                     _fmt(float(fd["min_total"].values[i]) * f, 3)])
+    return _Table("fd_offsets", "Frequency domain beside time domain: offsets (FD mean = static "
+                  "equilibrium; FD max/min total = eq. 2.49)", header, rows)
+
+
+def _check_fd(fd, lines):
+    if not isinstance(fd, xr.Dataset):
+        raise _bad("fd", "a frequency-domain result Dataset (floatmoor fd --out)",
+                   type(fd).__name__)
+    need = ("tension_static", "tension_max_total", "safety_factor", "mean", "max_total",
+            "min_total")
+    missing = [v for v in need if v not in fd]
+    if missing or "line" not in fd.dims:
+        raise _bad("fd", "a floatmoor frequency-domain result (variables "
+                   + ", ".join(need) + " over 'line' and 'dof')", f"missing {missing}")
+    fd_lines = sorted(map(str, fd["line"].values))
+    if fd_lines != sorted(map(str, lines)):
+        raise _bad("fd.line", f"the lines of the time-domain results {list(map(str, lines))}",
+                   fd_lines)
 
 
 def _png(fig) -> bytes:
@@ -294,7 +452,10 @@ def _plots(results, checks, ct, stats, start, end):
 
     out = []
     gov = checks["governing_line"].sel(limit_state="ULS").item()
-    first = window(results[0], start, end)
+    # the seed with the largest maximum of the governing line
+    k = int(np.argmax(stats["line_tension_max"].sel(line=_line_key(stats, gov)).values))
+    first = window(results[k], start, end)
+    seed_k = results[k].attrs.get("seed", k)
     # 1. governing line time series
     fig, ax = subplots((9, 3))
     tl = first["line_tension"].sel(line=_line_key(first, gov))
@@ -303,10 +464,10 @@ def _plots(results, checks, ct, stats, start, end):
                label="T_C (Gumbel 90 %)")
     ax.set_xlabel("time [s]")
     ax.set_ylabel("tension [kN]")
-    ax.set_title(f"line {gov}, seed {results[0].attrs.get('seed', 0)}")
+    ax.set_title(f"line {gov}, seed {seed_k} (the seed with its largest maximum)")
     ax.legend(fontsize="small")
-    out.append(("timeseries_governing", f"Tension time series of the governing line {gov}",
-                _png(fig)))
+    out.append(("timeseries_governing", f"Tension time series of the governing line {gov}, "
+                f"seed {seed_k} (statistics window)", _png(fig)))
     # 2. Gumbel plot of the governing line
     fit = gumbel_fit(stats["line_tension_max"].sel(line=_line_key(stats, gov)).values * _KN,
                      method=checks.attrs.get("gumbel_method", "mle"))
@@ -335,14 +496,18 @@ def _plots(results, checks, ct, stats, start, end):
     if "motion" in first:
         fig, ax = subplots((9, 3))
         m = first["motion"]
+        if "offset" in first:
+            ax.plot(first["time"].values, first["offset"].values, lw=0.8, color="k",
+                    label="horizontal offset")
         for dof in ("surge", "sway"):
             if "dof" in m.coords and dof in m["dof"].values:
                 ax.plot(first["time"].values, m.sel(dof=dof).values, lw=0.6, label=dof)
         ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"offset [{m.attrs.get('units', 'm')}]")
+        ax.set_ylabel("offset [m]")
         ax.legend(fontsize="small")
-        ax.set_title(f"horizontal offset, seed {results[0].attrs.get('seed', 0)}")
-        out.append(("offset", "Horizontal offset time series", _png(fig)))
+        ax.set_title(f"offset, seed {seed_k}")
+        out.append(("offset", f"Offset time series, seed {seed_k} (statistics window)",
+                    _png(fig)))
     return out
 
 
@@ -358,7 +523,9 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
                  failed_lines: Sequence | None = None, consequence_class: int = 2,
                  analysis: str = "dynamic", start: float | None = None, end: float | None = None,
                  cutoff: float = DEFAULT_CUTOFF_HZ, p: float = 0.9, method: str = "mle",
-                 title: str | None = None, plots: bool = True) -> ReportFiles:
+                 title: str | None = None, plots: bool = True, fd: xr.Dataset | None = None,
+                 failed_seeds: Sequence[str] = (), extra_meta: Sequence[tuple] = ()
+                 ) -> ReportFiles:
     """Write the DNV-OS-E301 report of a set of seeds (HTML, Markdown, CSV, netCDF).
 
     Parameters
@@ -375,29 +542,57 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         Report title (default from the ``scene`` attribute).
     plots : bool
         Embed plots (needs matplotlib; skipped with a note when missing).
+    fd : xarray.Dataset, optional
+        A frequency-domain result of the same scene (:func:`floatmoor.frequency_domain`, or
+        the file of ``floatmoor fd --out``): its per-line maximum tension and safety factor and
+        its offsets are tabulated beside the time-domain values.
+    failed_seeds : sequence of str
+        Seeds that failed and were left out (listed in the report).
+    extra_meta : sequence of (str, str)
+        More rows for the report's header table (e.g. the results folder).
 
     Returns
     -------
     ReportFiles
     """
-    results = _check_results(results, "results")
+    results = [_prepared(ds) for ds in _check_results(results, "results")]
+    if start is None:
+        start = transient_of(results)
     checks, stats, ct = summarise(results, mbs, als_results=als_results,
                                   failed_lines=failed_lines,
                                   consequence_class=consequence_class, analysis=analysis,
                                   start=start, end=end, cutoff=cutoff, p=p, method=method)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    scene = str(results[0].attrs.get("scene", "unnamed scene"))
+    if fd is not None:
+        _check_fd(fd, ct["line"].values)
+    scene = scene_name(results[0])
     title = title or f"Mooring design report: {scene}"
     seeds = [int(s) for s in stats["seed"].values]
-    meta = [
-        ("scene", scene),
-        ("software", f"floatmoor {_version()}"),
+    a0 = results[0].attrs
+    software = f"floatmoor {_version()} (report)"
+    run_versions = sorted({str(ds.attrs["version_floatmoor"]) for ds in results
+                           if "version_floatmoor" in ds.attrs})
+    if run_versions:
+        software += f"; results computed with floatmoor {', '.join(run_versions)}"
+    meta = [("scene", scene)]
+    if a0.get("scene_file"):
+        meta.append(("scene file", str(a0["scene_file"])))
+    meta += [
+        ("software", software),
         ("generated", _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")),
         ("standard", dnv.SOURCE),
+        ("edition", dnv.EDITION),
         ("consequence class", str(consequence_class)),
         ("analysis of WF tension", analysis),
         ("seeds", f"{len(seeds)}: {', '.join(map(str, seeds))}"),
+    ]
+    if failed_seeds:
+        meta.append(("failed seeds (left out)", "; ".join(map(str, failed_seeds))))
+    if "dt" in a0 and "duration" in a0:
+        meta.append(("simulation", f"{float(a0['duration']):g} s at dt {float(a0['dt']):g} s; "
+                     f"models: {', '.join(np.atleast_1d(a0.get('models', [])).astype(str))}"))
+    meta += [
         ("statistics window", f"{stats.attrs['window_start_s']:g} - {stats.attrs['window_end_s']:g} s"),
         ("LF/WF cut-off", f"{stats.attrs['cutoff_hz']:.5f} Hz ({stats.attrs['filter']})"),
         ("characteristic tension", f"Gumbel ({method}) {p:g} fractile of the seed maxima"),
@@ -407,10 +602,22 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     ]
     if "failed_lines" in checks.attrs:
         meta.append(("ALS failed line(s)", checks.attrs["failed_lines"]))
+        meta.append(("ALS seeds", str(checks.attrs.get("n_seeds_als", ""))))
+    if fd is not None:
+        meta.append(("frequency domain", f"{fd.attrs.get('scene_name', '')}, duration "
+                     f"{_fmt(float(fd.attrs.get('duration', float('nan'))), 0)} s, drift "
+                     f"{fd.attrs.get('drift_method', '?')}, tension model "
+                     f"{fd.attrs.get('tension_model', '?')}"))
+    meta += [(str(k), str(v)) for k, v in extra_meta]
     tables = [_line_table(checks, ct, stats, ls) for ls in checks["limit_state"].values]
     mt = _motion_table(stats)
     if mt is not None:
         tables.append(mt)
+    if fd is not None:
+        tables.append(_fd_lines_table(fd, checks, ct, stats))
+        ft = _fd_offsets_table(fd, stats)
+        if ft is not None:
+            tables.append(ft)
     figs = _plots(results, checks, ct, stats, start, end) if plots else []
 
     # HTML
@@ -420,6 +627,10 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     parts += [f"<tr><th class='name'>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
               for k, v in meta]
     parts.append("</tbody></table>")
+    scene_yaml = str(a0.get("scene", ""))
+    if "\n" in scene_yaml:
+        parts.append("<details><summary>scene file as run</summary><pre>"
+                     f"{html.escape(scene_yaml)}</pre></details>")
     for t in tables:
         parts.append(f"<h2>{html.escape(t.caption.split(':')[0])}</h2>")
         parts.append(t.html())
@@ -451,7 +662,15 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     cols = ["t_c_mean", "t_c_dyn", "t_c", "s_mbs", "s_c", "gamma_mean", "gamma_dyn",
             "common_factor_applied", "design_tension", "margin", "utilisation", "checked",
             "passed", "safety_factor", "governing"]
-    rows = ["limit_state,line," + ",".join(f"{c}[{checks[c].attrs['units']}]" for c in cols)]
+    extra = {"td_mean[N]": ct["t_c_mean"].values, "td_std[N]":
+             stats["line_tension_std"].mean("seed").values,
+             "gumbel_mpm[N]": ct["gumbel_mpm"].values, "gumbel_p90[N]": ct["gumbel_p90"].values}
+    if fd is not None:
+        order = [_line_key(fd, ln) for ln in ct["line"].values]
+        extra["fd_max_total[N]"] = fd["tension_max_total"].sel(line=order).values
+        extra["fd_safety_factor[1]"] = fd["safety_factor"].sel(line=order).values
+    rows = ["limit_state,line," + ",".join(f"{c}[{checks[c].attrs['units']}]" for c in cols)
+            + "," + ",".join(extra)]
     for ls in checks["limit_state"].values:
         c = checks.sel(limit_state=ls)
         for j, line in enumerate(c["line"].values):
@@ -459,6 +678,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
             for col in cols:
                 v = c[col].values[j]
                 vals.append(str(int(v)) if isinstance(v, (bool, np.bool_)) else repr(float(v)))
+            # intact-system (ULS) statistics; empty in the ALS rows
+            vals += [repr(float(v[j])) if ls == "ULS" else "" for v in extra.values()]
             rows.append(f"{ls},{line}," + ",".join(vals))
     csv_path = out / "summary.csv"
     csv_path.write_text("\n".join(rows) + "\n", encoding="utf-8")
@@ -473,6 +694,17 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     for name, var in stats.data_vars.items():
         nc[f"seed_{name}"] = var
     nc.attrs["scene"] = scene
+    if "\n" in scene_yaml:
+        nc.attrs["scene_yaml"] = scene_yaml
+    if failed_seeds:
+        nc.attrs["failed_seeds"] = "; ".join(map(str, failed_seeds))
+    if fd is not None:
+        order = [_line_key(fd, ln) for ln in nc["line"].values]
+        for name, new_name in (("tension_static", "fd_tension_static"),
+                               ("tension_max_total", "fd_tension_max_total"),
+                               ("safety_factor", "fd_safety_factor")):
+            nc[new_name] = xr.DataArray(fd[name].sel(line=order).values, dims=("line",),
+                                        attrs=dict(fd[name].attrs))
     nc.attrs["software"] = f"floatmoor {_version()}"
     nc_path = out / "summary.nc"
     nc.to_netcdf(nc_path)
