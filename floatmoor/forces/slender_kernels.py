@@ -1,0 +1,310 @@
+"""Numba kernels of the slender-element (Morison strip) drag force, and its kinematics table.
+
+Slender elements (seed 002 section 6.1; SIMO-style): straight line elements fixed to the body,
+end points ``p1``, ``p2`` in body coordinates (m, about the body reference point).  Local axes:
+``x`` from p1 to p2; for an element that is not vertical, local ``z`` is the body's ``z`` axis
+made perpendicular to ``x`` ("up") and ``y = z x x``; for a vertical element (|x . z_body| >
+0.999) local ``y`` is the body's ``x`` axis made perpendicular to ``x`` and ``z = x x y``.  (So a
+pontoon along body y has local y = body x, local z = up; a column has local y = body x.)
+
+Force per unit length, quadratic drag per local axis (seed 002 eq. 6.3 and 6.7-6.8)::
+
+    f = sum_j C_j |v_j| v_j e_j,    v_j = e_j . (u_current + u_wave - v_body)
+
+``C_j = 0.5 rho C_D,j D_j`` (N s^2/m^3) for the local axes j = x, y, z; ``u_wave`` the linear wave
+particle velocity at the strip, ``u_current`` the current at the strip's depth, ``v_body`` the
+velocity of the strip's centre (reference point velocity + angular velocity x arm).  Each element
+is integrated up to the instantaneous free surface: an element crossing the surface is cut where
+it meets the elevation (the elevation at the element's MWL crossing), and the wetted part is split
+into ``n_strips`` equal strips (midpoint rule).  Strips above the local surface are dry.  Forces
+and moments (about the displaced reference point) are in earth axes.
+
+Kinematics table: the wave kinematics are precomputed before the time loop (FFT) at fixed
+*stations* (x, y) -- points along each element at the body's reference pose -- on a time grid of
+step ``H``, at fixed *levels* z' of the stretched vertical coordinate:
+
+* Wheeler stretching (default): a point at height z under the surface eta is evaluated at
+  ``z' = (z - eta) d / (d + eta)`` (deep water ``z - eta``);
+* constant stretching (``wheeler=False``): ``z' = min(z, 0)``, i.e. linear theory below the
+  mean water line and the MWL velocity in the splash zone (seed 002 section 2.1.2, Chakrabarti).
+
+In the loop the velocity at a strip is interpolated linearly in time, along the element between
+its stations, and in z' between levels (clamped to the deepest level below it).  As for the
+first-order wave forces, the horizontal wave phase is taken at the body's reference (mean)
+position: the slow horizontal excursion does not shift the phase; the vertical position of the
+strips follows the body exactly.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+__all__ = ["rotation_into", "local_axes", "slender_force_into", "kinematics_at",
+           "stretched_level"]
+
+
+@njit(cache=True)
+def rotation_into(roll, pitch, yaw, R):
+    """Body-to-earth rotation R = Rz(yaw) Ry(pitch) Rx(roll) into ``R`` (3, 3)."""
+    cr = math.cos(roll)
+    sr = math.sin(roll)
+    cp = math.cos(pitch)
+    sp = math.sin(pitch)
+    cy = math.cos(yaw)
+    sy = math.sin(yaw)
+    R[0, 0] = cy * cp
+    R[0, 1] = cy * sp * sr - sy * cr
+    R[0, 2] = cy * sp * cr + sy * sr
+    R[1, 0] = sy * cp
+    R[1, 1] = sy * sp * sr + cy * cr
+    R[1, 2] = sy * sp * cr - cy * sr
+    R[2, 0] = -sp
+    R[2, 1] = cp * sr
+    R[2, 2] = cp * cr
+
+
+def local_axes(p1, p2):
+    """Local unit axes (ex, ey, ez) in body coordinates of the element p1 -> p2 (module doc)."""
+    p1 = np.asarray(p1, float)
+    p2 = np.asarray(p2, float)
+    ex = p2 - p1
+    L = float(np.linalg.norm(ex))
+    if L <= 0.0:
+        raise ValueError("an element of zero length")
+    ex = ex / L
+    ez_body = np.array([0.0, 0.0, 1.0])
+    if abs(float(ex @ ez_body)) < 0.999:
+        ez = ez_body - (ez_body @ ex) * ex
+        ez /= np.linalg.norm(ez)
+        ey = np.cross(ez, ex)
+    else:
+        ex_body = np.array([1.0, 0.0, 0.0])
+        ey = ex_body - (ex_body @ ex) * ex
+        ey /= np.linalg.norm(ey)
+        ez = np.cross(ex, ey)
+    return ex, ey, ez
+
+
+@njit(cache=True)
+def stretched_level(z, eta, depth, wheeler):
+    """The level z' (m) at which a point at height z under the surface eta is evaluated."""
+    if wheeler:
+        if math.isinf(depth):
+            return z - eta
+        return (z - eta) * depth / (depth + eta)
+    return z if z < 0.0 else 0.0
+
+
+@njit(cache=True)
+def _eta_at(eta_tab, i0, wt, s0, s1, ws):
+    a = (1.0 - ws) * eta_tab[i0, s0] + ws * eta_tab[i0, s1]
+    b = (1.0 - ws) * eta_tab[i0 + 1, s0] + ws * eta_tab[i0 + 1, s1]
+    return (1.0 - wt) * a + wt * b
+
+
+@njit(cache=True)
+def kinematics_at(u_tab, i0, wt, s0, s1, ws, zs, lev0, dlev, out):
+    """Velocity (3,) at stretched level ``zs`` between stations s0, s1 (weight ws) and table
+    times i0, i0 + 1 (weight wt), into ``out``.  Levels lev0 + l dlev, l = 0..nl-1 (lev0 < 0,
+    the top level 0); below the deepest level the deepest value is used, above 0 the top one."""
+    nl = u_tab.shape[2]
+    x = (zs - lev0) / dlev
+    if x <= 0.0:
+        l0 = 0
+        wl = 0.0
+    elif x >= nl - 1:
+        l0 = nl - 2
+        wl = 1.0
+    else:
+        l0 = int(x)
+        wl = x - l0
+    for c in range(3):
+        a = ((1.0 - wl) * ((1.0 - ws) * u_tab[i0, s0, l0, c] + ws * u_tab[i0, s1, l0, c])
+             + wl * ((1.0 - ws) * u_tab[i0, s0, l0 + 1, c] + ws * u_tab[i0, s1, l0 + 1, c]))
+        b = ((1.0 - wl) * ((1.0 - ws) * u_tab[i0 + 1, s0, l0, c] + ws * u_tab[i0 + 1, s1, l0, c])
+             + wl * ((1.0 - ws) * u_tab[i0 + 1, s0, l0 + 1, c]
+                     + ws * u_tab[i0 + 1, s1, l0 + 1, c]))
+        out[c] = (1.0 - wt) * a + wt * b
+
+
+@njit(cache=True)
+def _current_at(cur_z, cur_speed, z):
+    """Current speed at height z: linear in the table (increasing cur_z), constant outside."""
+    n = cur_z.shape[0]
+    if n == 0:
+        return 0.0
+    if z <= cur_z[0]:
+        return cur_speed[0]
+    if z >= cur_z[n - 1]:
+        return cur_speed[n - 1]
+    for i in range(n - 1):
+        if z <= cur_z[i + 1]:
+            w = (z - cur_z[i]) / (cur_z[i + 1] - cur_z[i])
+            return (1.0 - w) * cur_speed[i] + w * cur_speed[i + 1]
+    return cur_speed[n - 1]
+
+
+@njit(cache=True)
+def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_strips,
+                       st_first, st_count, eta_tab, u_tab, lev0, dlev, depth, wheeler,
+                       wave_factor, cur_z, cur_speed, cur_cos, cur_sin, R, out):
+    """Add the slender-element drag force and moment (earth axes) into ``out`` (6,).
+
+    Parameters
+    ----------
+    tau : float
+        Time in table samples (t / H).  Beyond the table the last sample is held.
+    pose : (6,) x, y, z (m), roll, pitch, yaw (rad) of the reference point.
+    vel : (3,) earth velocity (m/s) of the reference point.
+    omega : (3,) angular velocity (rad/s), earth axes.
+    p1, p2, ex_b, ey_b, ez_b : (ne, 3) end points (m) and local unit axes, body coordinates.
+    c2 : (ne, 3) quadratic drag per unit length along local x, y, z (N s^2/m^3).
+    n_strips : (ne,) int strips per element (over its wetted length).
+    st_first, st_count : (ne,) int first station and number of stations of each element
+        (stations at s = (i + 0.5) / st_count along the element).
+    eta_tab : (nt, ns) elevation (m); u_tab : (nt, ns, nl, 3) wave velocity (m/s, earth).
+    lev0, dlev : deepest level (m, < 0) and level spacing (m) of u_tab.
+    depth : water depth (m) (inf: deep water); wheeler : bool, Wheeler stretching.
+    wave_factor : float, ramp factor on the wave kinematics (0..1).
+    cur_z, cur_speed : (nc,) current profile (m, increasing; m/s); cur_cos, cur_sin : heading.
+    R : (3, 3) scratch.
+    """
+    rotation_into(pose[3], pose[4], pose[5], R)
+    nt = eta_tab.shape[0]
+    if tau <= 0.0:
+        i0 = 0
+        wt = 0.0
+    elif tau >= nt - 1:
+        i0 = nt - 2
+        wt = 1.0
+    else:
+        i0 = int(tau)
+        wt = tau - i0
+    ne = p1.shape[0]
+    uw0 = 0.0
+    uw1 = 0.0
+    uw2 = 0.0
+    for e in range(ne):
+        # end points and axes in earth coordinates
+        a0 = pose[0] + R[0, 0] * p1[e, 0] + R[0, 1] * p1[e, 1] + R[0, 2] * p1[e, 2]
+        a1 = pose[1] + R[1, 0] * p1[e, 0] + R[1, 1] * p1[e, 1] + R[1, 2] * p1[e, 2]
+        a2 = pose[2] + R[2, 0] * p1[e, 0] + R[2, 1] * p1[e, 1] + R[2, 2] * p1[e, 2]
+        b0 = pose[0] + R[0, 0] * p2[e, 0] + R[0, 1] * p2[e, 1] + R[0, 2] * p2[e, 2]
+        b1 = pose[1] + R[1, 0] * p2[e, 0] + R[1, 1] * p2[e, 1] + R[1, 2] * p2[e, 2]
+        b2 = pose[2] + R[2, 0] * p2[e, 0] + R[2, 1] * p2[e, 1] + R[2, 2] * p2[e, 2]
+        L = math.sqrt((b0 - a0) ** 2 + (b1 - a1) ** 2 + (b2 - a2) ** 2)
+        nst = st_count[e]
+        sf = st_first[e]
+        # wetted part [s_lo, s_hi] of the parameter s in [0, 1] (p1 at s = 0)
+        s_lo = 0.0
+        s_hi = 1.0
+        dz = b2 - a2
+        if abs(dz) > 1e-9 * L:
+            # elevation at the MWL crossing (clamped to the element), then the parameter
+            # where the element meets that surface
+            sc = min(max(-a2 / dz, 0.0), 1.0)
+            x = sc * nst - 0.5
+            if x <= 0.0:
+                k0 = 0
+                ws = 0.0
+            elif x >= nst - 1:
+                k0 = max(nst - 2, 0)
+                ws = 1.0 if nst > 1 else 0.0
+            else:
+                k0 = int(x)
+                ws = x - k0
+            k1 = k0 + 1 if nst > 1 else k0
+            eta = wave_factor * _eta_at(eta_tab, i0, wt, sf + k0, sf + k1, ws)
+            sw = (eta - a2) / dz
+            if dz < 0.0:  # p1 above p2: wet for s >= sw
+                s_lo = min(max(sw, 0.0), 1.0)
+            else:
+                s_hi = min(max(sw, 0.0), 1.0)
+        if s_hi <= s_lo:
+            continue
+        ns = n_strips[e]
+        ds = (s_hi - s_lo) / ns
+        seg = ds * L
+        # local axes in earth coordinates
+        ex0 = R[0, 0] * ex_b[e, 0] + R[0, 1] * ex_b[e, 1] + R[0, 2] * ex_b[e, 2]
+        ex1 = R[1, 0] * ex_b[e, 0] + R[1, 1] * ex_b[e, 1] + R[1, 2] * ex_b[e, 2]
+        ex2 = R[2, 0] * ex_b[e, 0] + R[2, 1] * ex_b[e, 1] + R[2, 2] * ex_b[e, 2]
+        ey0 = R[0, 0] * ey_b[e, 0] + R[0, 1] * ey_b[e, 1] + R[0, 2] * ey_b[e, 2]
+        ey1 = R[1, 0] * ey_b[e, 0] + R[1, 1] * ey_b[e, 1] + R[1, 2] * ey_b[e, 2]
+        ey2 = R[2, 0] * ey_b[e, 0] + R[2, 1] * ey_b[e, 1] + R[2, 2] * ey_b[e, 2]
+        ez0 = R[0, 0] * ez_b[e, 0] + R[0, 1] * ez_b[e, 1] + R[0, 2] * ez_b[e, 2]
+        ez1 = R[1, 0] * ez_b[e, 0] + R[1, 1] * ez_b[e, 1] + R[1, 2] * ez_b[e, 2]
+        ez2 = R[2, 0] * ez_b[e, 0] + R[2, 1] * ez_b[e, 1] + R[2, 2] * ez_b[e, 2]
+        for i in range(ns):
+            s = s_lo + (i + 0.5) * ds
+            px = a0 + s * (b0 - a0)
+            py = a1 + s * (b1 - a1)
+            pz = a2 + s * (b2 - a2)
+            x = s * nst - 0.5
+            if x <= 0.0:
+                k0 = 0
+                ws = 0.0
+            elif x >= nst - 1:
+                k0 = max(nst - 2, 0)
+                ws = 1.0 if nst > 1 else 0.0
+            else:
+                k0 = int(x)
+                ws = x - k0
+            k1 = k0 + 1 if nst > 1 else k0
+            eta = wave_factor * _eta_at(eta_tab, i0, wt, sf + k0, sf + k1, ws)
+            if pz > eta:
+                continue  # dry strip
+            zs = stretched_level(pz, eta, depth, wheeler)
+            # wave velocity (interpolated) at the strip
+            x = (zs - lev0) / dlev
+            nl = u_tab.shape[2]
+            if x <= 0.0:
+                l0 = 0
+                wl = 0.0
+            elif x >= nl - 1:
+                l0 = nl - 2
+                wl = 1.0
+            else:
+                l0 = int(x)
+                wl = x - l0
+            for c in range(3):
+                ua = ((1.0 - wl) * ((1.0 - ws) * u_tab[i0, sf + k0, l0, c]
+                                    + ws * u_tab[i0, sf + k1, l0, c])
+                      + wl * ((1.0 - ws) * u_tab[i0, sf + k0, l0 + 1, c]
+                              + ws * u_tab[i0, sf + k1, l0 + 1, c]))
+                ub = ((1.0 - wl) * ((1.0 - ws) * u_tab[i0 + 1, sf + k0, l0, c]
+                                    + ws * u_tab[i0 + 1, sf + k1, l0, c])
+                      + wl * ((1.0 - ws) * u_tab[i0 + 1, sf + k0, l0 + 1, c]
+                              + ws * u_tab[i0 + 1, sf + k1, l0 + 1, c]))
+                val = wave_factor * ((1.0 - wt) * ua + wt * ub)
+                if c == 0:
+                    uw0 = val
+                elif c == 1:
+                    uw1 = val
+                else:
+                    uw2 = val
+            uc = _current_at(cur_z, cur_speed, pz)
+            rx = px - pose[0]
+            ry = py - pose[1]
+            rz = pz - pose[2]
+            vx = uc * cur_cos + uw0 - (vel[0] + omega[1] * rz - omega[2] * ry)
+            vy = uc * cur_sin + uw1 - (vel[1] + omega[2] * rx - omega[0] * rz)
+            vz = uw2 - (vel[2] + omega[0] * ry - omega[1] * rx)
+            qx = ex0 * vx + ex1 * vy + ex2 * vz
+            qy = ey0 * vx + ey1 * vy + ey2 * vz
+            qz = ez0 * vx + ez1 * vy + ez2 * vz
+            gx = c2[e, 0] * abs(qx) * qx * seg
+            gy = c2[e, 1] * abs(qy) * qy * seg
+            gz = c2[e, 2] * abs(qz) * qz * seg
+            fx = gx * ex0 + gy * ey0 + gz * ez0
+            fy = gx * ex1 + gy * ey1 + gz * ez1
+            fz = gx * ex2 + gy * ey2 + gz * ez2
+            out[0] += fx
+            out[1] += fy
+            out[2] += fz
+            out[3] += ry * fz - rz * fy
+            out[4] += rz * fx - rx * fz
+            out[5] += rx * fy - ry * fx
