@@ -11,6 +11,7 @@ from .config import (FRICTION_MODELS, SEABED_MODELS, FELineSpec, FESegment, Fric
                      Seabed)
 from .from_system import spec_from_linedef, specs_from_system
 from .line import FELine, StaticSolution, gen_alpha_coefficients
+from .options import MOORING_MODELS, FEOptions, parse_fe_options
 from .prescribed import (HarmonicMotion, TimeSeriesMotion, daf, decoupled_analysis,
                          fairlead_track_from_body, quasi_static_tension, run_prescribed)
 
@@ -18,4 +19,5 @@ __all__ = ["FELineSpec", "FESegment", "Friction", "PointBody", "Seabed", "FRICTI
            "SEABED_MODELS", "FELine", "StaticSolution", "gen_alpha_coefficients",
            "HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
            "quasi_static_tension", "daf", "transverse_friction_static", "spec_from_linedef",
-           "specs_from_system", "FEMooring", "decoupled_analysis"]
+           "specs_from_system", "FEMooring", "decoupled_analysis", "FEOptions",
+           "parse_fe_options", "MOORING_MODELS"]
