@@ -31,13 +31,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import FloatmoorWarning, SceneError
+from .base import ForceModel, KernelAssembly, SetupContext, register
 from .series import FrequencyGrid
 from .slender_config import SlenderElementSpec
 from .slender_kernels import local_axes, slender_force_into
 
 __all__ = ["SlenderGeometry", "KinematicsTable", "slender_geometry", "build_kinematics_table",
            "slender_force", "covered_current_dofs", "current_table_without",
-           "angular_velocity_earth", "DOF_NAMES"]
+           "angular_velocity_earth", "DOF_NAMES", "SlenderElements", "hull_current_table",
+           "drift_database", "linear_damping_matrix", "viscous_spec"]
 
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
@@ -284,3 +286,164 @@ def current_table_without(table: np.ndarray, dofs, *, vessel_file=None, warn: bo
                       f"section 6.1.2; forces: viscous_drift: double_counting: false keeps them)",
                       FloatmoorWarning, stacklevel=2)
     return out
+
+
+# -- the force model -------------------------------------------------------------------------
+
+def viscous_spec(ctx):
+    """The scene's ``forces: viscous_drift`` options (None when absent)."""
+    return getattr(getattr(ctx, "options", None), "viscous_drift", None)
+
+
+def _table_ratio(grid: FrequencyGrid | None, h: float, table_step: float) -> int:
+    """Samples (of step h) per table step: the largest m <= table_step / h dividing grid.N."""
+    m = max(1, int(math.floor(table_step / h + 1e-9)))
+    if grid is None:
+        return m
+    while m > 1 and grid.N % m != 0:
+        m -= 1
+    return m
+
+
+def _current_profile(scene, lev0: float):
+    """Current (z (nc,), speed (nc,), heading) at heights lev0..0 from the scene, or empty."""
+    spec = scene.environment.current
+    if spec is None:
+        return np.zeros(0), np.zeros(0), 0.0
+    from ..metocean.current import current_speed
+    z = np.linspace(min(lev0, -1.0), 0.0, 41)
+    return z, np.asarray(current_speed(spec, z, scene.site.water_depth), float).reshape(-1), \
+        float(spec.heading)
+
+
+@register
+class SlenderElements(ForceModel):
+    """Morison drag strips on the hull (:mod:`floatmoor.forces.slender_kernels`), from the
+    vessel file's ``slender_elements`` section; options in ``forces: viscous_drift``."""
+
+    name = "slender_elements"
+    description = "slender elements: Morison drag strips, current + waves - body velocity"
+
+    def setup(self, ctx: SetupContext):
+        from .slender_config import parse_slender_elements
+        spec = viscous_spec(ctx)
+        v = ctx.built.vessel
+        scene = ctx.built.scene
+        drag = dict(getattr(spec, "drag", {}) or {})
+        elements = parse_slender_elements(v.slender_elements, file=v.file,
+                                          key="slender_elements", scale=drag or None)
+        geom = slender_geometry(elements, station_spacing=getattr(spec, "station_spacing", 10.0),
+                                yaw0=ctx.yaw0)
+        wheeler = bool(getattr(spec, "wheeler", True))
+        h = ctx.sample_dt
+        duration = ctx.n_samples * h
+        depth = float(scene.site.water_depth)
+        comp = ctx.waves
+        hs = float(getattr(scene.environment.waves, "hs", 0.0) or 0.0) if comp is not None else 0.0
+        # deepest stretched level: the lowest element end, less heave/pitch motion and crests
+        lev0 = geom.z_min - 5.0 - (1.2 * hs if wheeler else 0.0)
+        dlev = float(getattr(spec, "level_step", 2.0))
+        if comp is not None:
+            r = comp.realisation
+            m = _table_ratio(comp.grid, h, float(getattr(spec, "table_step", 0.4)))
+            table = build_kinematics_table(r.omega, r.amplitude, r.phase, r.k, r.direction,
+                                           geom.stations, duration=duration, H=m * h,
+                                           depth=depth, lev0=lev0, dlev=dlev, wheeler=wheeler,
+                                           grid=comp.grid)
+        else:
+            m = max(1, ctx.n_samples)
+            nl = int(math.ceil(-lev0 / dlev)) + 1
+            table = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0])),
+                                    u=np.zeros((2, geom.stations.shape[0], nl, 3)), H=m * h,
+                                    lev0=-(nl - 1) * dlev, dlev=dlev, depth=depth,
+                                    wheeler=wheeler)
+        cz, cs, chead = _current_profile(scene, table.lev0)
+        self.geom = geom
+        self.table = table
+        self.h = h
+        self.m = m
+        self.ramp = np.ascontiguousarray(ctx.ramp_series(), float)
+        self.current_z, self.current_speed, self.current_heading = cz, cs, chead
+        self.fel = np.ascontiguousarray(np.hstack([geom.p1, geom.p2, geom.ex, geom.ey, geom.ez,
+                                                   geom.c2]))
+        self.iel = np.ascontiguousarray(np.stack([geom.n_strips, geom.st_first, geom.st_count],
+                                                 axis=1).astype(np.int64))
+        self.par = np.array([float(m), table.lev0, table.dlev, table.depth, float(wheeler),
+                             math.cos(chead), math.sin(chead), 0.0])
+        self.cur = np.ascontiguousarray(np.stack([cz, cs], axis=1)) if cz.size else \
+            np.zeros((0, 2))
+        self._freeze()
+
+    def force(self, t, pose, velocity, out):
+        """Adds the strip forces at time t (s), pose (6,) and pose rate ``velocity`` (6,)
+        (earth translation rate; roll/pitch rates about the yaw-following axes, yaw rate)."""
+        vel = np.asarray(velocity, float)
+        j = int(round(t / self.h))
+        wf = float(self.ramp[min(max(j, 0), self.ramp.size - 1)])
+        out += slender_force(self.geom, self.table, t, pose, vel[:3],
+                             angular_velocity_earth(float(pose[5]), vel[3:6]),
+                             current_z=self.current_z, current_speed=self.current_speed,
+                             current_heading=self.current_heading, wave_factor=wf)
+
+    def mean_force(self):
+        """Current only (waves not yet ramped in), body at rest at the reference pose."""
+        return slender_force(self.geom, self.table, 0.0, np.zeros(6), np.zeros(3), np.zeros(3),
+                             current_z=self.current_z, current_speed=self.current_speed,
+                             current_heading=self.current_heading, wave_factor=0.0)
+
+    def covered_dofs(self) -> tuple:
+        return covered_current_dofs(self.geom)
+
+    def kernel_arrays(self) -> tuple:
+        """(fel, iel, eta, u, par, cur, ramp) for :func:`slender_packed_into`."""
+        return (self.fel, self.iel, self.table.eta, self.table.u, self.par, self.cur, self.ramp)
+
+    def contribute(self, asm: KernelAssembly):
+        asm.slender = self.kernel_arrays()
+
+
+def hull_current_table(ctx, table: np.ndarray, vessel) -> np.ndarray:
+    """The hull current coefficients to use: zeroed in the DOFs the slender elements cover when
+    the scene uses them with ``double_counting: true`` (seed 002 section 6.1.2)."""
+    spec = viscous_spec(ctx)
+    if spec is None or getattr(spec, "model", "none") != "slender_elements" \
+            or not getattr(spec, "double_counting", True):
+        return table
+    from .slender_config import parse_slender_elements
+    els = parse_slender_elements(vessel.slender_elements, file=vessel.file,
+                                 scale=dict(spec.drag) or None)
+    dofs = covered_current_dofs(slender_geometry(els))
+    return current_table_without(table, dofs, vessel_file=vessel.file)
+
+
+def drift_database(ctx, db):
+    """The database whose mean drift coefficients the drift model uses: corrected by eq. 6.6
+    when the scene asks for ``viscous_drift: {model: correction_formula}``."""
+    spec = viscous_spec(ctx)
+    if spec is None or getattr(spec, "model", "none") != "correction_formula":
+        return db
+    from ..hydro.viscous_drift import corrected_mean_drift
+    from ..metocean.current import current_speed
+    scene = ctx.built.scene
+    env = scene.environment
+    U = spec.current_speed
+    head = 0.0
+    if env.current is not None:
+        head = float(env.current.heading)
+        if U is None:
+            U = float(np.asarray(current_speed(env.current, np.array([0.0]),
+                                               scene.site.water_depth)).reshape(-1)[0])
+    return corrected_mean_drift(db, current_speed=float(U or 0.0), current_heading=head,
+                                hs=float(env.waves.hs), formula=spec.correction_formula(),
+                                yaw=ctx.yaw0)
+
+
+def linear_damping_matrix(ctx, D: np.ndarray) -> np.ndarray:
+    """The vessel's linear damping, raised in surge and sway by ``extra_damping`` (fraction)
+    for the correction-formula case (seed 002 section 6.6)."""
+    spec = viscous_spec(ctx)
+    if spec is None or getattr(spec, "model", "none") != "correction_formula" \
+            or not getattr(spec, "extra_damping", 0.0):
+        return D
+    from ..hydro.viscous_drift import extra_linear_damping
+    return extra_linear_damping(D, increase=float(spec.extra_damping))

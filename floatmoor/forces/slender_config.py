@@ -146,8 +146,8 @@ def parse_slender_elements(raw, *, file=None, key: str = "slender_elements",
     raw : the mapping as read from the YAML file (``Vessel.slender_elements``).
     file : the vessel file (for messages).
     rho : water density (kg/m^3) for C = 0.5 rho C_D D.
-    scale : optional {type: (cx, cy, cz)} overriding the coefficients of a type (used by
-        scene-level tuning, e.g. seed 002 cases 3 and 4).
+    scale : optional {type: (cx, cy, cz)} or {type: {"c2y": value, ...}} overriding all or
+        some coefficients of a type (scene-level tuning, e.g. seed 002 cases 3 and 4).
 
     Returns
     -------
@@ -164,7 +164,12 @@ def parse_slender_elements(raw, *, file=None, key: str = "slender_elements",
         for t, c in scale.items():
             if t not in coeffs:
                 raise SceneError(file, key, f"an element type among {sorted(coeffs)}", t)
-            coeffs[t] = tuple(float(x) for x in c)
+            if isinstance(c, dict):  # partial override {c2x: .., c2y: .., c2z: ..}
+                old = dict(zip(("c2x", "c2y", "c2z"), coeffs[t]))
+                old.update({k: float(v) for k, v in c.items()})
+                coeffs[t] = (old["c2x"], old["c2y"], old["c2z"])
+            else:
+                coeffs[t] = tuple(float(x) for x in c)
     out = []
     names = set()
     for i, en in enumerate(node.item_nodes("elements", min_len=1)):

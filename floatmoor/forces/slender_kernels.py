@@ -42,7 +42,8 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["rotation_into", "local_axes", "slender_force_into", "kinematics_at",
+__all__ = ["rotation_into", "local_axes", "slender_force_into", "slender_packed_into",
+           "kinematics_at",
            "stretched_level"]
 
 
@@ -308,3 +309,30 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
             out[3] += ry * fz - rz * fy
             out[4] += rz * fx - rx * fz
             out[5] += rx * fy - ry * fx
+
+
+@njit(cache=True)
+def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, par, cur, ramp, R, sc, out):
+    """:func:`slender_force_into` on the packed arrays of the time-domain kernel.
+
+    j : sample index (time j h, h = dt/2); x : pose (6,); v : velocity in the yaw-following
+    frame (6,) as in the solver (horizontal velocity and roll/pitch rates about the turned
+    axes).  fel (ne, 18) = [p1, p2, ex, ey, ez, c2]; iel (ne, 3) = [n_strips, st_first,
+    st_count]; par = [m (samples per table step), lev0, dlev, depth, wheeler, cos, sin of the
+    current heading]; cur (nc, 2) = current profile [z, speed]; ramp (n_samples,) the factor on
+    the wave kinematics; R (3, 3), sc (6,) scratch.  Adds into ``out`` (6,), earth axes.
+    """
+    cy = math.cos(x[5])
+    sy = math.sin(x[5])
+    sc[0] = cy * v[0] - sy * v[1]
+    sc[1] = sy * v[0] + cy * v[1]
+    sc[2] = v[2]
+    sc[3] = cy * v[3] - sy * v[4]
+    sc[4] = sy * v[3] + cy * v[4]
+    sc[5] = v[5]
+    n = ramp.shape[0]
+    jj = j if j < n else n - 1
+    slender_force_into(j / par[0], x, sc[0:3], sc[3:6], fel[:, 0:3], fel[:, 3:6], fel[:, 6:9],
+                       fel[:, 9:12], fel[:, 12:15], fel[:, 15:18], iel[:, 0], iel[:, 1],
+                       iel[:, 2], eta_tab, u_tab, par[1], par[2], par[3], par[4] > 0.5,
+                       ramp[jj], cur[:, 0], cur[:, 1], par[5], par[6], R, out)
