@@ -122,12 +122,15 @@ def read_results(folder, key: str = "RESULTS_DIR"):
     for f in files:
         try:
             with xr.open_dataset(f) as ds:
-                if "line_tension" not in ds or "time" not in ds.dims:
-                    raise _scene_error(f, key, "a floatmoor run result (line_tension(time, "
-                                       "line) in N)", "variables " + ", ".join(map(str, ds.data_vars)))
-                ds = ds[[v for v in _VARIABLES if v in ds]].load()
+                names = list(map(str, ds.data_vars))
+                ok = "line_tension" in ds and "time" in ds.dims
+                ds = ds[[v for v in _VARIABLES if v in ds]].load() if ok else None
         except (OSError, ValueError) as exc:
-            raise _scene_error(f, key, "a readable netCDF file", f"{type(exc).__name__}: {exc}")
+            raise _scene_error(f, key, "a readable netCDF file",
+                               f"{type(exc).__name__}: {exc}") from None
+        if ds is None:
+            raise _scene_error(f, key, "a floatmoor run result (line_tension(time, line) in N)",
+                               "variables " + ", ".join(names[:8]))
         ds.attrs["source_file"] = str(f)
         datasets.append(ds)
     _check_consistent(datasets, key)
@@ -226,7 +229,8 @@ def _read_fd(path, td_scene):
         with xr.open_dataset(path) as ds:
             fd = ds.load()
     except (OSError, ValueError) as exc:
-        raise _scene_error(path, "--fd", "a readable netCDF file", f"{type(exc).__name__}: {exc}")
+        raise _scene_error(path, "--fd", "a readable netCDF file",
+                           f"{type(exc).__name__}: {exc}") from None
     if "tension_max_total" not in fd:
         raise _scene_error(path, "--fd", "a floatmoor fd result (tension_max_total per line)",
                            "variables " + ", ".join(list(map(str, fd.data_vars))[:8]))
