@@ -114,13 +114,26 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     -------
     BatchResult
         One :class:`SeedOutcome` per seed, in seed order.
+
+    Raises
+    ------
+    SceneError
+        A bad scene file, or a duration not longer than the transient (before any seed runs).
     """
     from .io.scene import load_scene
 
+    from .simulate import check_statistics_window
+
     scene = load_scene(scene_path)  # fail early on a bad scene, in the parent
+    overrides = dict(overrides or {})
+    an = scene.analysis
+    duration = overrides.get("duration")
+    transient = overrides.get("transient")
+    check_statistics_window(scene.file, float(an.duration if duration is None else duration),
+                            float(an.transient if transient is None else transient),
+                            key="analysis.duration" if duration is None else "duration")
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    overrides = dict(overrides or {})
     seeds = [int(s) for s in seeds]
     outcomes: dict[int, SeedOutcome] = {}
     todo = []

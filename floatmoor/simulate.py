@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import datetime as _dt
+import math
 import os
 import platform
 import sys
@@ -17,7 +18,26 @@ import xarray as xr
 from .core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
 from .core.errors import FloatmoorWarning, SceneError
 
-__all__ = ["simulate", "result_dataset", "scene_text"]
+__all__ = ["simulate", "result_dataset", "scene_text", "check_statistics_window",
+           "YAW_WARNING_DEG"]
+
+YAW_WARNING_DEG = 15.0
+"""Yaw (deg) away from the heading of the wave forces (body yaw 0, the start heading) beyond
+which a run warns that the wave forces, evaluated at that heading, no longer follow the body."""
+
+
+def check_statistics_window(file, duration: float, transient: float, *,
+                            key: str = "analysis.duration") -> None:
+    """SceneError unless ``duration`` (s) is longer than ``transient`` (s).
+
+    The statistics of a run (and the table of ``floatmoor run``) use the window after the
+    transient; a run that ends inside the transient has none.  ``key`` names the value that was
+    given (``analysis.duration``, ``--duration``, the ``duration`` argument)."""
+    if not duration > transient:
+        raise SceneError(file, key, f"a duration longer than the transient ({transient:g} s, "
+                         "analysis.transient): the statistics window after the transient "
+                         "would be empty", duration,
+                         hint=f"give a duration > {transient:g} s or a shorter transient")
 
 
 def scene_text(scene) -> str:
@@ -50,7 +70,9 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         the seed itself; the wind gust an independent stream derived from it.
     duration, dt, ramp, transient : float, optional
         Override ``analysis`` (s).  ``transient`` only marks the start of the statistics window
-        (attribute ``transient``); the series keep it.
+        (attribute ``transient``); the series keep it.  A duration not longer than the
+        transient is allowed here (short checks) with a FloatmoorWarning;
+        :func:`floatmoor.runner.run_seeds` and ``floatmoor run`` refuse it (SceneError).
     forces : :class:`floatmoor.io.forces_section.ForcesSpec`, optional
         Force options (default: the scene's ``forces`` section, if any).
     record_forces : bool, optional
@@ -61,6 +83,17 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     start_pose, start_velocity : (6,), optional (advanced: free decay; default: static
         equilibrium at rest).
 
+    Notes
+    -----
+    The first-order wave and drift forces are precomputed before the loop at the mean position
+    (the origin, where the database's phase reference lies) and the start heading (body yaw 0):
+    they do not follow the body's yaw or offset (attribute ``wave_force_frame``).  A run whose
+    yaw moves more than :data:`YAW_WARNING_DEG` (15 deg) from that heading warns with a
+    :class:`FloatmoorWarning` (attribute ``max_yaw_excursion_deg``).  Wind and current act on
+    the velocity of the flow relative to the low-frequency body velocity (seed 002 eq. 2.24,
+    2.26): the linear wave-frequency velocity is removed from the body velocity (scene option
+    ``forces: {relative_velocity: low_frequency | total}``, attribute ``relative_velocity``).
+
     Returns
     -------
     xarray.Dataset
@@ -70,7 +103,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         ``force(time, model, dof)`` (N, N m; when recorded).  Attributes: ``scene`` (YAML text),
         ``scene_file``, ``scene_name``, ``seed``, ``models`` (active force models), ``dt``,
         ``duration``, ``ramp``, ``transient``, versions, ``run_time_s`` (time loop),
-        ``setup_time_s``, ``created``.
+        ``setup_time_s``, ``created``, ``relative_velocity`` and ``relative_velocity_note``,
+        ``wave_force_frame``, ``max_yaw_excursion_deg`` (with wave forces).
 
     Raises
     ------
@@ -102,6 +136,10 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     transient = an.transient if transient is None else float(transient)
     if not (0.0 < dt < duration):
         raise SceneError(sc.file, "analysis.dt", f"0 < dt < duration ({duration:g} s)", dt)
+    if not duration > transient:  # legitimate for short checks; refused by run_seeds / run
+        warnings.warn(f"the duration {duration:g} s is not longer than the transient "
+                      f"{transient:g} s: the run has no statistics window (floatmoor run "
+                      "refuses this)", FloatmoorWarning, stacklevel=2)
     if forces is None:
         forces = getattr(sc, "forces", None)
     if record_forces is None:
@@ -117,6 +155,18 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     om = float(r.info.get("omega_max", 0.0))
     ds.attrs["stiffest_mode_period_s"] = float(2 * np.pi / om) if om > 0 else float("inf")
     ds.attrs["real_time_factor"] = float(a.n_steps * dt / max(r.wall_time, 1e-12))
+    wave_models = [m for m in r.models if m == "wave1" or m.startswith("drift")]
+    if wave_models and r.motion.size:
+        yaw0 = float(r.info.get("wave_heading_yaw", 0.0))
+        excursion = float(np.degrees(np.max(np.abs(r.motion[:, 5] - yaw0))))
+        ds.attrs["max_yaw_excursion_deg"] = excursion
+        if excursion > YAW_WARNING_DEG:
+            warnings.warn(f"the yaw reached {excursion:.1f} deg away from the heading of the "
+                          f"wave forces (body yaw {math.degrees(yaw0):g} deg, seed "
+                          f"{seed}); the wave forces ({', '.join(wave_models)}) are evaluated at "
+                          f"the start heading and do not follow the body: beyond about "
+                          f"{YAW_WARNING_DEG:g} deg that assumption is stretched",
+                          FloatmoorWarning, stacklevel=2)
     mbs = built.mooring.mbs if built.mooring is not None else None
     if mbs is not None and r.line_tension.size:
         over = np.nonzero(r.line_tension.max(axis=0) > mbs)[0]
@@ -125,6 +175,22 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
                           f"{r.line_tension[:, i].max() / 1e3:.0f} kN exceeds its MBS "
                           f"{mbs[i] / 1e3:.0f} kN (seed {seed})", FloatmoorWarning, stacklevel=2)
     return ds
+
+
+def _relative_velocity_note(r) -> str:
+    mode = r.info.get("relative_velocity", "low_frequency")
+    flows = [m for m in ("wind", "current") if m in r.models]
+    if not flows:
+        return "no wind or current force"
+    what = " and ".join(flows)
+    if mode == "total":
+        return f"{what} relative to the total body velocity (seed 002 eq. 6.7 form)"
+    if r.info.get("wf_velocity_removed", False):
+        return (f"{what} relative to the low-frequency body velocity: the linear first-order "
+                "wave-frequency velocity (motion RAOs x the run's wave realisation) is removed "
+                "from the body velocity (seed 002 eq. 2.24, 2.26)")
+    return (f"{what} relative to the body velocity (no first-order waves: it is the "
+            "low-frequency velocity, seed 002 eq. 2.24, 2.26)")
 
 
 def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: float,
@@ -176,6 +242,11 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
         "ramp": float(ramp),
         "transient": float(transient),
         "integrator": "classical Runge-Kutta 4, fixed step; trapezoidal radiation memory",
+        "relative_velocity": str(r.info.get("relative_velocity", "low_frequency")),
+        "relative_velocity_note": _relative_velocity_note(r),
+        "wave_force_frame": "first-order wave and drift forces are evaluated at the mean "
+                            "position (the origin) and the start heading (body yaw 0): they do "
+                            "not follow the body's yaw or offset",
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     })
     for k, v in _versions().items():

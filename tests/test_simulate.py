@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import warnings
 from pathlib import Path
 
@@ -174,3 +175,61 @@ def test_run_command_failed_seed_exit_status(scene_file, tmp_path, capsys):
     assert "1 seed(s) failed: 2" in cap.err
     assert seed_file(out, "oc3-waves", 1).is_file()
     assert "statistics over 1 seed" in cap.out
+
+
+def test_duration_not_longer_than_transient(scene_file, tmp_path, capsys):
+    """``floatmoor run --duration`` at or below the transient (50 s here) is a SceneError naming
+    the duration and the transient, before any seed runs (exit status 2 through the CLI), not a
+    zero-size-array crash in the statistics table; ``run_seeds`` refuses it too; ``simulate``
+    allows such a short check with a FloatmoorWarning."""
+    from floatmoor.cli import main
+    from floatmoor.commands import run as run_cmd
+    from floatmoor.core.errors import FloatmoorWarning
+    from floatmoor.runner import run_seeds
+
+    p = argparse.ArgumentParser()
+    run_cmd.add_arguments(p)
+    out = tmp_path / "o"
+    for dur in ("50", "30"):
+        args = p.parse_args([str(scene_file), "--seeds", "1", "--out", str(out),
+                             "--duration", dur])
+        with pytest.raises(SceneError, match="--duration") as err:
+            run_cmd.run(args)
+        assert "transient" in str(err.value) and "50 s" in str(err.value)
+    assert not out.exists()
+    assert main(["run", str(scene_file), "--seeds", "1", "--out", str(out),
+                 "--duration", "30"]) == 2
+    assert "transient" in capsys.readouterr().err
+    with pytest.raises(SceneError, match="duration.*transient"):
+        run_seeds(scene_file, [1], out, overrides={"duration": 40.0}, echo=None)
+    with pytest.warns(FloatmoorWarning, match="transient"):
+        ds = simulate(scene_file, seed=1, duration=30.0)
+    assert ds["time"].values[-1] == pytest.approx(30.0)
+
+
+def test_attributes_name_the_wave_force_frame_and_relative_velocity(scene_file):
+    ds = simulate(scene_file, seed=1, duration=60.0)
+    assert "start heading" in ds.attrs["wave_force_frame"]
+    assert ds.attrs["relative_velocity"] == "low_frequency"
+    assert ds.attrs["relative_velocity_note"] == "no wind or current force"
+    assert 0.0 <= ds.attrs["max_yaw_excursion_deg"] < 15.0
+
+
+def test_large_yaw_excursion_warns_about_the_wave_heading(scene_file):
+    """A run whose yaw leaves the start heading by more than 15 deg (here a free yaw decay from
+    25 deg in waves) warns that the wave forces stay at the start heading."""
+    from floatmoor.core.errors import FloatmoorWarning
+    from floatmoor.solvers.time_domain import assemble
+    from floatmoor.io.build import build
+    from floatmoor.io.scene import load_scene
+
+    b = build(load_scene(scene_file))
+    a = assemble(b, seed=1, dt=0.1, duration=10.0)
+    x0 = a.x0.copy()
+    x0[5] += math.radians(25.0)
+    with pytest.warns(FloatmoorWarning, match="start heading"):
+        ds = simulate(b, seed=1, duration=10.0, dt=0.1, transient=0.0, start_pose=x0)
+    assert ds.attrs["max_yaw_excursion_deg"] > 15.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FloatmoorWarning)
+        simulate(b, seed=1, duration=60.0, dt=0.1)   # small yaw: no warning

@@ -98,6 +98,9 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out) if args.out else Path(scene.file).parent / "results" / scene.name
     overrides = {}
     if args.duration is not None:
+        from ..simulate import check_statistics_window
+        check_statistics_window(scene.file, args.duration, scene.analysis.transient,
+                                key="--duration")
         overrides["duration"] = args.duration
     if args.dt is not None:
         overrides["dt"] = args.dt

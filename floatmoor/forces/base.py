@@ -194,6 +194,10 @@ class KernelAssembly:
     current_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
     has_wind: bool = False
     has_current: bool = False
+    # linear wave-frequency body velocity (n_samples, 6), earth axes: removed from the body
+    # velocity in the wind and current relative velocity (seed 002 eq. 2.24, 2.26); empty: none
+    wf_velocity: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
+    has_wf_velocity: bool = False
     # mooring (quasi-static)
     mooring: Any = None
     fail_time: np.ndarray = field(default_factory=lambda: np.zeros(0))

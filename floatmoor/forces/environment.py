@@ -2,7 +2,9 @@
 
 ``F = C(theta_rel) |U - v|^2`` (seed 002 eq. 2.24 and 2.26 without their linearisation, so that
 the wind and current damping ``-2 C U v`` come out of the model): ``U`` the flow velocity
-(horizontal, earth axes), ``v`` the horizontal velocity of the body reference point, ``theta_rel``
+(horizontal, earth axes), ``v`` the horizontal low-frequency velocity of the body reference
+point (by default the solver removes its linear wave-frequency velocity from the body velocity,
+scene option ``forces: {relative_velocity: low_frequency | total}``), ``theta_rel``
 the direction of travel of the relative flow measured from the body x axis (it follows the
 body's yaw), ``C`` the vessel's coefficient table (body axes; forces turned to earth axes by the
 yaw).  See :func:`floatmoor.forces.kernels.relative_flow_force_into`.
@@ -51,11 +53,19 @@ def _table(vessel, attr, what):
 
 
 class _FlowModel(ForceModel):
-    def force(self, t, pose, velocity, out):
+    def force(self, t, pose, velocity, out, wf_velocity=None):
+        """Add the force at time t (s) for the pose and the pose rate ``velocity`` (earth).
+
+        ``wf_velocity`` (6,), optional: the wave-frequency part of ``velocity`` to remove, so that
+        the flow is taken relative to the low-frequency velocity (seed 002 eq. 2.24, 2.26; the
+        solver passes its linear WF velocity, see :mod:`floatmoor.solvers.wf_velocity`)."""
         coef = np.zeros(6)
-        relative_flow_force_into(self._speed_at(t), self.heading, float(velocity[0]),
-                                 float(velocity[1]), float(pose[5]), 1.0, self.table_heading,
-                                 self.table, coef, out)
+        vx, vy = float(velocity[0]), float(velocity[1])
+        if wf_velocity is not None:
+            vx -= float(wf_velocity[0])
+            vy -= float(wf_velocity[1])
+        relative_flow_force_into(self._speed_at(t), self.heading, vx, vy, float(pose[5]), 1.0,
+                                 self.table_heading, self.table, coef, out)
 
     def mean_force(self):
         out = np.zeros(6)

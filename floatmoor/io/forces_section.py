@@ -9,7 +9,19 @@ forces:
   max_memory: 120.0                # s, longest retardation memory kept
   line_failure: {line6: 1500.0}    # transient ALS: line name -> time of failure (s)
   record_forces: false             # store force(time, model, dof) in the results
+  relative_velocity: low_frequency # body velocity in the wind and current relative velocity:
+                                   # low_frequency (default) | total
 ```
+
+``relative_velocity``: seed 002 writes the hull wind and current forces with the flow velocity
+relative to the low-frequency body velocity, eq. 2.24 ``Q_wi = C_wi [(U + u(t)) - x'_LF]^2``
+and eq. 2.26 ``Q_cu = C_cu (V - x'_LF)|V - x'_LF|``.  With ``low_frequency`` the solver predicts
+the linear wave-frequency velocity x'_WF from the motion RAOs (same database, mass, damping and
+linearised stiffness at the static start) and the same wave realisation as the first-order wave
+force, and uses ``x'_LF = x' - x'_WF`` (:mod:`floatmoor.solvers.wf_velocity`); without waves
+x'_LF = x'.  ``total`` uses the total body velocity x' (the slender-element form of section 6.3,
+eq. 6.7, which turns the hull coefficients into a viscous-drift model: the mean current force on
+the Floatel-like semi in the 100-year sea more than doubles).
 
 Every key is optional.  The models themselves are chosen by the other sections (no wind in the
 environment: no wind model); this section only removes or tunes them.
@@ -21,9 +33,11 @@ from dataclasses import dataclass, field
 
 from ..core.config import Node
 
-__all__ = ["ForcesSpec", "parse_forces", "FORCES_KEYS", "DRIFT_METHODS"]
+__all__ = ["ForcesSpec", "parse_forces", "FORCES_KEYS", "DRIFT_METHODS", "RELATIVE_VELOCITY"]
 
-FORCES_KEYS = ("exclude", "drift", "retardation", "max_memory", "line_failure", "record_forces")
+FORCES_KEYS = ("exclude", "drift", "retardation", "max_memory", "line_failure", "record_forces",
+               "relative_velocity")
+RELATIVE_VELOCITY = ("low_frequency", "total")
 DRIFT_METHODS = ("qtf", "newman", "none")
 
 
@@ -37,6 +51,7 @@ class ForcesSpec:
     max_memory: float | None = None
     line_failure: dict = field(default_factory=dict)
     record_forces: bool = False
+    relative_velocity: str = "low_frequency"
     file: object = field(default=None, compare=False)
 
 
@@ -61,6 +76,8 @@ def parse_forces(node: Node) -> ForcesSpec:
                       max_memory=node.float("max_memory", None, gt=0.0, unit="s")
                       if "max_memory" in node else None,
                       line_failure=failures, record_forces=node.bool("record_forces", False),
+                      relative_velocity=node.str("relative_velocity", "low_frequency",
+                                                 choices=RELATIVE_VELOCITY),
                       file=node.file)
 
 
@@ -74,6 +91,8 @@ def describe_forces(spec: ForcesSpec | None, scene=None) -> list[str]:
         parts.append(f"drift {spec.drift}")
     if not spec.retardation:
         parts.append("no radiation memory")
+    if spec.relative_velocity != "low_frequency":
+        parts.append(f"wind/current relative to the {spec.relative_velocity} body velocity")
     for name, t in spec.line_failure.items():
         parts.append(f"line {name} fails at {t:g} s")
     return ["forces: " + ("; ".join(parts) if parts else "defaults")]

@@ -59,8 +59,8 @@ STATUS_OK, STATUS_NAN, STATUS_GUARD, STATUS_TENSION, STATUS_CATENARY = range(5)
 @njit(cache=True)
 def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_kernel, ret_i,
          ret_j, s0, s1, series, has_wind, wind_speed, wind_heading, wind_th, wind_tab, has_cur,
-         cur_speed, cur_heading, cur_th, cur_tab, has_moor, anchors, fairleads, seg_L, seg_EA,
-         seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
+         cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf, has_moor, anchors, fairleads,
+         seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
          parts, f):
     """Total force ``f`` (6,) and its parts (N_PARTS, 6), all in earth axes (moments about
     the displaced reference point), at sample j (time j dt/2), stage fraction c, pose ``x`` and
@@ -108,9 +108,13 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
             parts[PART_RADIATION, i] -= dt * (0.5 * ret_kernel[p, 0] * v[jj] + (1.0 - c) * s0[p]
                                               + c * s1[p])
         turn_horizontal(parts[PART_RADIATION], cy, sy)
-    # wind and current: relative to the earth velocity of the reference point
+    # wind and current: relative to the earth velocity of the reference point, less the linear
+    # wave-frequency velocity when given (the low-frequency velocity, seed 002 eq. 2.24, 2.26)
     vx = cy * v[0] - sy * v[1]
     vy = sy * v[0] + cy * v[1]
+    if has_vwf:
+        vx -= v_wf[j, 0]
+        vy -= v_wf[j, 1]
     if has_wind:
         relative_flow_force_into(wind_speed[j], wind_heading, vx, vy, x[5], 1.0, wind_th,
                                  wind_tab, coef, parts[PART_WIND])
@@ -174,7 +178,8 @@ def _pose_rate(x, v, out):
 @njit(cache=True)
 def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
               has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading,
-              wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
+              wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf,
+              has_moor,
               anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active,
               fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity, t_fair,
               t_anchor, parts_out, status):
@@ -186,7 +191,9 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
     n_lines) in N; parts_out (n_steps+1, N_PARTS, 6) (earth axes) when ``record_parts`` else
     (1, N_PARTS, 6) scratch; status (3,) int64.  ``hist`` (6, 2 n_k) ring buffer of the
     yaw-frame step velocities, stored twice (zeros on entry); ``guard`` (6,) largest
-    |x - x0| allowed per DOF.
+    |x - x0| allowed per DOF.  ``v_wf`` (n_samples, 6) the linear wave-frequency velocity
+    (earth axes) removed from the body velocity in the wind and current relative velocity when
+    ``has_vwf`` (else a (1, 6) dummy).
     """
     n_parts = parts_out.shape[1]
     parts = np.zeros((n_parts, 6))
@@ -246,8 +253,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
         # stage 1 (also the record at t_n)
         bad = _rhs(2 * n, 0.0, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
-                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
+                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4
@@ -280,8 +287,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
             vs[k] = v[k] + 0.5 * dt * a1[k]
         bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
-                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
+                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4
@@ -296,8 +303,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
             vs[k] = v[k] + 0.5 * dt * a2[k]
         bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
-                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
+                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4
@@ -312,8 +319,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
             vs[k] = v[k] + dt * a3[k]
         bad = _rhs(2 * n + 2, 1.0, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_moor,
-                   anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
+                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4

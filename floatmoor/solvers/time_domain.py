@@ -47,6 +47,7 @@ from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.waves import wave_components
 from .statics import equilibrium
 from .td_kernel import td_kernel
+from .wf_velocity import RELATIVE_VELOCITY_MODES, wf_velocity_series
 
 __all__ = ["assemble", "integrate", "TimeDomainResult", "Assembly", "default_models",
            "RK4_LIMIT"]
@@ -68,6 +69,14 @@ class Assembly:
     waves: object = None
     equilibrium: object = None
     omega_max: float = 0.0
+    relative_velocity: str = "low_frequency"
+    wave_yaw: float = 0.0
+
+    @property
+    def wf_velocity(self):
+        """The linear WF velocity (n_samples, 6) at the half-step samples (earth axes) removed
+        from the body velocity in the wind and current relative velocity, or None."""
+        return self.asm.wf_velocity if self.asm.has_wf_velocity else None
 
 
 @dataclass(kw_only=True)
@@ -212,8 +221,24 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         K_lin = K_lin + built.mooring.stiffness(x0)
     lam = np.linalg.eigvals(np.linalg.solve(inertia, K_lin))
     omega_max = float(np.sqrt(np.max(np.abs(lam))))
+    # linear wave-frequency velocity for the wind and current relative velocity (seed 002
+    # eq. 2.24, 2.26: relative to the low-frequency body velocity)
+    mode = getattr(options, "relative_velocity", "low_frequency")
+    if mode not in RELATIVE_VELOCITY_MODES:
+        raise SceneError(getattr(options, "file", None), "forces.relative_velocity",
+                         "one of: " + ", ".join(RELATIVE_VELOCITY_MODES), mode)
+    if (mode == "low_frequency" and waves is not None and "wave1" in active
+            and ("wind" in active or "current" in active)):
+        asm.wf_velocity = wf_velocity_series(
+            waves, v.database, n_samples=ctx.n_samples, h=ctx.sample_dt,
+            ramp=ctx.ramp_series(), mass=np.asarray(v.mass_matrix, float), stiffness=K_lin,
+            linear_damping=asm.damping_linear,
+            quadratic_damping=asm.damping_quadratic if asm.has_damping_quadratic else None,
+            radiation="radiation" in active, a_inf=a_inf, yaw0=ctx.yaw0, file=v.file)
+        asm.has_wf_velocity = True
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
-                    inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max)
+                    inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
+                    relative_velocity=mode, wave_yaw=ctx.yaw0)
 
 
 def _guard_limits(built) -> np.ndarray:
@@ -276,6 +301,7 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     wind_tab = asm.wind_table if asm.has_wind else np.zeros((1, 6))
     cur_th = asm.current_table_heading if asm.has_current else np.zeros(1)
     cur_tab = asm.current_table if asm.has_current else np.zeros((1, 6))
+    v_wf = asm.wf_velocity if asm.has_wf_velocity else np.zeros((1, 6))
     motion = np.zeros((n + 1, 6))
     velocity = np.zeros((n + 1, 6))
     t_fair = np.zeros((n + 1, n_lines))
@@ -291,7 +317,8 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
             bool(asm.has_damping_linear), asm.damping_quadratic, bool(asm.has_damping_quadratic),
             ret_kernel, asm.ret_i, asm.ret_j, hist, series, bool(asm.has_wind), wind_speed,
             float(asm.wind_heading), wind_th, wind_tab, bool(asm.has_current),
-            float(asm.current_speed), float(asm.current_heading), cur_th, cur_tab, moor is not None, anchors, fairleads,
+            float(asm.current_speed), float(asm.current_heading), cur_th, cur_tab,
+            bool(asm.has_wf_velocity), v_wf, moor is not None, anchors, fairleads,
             seg[0], seg[1], seg[2], seg[3], line_start, cb, seabed, active, fail_time, mbs,
             warm, guard, float(tension_guard), bool(record_forces), motion, velocity, t_fair,
             t_anchor, parts, status)
@@ -322,7 +349,10 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
                             anchor_tension=t_anchor, forces=forces, force_models=force_models,
                             wave_elevation=eta, models=list(a.models), line_names=line_names,
                             x0=a.x0.copy(), wall_time=wall, setup_time=setup_time,
-                            info={"omega_max": a.omega_max})
+                            info={"omega_max": a.omega_max,
+                                  "relative_velocity": a.relative_velocity,
+                                  "wf_velocity_removed": bool(asm.has_wf_velocity),
+                                  "wave_heading_yaw": a.wave_yaw})
 
 
 def _raise_on_status(status, dt, line_names, mbs, tension_guard, guard):

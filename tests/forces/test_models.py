@@ -109,6 +109,7 @@ def test_kernel_forces_equal_model_forces(floatel):
             a = assemble(floatel, seed=2, dt=0.2, duration=120.0, ramp=30.0,
                          start_pose=start if yaw else None)
             r = integrate(a, built=floatel, record_forces=True)
+            assert a.wf_velocity is not None and a.wf_velocity.shape == (2 * r.time.size - 1, 6)
             assert r.force_models == ["hydrostatics", "mooring", "radiation", "damping_linear",
                                       "wind", "current", "wave1", "drift_newman"]
             nu = np.array([to_yaw_frame(r.velocity[n], r.motion[n, 5])
@@ -121,6 +122,11 @@ def test_kernel_forces_equal_model_forces(floatel):
                     if name == "radiation":
                         m.force(t, r.motion[n], r.velocity[n], out,
                                 history=nu[n - 1::-1] if n > 0 else None)
+                    elif name in ("wind", "current"):
+                        # relative to the low-frequency velocity: the solver's linear WF
+                        # velocity at this step (sample 2 n of the half-step series) removed
+                        m.force(t, r.motion[n], r.velocity[n], out,
+                                wf_velocity=a.wf_velocity[2 * n])
                     else:
                         m.force(t, r.motion[n], r.velocity[n], out)
                     scale = max(np.abs(out).max(), 1.0)
