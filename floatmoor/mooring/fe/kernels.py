@@ -1051,3 +1051,66 @@ def record_into(r, f, tens, zc, s_nodes, out):
         out[10] = r[0, 1]
         out[11] = 0.0
     out[12] = itd
+
+
+@njit(cache=True)
+def ga_advance(t1, dt, nsub, max_split, r, v, a, fn, fs, rf1, vf1, rA, vA, aA, fnA, fs1, rB, vB,
+               aB, fA, rf, vf, P, E, S, cur_z, cur_u, wk, fric, coef, tol, maxit, q, tens, Mb,
+               Dg, Of, BX, Rk, W, Yk, T1, da, info, stats):
+    """Trial advance of a line from its accepted state (``r, v, a, fn, fs`` at ``t1 - dt``) to
+    ``t1`` in ``nsub`` generalised-alpha steps with the fairlead moving linearly to ``rf1`` /
+    ``vf1``; a step whose Newton iteration fails is halved (down to 1/2^max_split of a
+    sub-step) and the step size grows back after each completed pair.  Trial state into
+    ``rA, vA, aA, fnA, fs1``; ``stats[0]`` += Newton iterations, ``stats[1]`` += halvings.
+
+    Returns 0, or the failing status of :func:`gen_alpha_step` with ``info[0]`` the time (s)
+    and ``info[1]`` the node.
+    """
+    n = r.shape[0]
+    for i in range(n):
+        for k in range(3):
+            rA[i, k] = r[i, k]
+            vA[i, k] = v[i, k]
+            aA[i, k] = a[i, k]
+            fnA[i, k] = fn[i, k]
+        for k in range(fs.shape[1]):
+            fs1[i, k] = fs[i, k]
+    t0 = t1 - dt
+    full = 1
+    for _ in range(max_split):
+        full *= 2
+    total = nsub * full          # sub-step grid in units of the smallest step
+    hmin = dt / total
+    pos = 0
+    sz = full
+    while pos < total:
+        if pos + sz > total:
+            sz = total - pos
+        s = (pos + sz) / total
+        for k in range(3):
+            rf[k] = r[n - 1, k] + s * (rf1[k] - r[n - 1, k])
+            vf[k] = v[n - 1, k] + s * (vf1[k] - v[n - 1, k])
+        tk = t0 + (pos + sz) * hmin
+        it = gen_alpha_step(tk, sz * hmin, rA, vA, aA, fnA, rf, vf, P, E, S, cur_z, cur_u, wk,
+                            fric, fs1, coef, tol, maxit, rB, vB, aB, fA, q, tens, Mb, Dg, Of, BX,
+                            Rk, W, Yk, T1, da, info)
+        if it < 0:
+            if sz > 1:
+                sz //= 2
+                stats[1] += 1
+                continue
+            info[0] = tk
+            info[2] = it
+            return it
+        stats[0] += it
+        for i in range(n):
+            for k in range(3):
+                rA[i, k] = rB[i, k]
+                vA[i, k] = vB[i, k]
+                aA[i, k] = aB[i, k]
+                fnA[i, k] = fA[i, k]
+        friction_commit(rA, vA, q, fric, fs1, P, S, S[S_ZC])
+        pos += sz
+        while sz < full and pos % (2 * sz) == 0:
+            sz *= 2
+    return 0

@@ -228,8 +228,7 @@ class FELine:
         self._ends = np.zeros(6)
         self._fs1 = np.zeros((nn, K.N_FS))
         self._rB, self._vB, self._aB, self._Rk, self._Yk = z3(), z3(), z3(), z3(), z3()
-        self._split_rf = np.zeros((self.MAX_SPLIT + 1, 3))
-        self._split_vf = np.zeros((self.MAX_SPLIT + 1, 3))
+        self._stats = np.zeros(2)
         self._rf0 = np.zeros(3)
         self._vf0 = np.zeros(3)
         self._rfk = np.zeros(3)
@@ -403,38 +402,55 @@ class FELine:
         """
         if not self._started:
             raise RuntimeError("call start() before advance()")
-        rf1 = np.asarray(rf1, float)
-        vf1 = np.asarray(vf1, float)
-        self._r1[:] = self.r
-        self._v1[:] = self.v
-        self._a1[:] = self.a
-        self._fs1[:] = self.fs
+        rf1 = np.asarray(rf1, dtype=np.float64)
+        vf1 = np.asarray(vf1, dtype=np.float64)
         rA, vA, fA = self._r1, self._v1, self._f1
-        fnA = self._Rr  # scratch copy of fn
-        fnA[:] = self.fn
+        fnA = self._Rr  # trial copy of fn
+        if self.integrator == "explicit":
+            rA[:] = self.r
+            vA[:] = self.v
+            self._a1[:] = self.a
+            self._fs1[:] = self.fs
+            fnA[:] = self.fn
         if self.waves is not None:
             self.waves.kinematics_into(t1, self.r, self._kin_work, self._kin_v, self._kin_a,
                                        self._kin_p, self._kin_eta, wheeler=self.wheeler,
                                        g=self.spec.gravity, rho=self.spec.water_density)
             self.wk[:, 0:3] = self._kin_v
             self.wk[:, 3:6] = self._kin_a
-        rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
-        rf0[:] = self.r[-1]
-        vf0[:] = self.v[-1]
-        h = dt / substeps
-        t0 = t1 - dt
-        for k in range(1, substeps + 1):
-            s = k / substeps
-            for c in range(3):
-                rf[c] = rf0[c] + s * (rf1[c] - rf0[c])
-                vf[c] = vf0[c] + s * (vf1[c] - vf0[c])
-            tk = t0 + k * h
-            if self.integrator == "explicit":
+        if self.integrator == "generalized_alpha":
+            self._stats[:] = 0.0
+            st = K.ga_advance(t1, dt, substeps, self.MAX_SPLIT, self.r, self.v, self.a, self.fn,
+                              self.fs, rf1, vf1, rA, vA, self._a1, fnA, self._fs1, self._rB,
+                              self._vB, self._aB, fA, self._rfk, self._vfk, self.P,
+                              self.E_dynamic, self.S, self.cur_z, self.cur_u, self.wk,
+                              self.fric_code, self.coef, self.tol, self.maxit, self._q,
+                              self._tens, self._Mb, self._Dg, self._Of, self._BX, self._Rk,
+                              self._W, self._Yk, self._T1, self._da, self._info, self._stats)
+            self.newton_iterations += int(self._stats[0])
+            self.substeps_taken += int(self._stats[1])
+            if st < 0:
+                msg = {-1: f"no Newton convergence in {self.maxit} iterations",
+                       -2: "singular iteration matrix", -3: "NaN in the line state"}[st]
+                self._fail(float(self._info[0]), int(self._info[1]), msg,
+                           f"reduce dt (the step was already halved {self.MAX_SPLIT} times), "
+                           "add elements, or check for a slack line hit by a snap load")
+        else:
+            rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
+            rf0[:] = self.r[-1]
+            vf0[:] = self.v[-1]
+            h = dt / substeps
+            t0 = t1 - dt
+            for k in range(1, substeps + 1):
+                s = k / substeps
+                for c in range(3):
+                    rf[c] = rf0[c] + s * (rf1[c] - rf0[c])
+                    vf[c] = vf0[c] + s * (vf1[c] - vf0[c])
+                tk = t0 + k * h
                 bad = K.explicit_step(tk, h, rA, vA, rf, vf, self.P, self.E_dynamic, self.S,
                                       self.cur_z, self.cur_u, self.wk, self.fric_code,
-                                      self._fs1, self._q,
-                                      fA, self._tens, self._Mb, self._Dg, self._Of, self._BX,
-                                      self._W)
+                                      self._fs1, self._q, fA, self._tens, self._Mb, self._Dg,
+                                      self._Of, self._BX, self._W)
                 if bad >= 0:
                     self._fail(tk, bad, "explicit step diverged (NaN)",
                                "reduce dt below the axial-wave limit or use generalized_alpha")
@@ -442,52 +458,12 @@ class FELine:
                 fnA[:] = fA
                 K.friction_commit(rA, vA, self._q, self.fric_code, self._fs1, self.P, self.S,
                                   self.S[K.S_ZC])
-                continue
-            self._ga_split(tk, h, rf, vf, 0)
         self._t1 = t1
         self._trial = True
         K.end_forces(rA, vA, self.P, fnA, self._tens, self._ends)
         return self._ends[3:6].copy()
 
     MAX_SPLIT = 5
-
-    def _ga_split(self, tk, h, rf, vf, depth):
-        """One generalised-alpha step of the trial state to ``tk``; when Newton fails the step
-        is split in two halves (fairlead linear in between), down to h / 2^MAX_SPLIT."""
-        rA, vA, aA, fA, fnA = self._r1, self._v1, self._a1, self._f1, self._Rr
-        # the kernel reads the trial state and writes the new one into rB, vB, aB: a failed
-        # attempt leaves the trial state untouched
-        it = K.gen_alpha_step(tk, h, rA, vA, aA, fnA, rf, vf, self.P, self.E_dynamic, self.S,
-                              self.cur_z, self.cur_u, self.wk, self.fric_code, self._fs1,
-                              self.coef,
-                              self.tol, self.maxit, self._rB, self._vB, self._aB, fA, self._q,
-                              self._tens, self._Mb, self._Dg, self._Of, self._BX, self._Rk,
-                              self._W,
-                              self._Yk, self._T1, self._da, self._info)
-        if it < 0:
-            if depth < self.MAX_SPLIT:
-                rf0 = self._split_rf[depth]
-                vf0 = self._split_vf[depth]
-                rf0[:] = rA[-1]
-                vf0[:] = vA[-1]
-                mid_r = 0.5 * (rf0 + rf)
-                mid_v = 0.5 * (vf0 + vf)
-                self._ga_split(tk - 0.5 * h, 0.5 * h, mid_r, mid_v, depth + 1)
-                self._ga_split(tk, 0.5 * h, rf, vf, depth + 1)
-                self.substeps_taken += 1
-                return
-            msg = {-1: f"no Newton convergence in {self.maxit} iterations",
-                   -2: "singular iteration matrix", -3: "NaN in the line state"}[it]
-            self._fail(tk, int(self._info[1]), msg,
-                       f"reduce dt (the step was already split {self.MAX_SPLIT} times), add "
-                       "elements, or check for a slack line hit by a snap load")
-        self.newton_iterations += it
-        rA[:] = self._rB
-        vA[:] = self._vB
-        aA[:] = self._aB
-        fnA[:] = fA
-        K.friction_commit(rA, vA, self._q, self.fric_code, self._fs1, self.P, self.S,
-                          self.S[K.S_ZC])
 
     def accept(self):
         """Commit the state of the last :meth:`advance`."""
