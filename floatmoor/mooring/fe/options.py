@@ -12,7 +12,8 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
         rho_inf: 0.7                   # generalised-alpha spectral radius
         substeps: 1                    # line steps per body step
         axial_stiffness_limit: 3.84e11 # N, optional (practically inextensible lines)
-        seabed: {model: springs, stiffness: 2.7e5, damping: 2.7e4}   # or {model: mud_layer, mud_depth: 0.1}
+        seabed: {model: springs, stiffness: 2.7e5, damping: 2.7e4}
+                                       # or {model: mud_layer, mud_depth: 0.1}
         friction: {model: velocity_ramp, mu_axial: 0.7, mu_lateral: 1.0, zero_crossing_period: 10.0}
 
 :func:`parse_fe_options` returns :class:`FEOptions`; the scene builder passes them on to
