@@ -133,19 +133,19 @@ def kinematics_at(u_tab, i0, wt, s0, s1, ws, zs, lev0, dlev, out):
 
 @njit(cache=True)
 def _current_at(cur_z, cur_speed, z):
-    """Current speed at height z: linear in the table (increasing cur_z), constant outside."""
+    """Current speed at height z: linear in the table (``cur_z`` increasing and uniformly
+    spaced), constant outside it."""
     n = cur_z.shape[0]
     if n == 0:
         return 0.0
-    if z <= cur_z[0]:
+    if z <= cur_z[0] or n == 1:
         return cur_speed[0]
     if z >= cur_z[n - 1]:
         return cur_speed[n - 1]
-    for i in range(n - 1):
-        if z <= cur_z[i + 1]:
-            w = (z - cur_z[i]) / (cur_z[i + 1] - cur_z[i])
-            return (1.0 - w) * cur_speed[i] + w * cur_speed[i + 1]
-    return cur_speed[n - 1]
+    x = (z - cur_z[0]) / (cur_z[n - 1] - cur_z[0]) * (n - 1)
+    i = min(int(x), n - 2)
+    w = x - i
+    return (1.0 - w) * cur_speed[i] + w * cur_speed[i + 1]
 
 
 @njit(cache=True)
@@ -185,9 +185,6 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
         i0 = int(tau)
         wt = tau - i0
     ne = p1.shape[0]
-    uw0 = 0.0
-    uw1 = 0.0
-    uw2 = 0.0
     for e in range(ne):
         # end points and axes in earth coordinates
         a0 = pose[0] + R[0, 0] * p1[e, 0] + R[0, 1] * p1[e, 1] + R[0, 2] * p1[e, 2]
@@ -271,22 +268,35 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
             else:
                 l0 = int(x)
                 wl = x - l0
-            for c in range(3):
-                ua = ((1.0 - wl) * ((1.0 - ws) * u_tab[i0, sf + k0, l0, c]
-                                    + ws * u_tab[i0, sf + k1, l0, c])
-                      + wl * ((1.0 - ws) * u_tab[i0, sf + k0, l0 + 1, c]
-                              + ws * u_tab[i0, sf + k1, l0 + 1, c]))
-                ub = ((1.0 - wl) * ((1.0 - ws) * u_tab[i0 + 1, sf + k0, l0, c]
-                                    + ws * u_tab[i0 + 1, sf + k1, l0, c])
-                      + wl * ((1.0 - ws) * u_tab[i0 + 1, sf + k0, l0 + 1, c]
-                              + ws * u_tab[i0 + 1, sf + k1, l0 + 1, c]))
-                val = wave_factor * ((1.0 - wt) * ua + wt * ub)
-                if c == 0:
-                    uw0 = val
-                elif c == 1:
-                    uw1 = val
-                else:
-                    uw2 = val
+            # trilinear weights (time, station, level)
+            w000 = (1.0 - wt) * (1.0 - ws) * (1.0 - wl)
+            w001 = (1.0 - wt) * (1.0 - ws) * wl
+            w010 = (1.0 - wt) * ws * (1.0 - wl)
+            w011 = (1.0 - wt) * ws * wl
+            w100 = wt * (1.0 - ws) * (1.0 - wl)
+            w101 = wt * (1.0 - ws) * wl
+            w110 = wt * ws * (1.0 - wl)
+            w111 = wt * ws * wl
+            sa = sf + k0
+            sb = sf + k1
+            uw0 = wave_factor * (w000 * u_tab[i0, sa, l0, 0] + w001 * u_tab[i0, sa, l0 + 1, 0]
+                                 + w010 * u_tab[i0, sb, l0, 0] + w011 * u_tab[i0, sb, l0 + 1, 0]
+                                 + w100 * u_tab[i0 + 1, sa, l0, 0]
+                                 + w101 * u_tab[i0 + 1, sa, l0 + 1, 0]
+                                 + w110 * u_tab[i0 + 1, sb, l0, 0]
+                                 + w111 * u_tab[i0 + 1, sb, l0 + 1, 0])
+            uw1 = wave_factor * (w000 * u_tab[i0, sa, l0, 1] + w001 * u_tab[i0, sa, l0 + 1, 1]
+                                 + w010 * u_tab[i0, sb, l0, 1] + w011 * u_tab[i0, sb, l0 + 1, 1]
+                                 + w100 * u_tab[i0 + 1, sa, l0, 1]
+                                 + w101 * u_tab[i0 + 1, sa, l0 + 1, 1]
+                                 + w110 * u_tab[i0 + 1, sb, l0, 1]
+                                 + w111 * u_tab[i0 + 1, sb, l0 + 1, 1])
+            uw2 = wave_factor * (w000 * u_tab[i0, sa, l0, 2] + w001 * u_tab[i0, sa, l0 + 1, 2]
+                                 + w010 * u_tab[i0, sb, l0, 2] + w011 * u_tab[i0, sb, l0 + 1, 2]
+                                 + w100 * u_tab[i0 + 1, sa, l0, 2]
+                                 + w101 * u_tab[i0 + 1, sa, l0 + 1, 2]
+                                 + w110 * u_tab[i0 + 1, sb, l0, 2]
+                                 + w111 * u_tab[i0 + 1, sb, l0 + 1, 2])
             uc = _current_at(cur_z, cur_speed, pz)
             rx = px - pose[0]
             ry = py - pose[1]

@@ -12,7 +12,7 @@ forces:
       column: {c2y: 4144.37}
       pontoon: {c2x: 0.0, c2y: 0.0, c2z: 0.0}
     station_spacing: 10.0          # m, kinematics stations along long elements
-    level_step: 2.0                # m, stretched-depth step of the kinematics table
+    level_step: 3.0                # m, stretched-depth step of the kinematics table
     table_step: 0.4                # s, time step of the kinematics table
     # -- correction_formula (eq. 6.6 on the mean drift coefficients) -----------------------
     column_diameters: [12.5, 12.5, 12.5, 12.5]   # d_i (m)
@@ -49,7 +49,7 @@ class ViscousDriftSpec:
     wheeler: bool = True
     drag: dict = field(default_factory=dict)
     station_spacing: float = 10.0
-    level_step: float = 2.0
+    level_step: float = 3.0
     table_step: float = 0.4
     column_diameters: tuple = ()
     main_column_diameter: float | None = None
@@ -96,7 +96,7 @@ def parse_viscous_drift(node: Node, *, drift: str | None = None) -> ViscousDrift
                                 for k in ("c2x", "c2y", "c2z") if k in tn}
         kw["drag"] = drag
         kw["station_spacing"] = node.float("station_spacing", 10.0, gt=0.0, unit="m")
-        kw["level_step"] = node.float("level_step", 2.0, gt=0.0, unit="m")
+        kw["level_step"] = node.float("level_step", 3.0, gt=0.0, unit="m")
         kw["table_step"] = node.float("table_step", 0.4, gt=0.0, unit="s")
     elif model == "correction_formula":
         if drift == "qtf":

@@ -103,5 +103,5 @@ def test_kinematics_table_fft_against_direct_airy():
         u = tab.u[i].reshape(-1, 3)
         # points above the instantaneous surface are dry in the reference: compare wet ones
         wet = pts[:, 2] <= ref["eta"][0]
-        assert np.allclose(u[wet], ref["velocity"][0][wet], atol=1e-10)
+        assert np.allclose(u[wet], ref["velocity"][0][wet], rtol=1e-6, atol=1e-7)  # float32
         assert np.allclose(tab.eta[i], ref["eta"][0][::levels.size], atol=1e-10)
