@@ -306,6 +306,10 @@ def run(args: argparse.Namespace) -> int:
                 f"{c['design_tension'].values[j] / 1e3:.0f} kN, S_C {c['s_c'].values[j] / 1e3:.0f} kN, "
                 f"utilisation {c['utilisation'].values[j]:.3f} "
                 f"{'PASS' if c['passed'].values[j] else 'FAIL'}")
+        ties = [str(ln) for ln, uj in zip(c["line"].values, c["utilisation"].values)
+                if str(ln) != gov and uj >= c["utilisation"].values[j] * (1 - 1e-3)]
+        if ties:
+            text += f" (equal within 0.1 %: {', '.join(ties)})"
         if ls == "ALS":
             text += f" (failed line {checks.attrs.get('failed_lines', '?')})"
         if n_fail:

@@ -209,6 +209,12 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
     checks.attrs["gumbel_fractile"] = float(p)
     checks.attrs["gumbel_method"] = method
     checks.attrs["n_seeds"] = len(results)
+    # lines whose utilisation equals the governing one within 0.1 % (symmetric mooring)
+    u = checks["utilisation"].sel(limit_state=checks.attrs["governing_limit_state"]).values
+    umax = checks.attrs["max_utilisation"]
+    checks.attrs["governing_ties"] = ", ".join(
+        str(ln) for ln, uj in zip(lines, u)
+        if np.isfinite(uj) and uj >= umax * (1 - 1e-3) and str(ln) != checks.attrs["governing_line"])
     if als_results is not None:
         checks.attrs["n_seeds_als"] = len(als_results)
     if als_results is not None:
@@ -219,7 +225,8 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
 # -- rendering helpers --------------------------------------------------------------------------
 
 _CSS = """
-body{font-family:system-ui,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;max-width:1200px;color:#222}
+body{font-family:system-ui,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;max-width:1400px;color:#222}
+.scroll{overflow-x:auto}
 h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}
 table{border-collapse:collapse;margin:0.6em 0;font-size:0.9em}
 th,td{border:1px solid #bbb;padding:3px 7px;text-align:right}
@@ -413,8 +420,9 @@ def _fd_offsets_table(fd, stats):
                      _fmt(float(fd["max_total"].values[i]) * f, 3),
                      _fmt(float(np.min(stats["motion_min"].values[:, j])) * f, 3),
                      _fmt(float(fd["min_total"].values[i]) * f, 3)])
-    return _Table("fd_offsets", "Frequency domain beside time domain: offsets (FD mean = static "
-                  "equilibrium; FD max/min total = eq. 2.49)", header, rows)
+    return _Table("fd_offsets", "Offsets, frequency domain beside time domain: FD mean = static "
+                  "equilibrium, FD max/min total = eq. 2.49; TD as in the offsets table",
+                  header, rows)
 
 
 def _check_fd(fd, lines):
@@ -597,7 +605,9 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         ("LF/WF cut-off", f"{stats.attrs['cutoff_hz']:.5f} Hz ({stats.attrs['filter']})"),
         ("characteristic tension", f"Gumbel ({method}) {p:g} fractile of the seed maxima"),
         ("governing", f"line {checks.attrs['governing_line']} in {checks.attrs['governing_limit_state']}, "
-                      f"utilisation {checks.attrs['max_utilisation']:.3f}"),
+                      f"utilisation {checks.attrs['max_utilisation']:.3f}"
+                      + (f" (equal within 0.1 %: {checks.attrs['governing_ties']})"
+                         if checks.attrs["governing_ties"] else "")),
         ("verdict", "all lines pass" if checks.attrs["all_passed"] else "at least one line FAILS"),
     ]
     if "failed_lines" in checks.attrs:
@@ -633,7 +643,7 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
                      f"{html.escape(scene_yaml)}</pre></details>")
     for t in tables:
         parts.append(f"<h2>{html.escape(t.caption.split(':')[0])}</h2>")
-        parts.append(t.html())
+        parts.append(f'<div class="scroll">{t.html()}</div>')
     parts.append("<h2>Plots</h2>")
     if figs:
         for name, caption, png in figs:
