@@ -23,6 +23,11 @@ Assumptions (documented limits)
   earth axes (see :mod:`floatmoor.forces.waves`): a body that yaws far does not see the waves
   from a new relative heading.  The radiation memory uses the history of ``nu`` in the current
   yaw frame (slowly varying yaw).
+* Wind and current act on the flow velocity relative to the low-frequency body velocity (seed
+  002 eq. 2.24, 2.26): with first-order waves the linear wave-frequency velocity (motion RAOs
+  from :func:`floatmoor.solvers.frequency_domain.wave_frequency_rao` x the run's wave
+  realisation, :mod:`floatmoor.solvers.wf_velocity`) is removed from the body velocity there;
+  scene option ``forces: {relative_velocity: total}`` keeps the total velocity.
 * Start: the static equilibrium under buoyancy - weight, mooring, mean wind and current at rest
   and mean wave drift (:func:`floatmoor.solvers.statics.equilibrium`); the fluctuating loads
   (first-order waves, slow drift, gust) are ramped in over ``ramp`` seconds, so the run starts
