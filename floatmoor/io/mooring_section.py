@@ -20,12 +20,17 @@ Format (SI units, angles only in keys ending ``_deg``)::
           - {type: my_chain, length: 250.0}
         seabed_friction: 0.5                             # optional, per line
     failed_lines: [line4]                                # optional, lines removed (ALS)
+    model: quasi-static                  # optional: or finite-element (all lines); per line
+                                         # lines[i].model overrides it
+    finite_element: {element_length: 20.0}   # optional FE options (floatmoor.mooring.fe.options)
 
 ``clump_weight`` (submerged, N) and ``buoy_net_buoyancy`` (N) act at the upper end of the
 segment that names them (the joint towards the fairlead).  Every mistake is a
 :class:`~floatmoor.core.errors.SceneError` naming the file and key.  After building, the system
 is solved once at zero pose: a line above its MBS there is a :class:`FloatmoorWarning` (tension
-against MBS); a buoyant part that would lie on the seabed is a SceneError.
+against MBS); a buoyant part that would lie on the seabed is a SceneError.  The line models and
+FE options are read by :func:`floatmoor.mooring.fe.options.parse_line_models` and kept as the
+attribute ``line_models`` (:class:`~floatmoor.mooring.fe.options.LineModels`) of the system.
 """
 
 from __future__ import annotations
@@ -38,14 +43,15 @@ import numpy as np
 from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import ConvergenceError, FloatmoorWarning, SceneError
+from ..mooring.fe.options import parse_line_models
 from ..mooring.line_types import LineTypeLibrary, default_library
 from ..mooring.system import LineDef, MooringSystem, Segment
 
 __all__ = ["parse_mooring"]
 
 _TOP_KEYS = {"line_type_library", "line_types", "seabed_friction", "defaults", "lines",
-             "failed_lines", "description"}
-_LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction"}
+             "failed_lines", "description", "model", "finite_element"}
+_LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction", "model"}
 _SEG_KEYS = {"type", "diameter", "length", "clump_weight", "buoy_net_buoyancy"}
 
 
@@ -92,6 +98,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
     MooringSystem
     """
     node.reject_unknown(_TOP_KEYS)
+    line_models = parse_line_models(node)
     lib = library if library is not None else default_library()
     if "line_type_library" in node:
         path = node.path_value("line_type_library")
@@ -158,6 +165,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
                        gravity=gravity, source=str(node.file) if node.file else "<scene>",
                        failed=failed)
+    ms.line_models = line_models
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
     return ms

@@ -19,7 +19,7 @@ __all__ = ["spec_from_linedef", "specs_from_system"]
 
 
 def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
-                      element_length: float = 20.0,
+                      element_length: float = 20.0, n_elements: int | None = None,
                       line_types: Mapping[str, LineType] | None = None,
                       friction: Friction | None = None, seabed: Seabed | None = None,
                       internal_damping: float = 0.0, water_density: float = 1025.0,
@@ -36,6 +36,9 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
         Body pose for the initial fairlead position (default zero).
     element_length : float
         Target element length, m: each segment gets ``max(1, round(L / element_length))``.
+    n_elements : int, optional
+        Elements of the whole line instead (overrides ``element_length``): shared among the
+        segments in proportion to their lengths (largest remainder, at least one each).
     line_types : mapping, optional
         Line types by name for the hydrodynamic coefficients (``cdn, cdt, can, cat``); a
         segment whose type is missing keeps the ``LineType`` defaults.  Mass, diameter, EA and
@@ -63,6 +66,8 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
     segs = []
     bodies = []
     node = 0
+    counts = (_split_elements([s.length for s in line.segments], n_elements)
+              if n_elements is not None else None)
     for k, s in enumerate(line.segments):
         base = (line_types or {}).get(s.line_type)
         mass = (s.mass_per_length if s.mass_per_length > 0
@@ -74,7 +79,7 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
                   diameter=d, mass_per_length=mass, displaced_volume=vol, ea=s.ea,
                   ea_dynamic=s.ea_dynamic if s.ea_dynamic else s.ea, mbs=s.mbs)
         lt = replace(base, **kw) if base is not None else LineType(**kw)
-        n = max(1, int(round(s.length / element_length)))
+        n = counts[k] if counts is not None else max(1, int(round(s.length / element_length)))
         segs.append(FESegment(line_type=lt, length=s.length, n_elements=n,
                               internal_damping=internal_damping))
         node += n
@@ -93,6 +98,21 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
                       seabed=seabed or Seabed(depth=water_depth), friction=friction,
                       point_bodies=tuple(bodies), water_density=water_density, gravity=gravity,
                       **current)
+
+
+def _split_elements(lengths, n_total: int) -> list[int]:
+    """``n_total`` elements shared among segments of ``lengths`` in proportion (largest
+    remainder), at least one per segment."""
+    lengths = np.asarray(lengths, float)
+    n_total = max(int(n_total), lengths.size)
+    share = lengths / lengths.sum() * n_total
+    n = np.maximum(np.floor(share).astype(int), 1)
+    while n.sum() < n_total:
+        n[int(np.argmax(share - n))] += 1
+    while n.sum() > n_total:
+        cand = np.where(n > 1, share - n, np.inf)
+        n[int(np.argmin(cand))] -= 1
+    return [int(v) for v in n]
 
 
 def specs_from_system(system: MooringSystem, *, pose=None, **kw) -> list[FELineSpec]:

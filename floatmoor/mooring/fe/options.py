@@ -7,33 +7,41 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
     mooring:
       model: finite-element            # or quasi-static (default); per line: lines[i].model
       finite_element:
-        element_length: 20.0           # m, target element length
+        element_length: 20.0           # m, target element length (or n_elements: per line)
+        integrator: generalized_alpha  # or explicit (for comparison)
+        dt: 0.1                        # s, longest line step (or substeps: per body step)
         internal_damping: -0.8         # N s, or -zeta (fraction of critical per element)
         rho_inf: 0.7                   # generalised-alpha spectral radius
-        substeps: 1                    # line steps per body step
         axial_stiffness_limit: 3.84e11 # N, optional (practically inextensible lines)
         seabed: {model: springs, stiffness: 2.7e5, damping: 2.7e4}
                                        # or {model: mud_layer, mud_depth: 0.1}
         friction: {model: velocity_ramp, mu_axial: 0.7, mu_lateral: 1.0, zero_crossing_period: 10.0}
 
 :func:`parse_fe_options` returns :class:`FEOptions`; the scene builder passes them on to
-:func:`floatmoor.mooring.fe.from_system.spec_from_linedef`, :class:`FELine` and
-:meth:`FELine.start`.
+:func:`floatmoor.mooring.fe.from_system.spec_from_linedef` (:meth:`FEOptions.spec_kw`),
+:class:`FELine` (:meth:`FEOptions.line_kw`) and :meth:`FELine.start`
+(:meth:`FEOptions.start_kw`); :meth:`FEOptions.substeps_for` gives the line steps per body step.
+:func:`parse_line_models` reads the model choice of every line of a ``mooring:`` section
+together with the options (:class:`LineModels`).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from ...core.config import Node
 from .config import FRICTION_MODELS, SEABED_MODELS, Friction, Seabed
 
-__all__ = ["FEOptions", "parse_fe_options", "MOORING_MODELS"]
+__all__ = ["FEOptions", "parse_fe_options", "MOORING_MODELS", "INTEGRATORS", "LineModels",
+           "parse_line_models"]
 
 MOORING_MODELS = ("quasi-static", "finite-element")
 
-_KEYS = {"element_length", "internal_damping", "rho_inf", "substeps", "axial_stiffness_limit",
-         "seabed", "friction"}
+INTEGRATORS = ("generalized_alpha", "explicit")
+
+_KEYS = {"element_length", "n_elements", "internal_damping", "rho_inf", "substeps", "dt",
+         "integrator", "axial_stiffness_limit", "seabed", "friction"}
 _SEABED_KEYS = {"model", "stiffness", "damping", "mud_depth", "contact_smoothing"}
 _FRICTION_KEYS = {"model", "mu_axial", "mu_lateral", "ramp_velocity", "zero_crossing_period",
                   "ramp_displacement"}
@@ -45,9 +53,12 @@ class FEOptions:
     values are filled in by :meth:`seabed_for`)."""
 
     element_length: float = 20.0
+    n_elements: int | None = None
     internal_damping: float = 0.0
     rho_inf: float = 0.7
     substeps: int = 1
+    dt: float | None = None
+    integrator: str = "generalized_alpha"
     axial_stiffness_limit: float | None = None
     seabed: dict = field(default_factory=dict)
     friction: Friction | None = None
@@ -56,6 +67,31 @@ class FEOptions:
         """The :class:`Seabed` at ``water_depth`` (m) with the scene's settings."""
         return Seabed(depth=water_depth, **self.seabed)
 
+    def spec_kw(self, water_depth: float) -> dict:
+        """Keywords of :func:`~floatmoor.mooring.fe.from_system.spec_from_linedef`
+        (element length or count, friction, seabed, internal damping)."""
+        kw = {"element_length": self.element_length, "n_elements": self.n_elements,
+              "internal_damping": self.internal_damping,
+              "seabed": self.seabed_for(water_depth)}
+        if self.friction is not None:
+            kw["friction"] = self.friction
+        return kw
+
+    def line_kw(self) -> dict:
+        """Keywords of :class:`~floatmoor.mooring.fe.line.FELine`."""
+        return {"axial_stiffness_limit": self.axial_stiffness_limit}
+
+    def start_kw(self) -> dict:
+        """Keywords of :meth:`~floatmoor.mooring.fe.line.FELine.start`."""
+        return {"rho_inf": self.rho_inf, "integrator": self.integrator}
+
+    def substeps_for(self, body_dt: float) -> int:
+        """Line steps per body step of ``body_dt`` s: ``ceil(body_dt / dt)`` when ``dt`` is
+        given, else ``substeps``."""
+        if self.dt is None:
+            return self.substeps
+        return max(1, int(math.ceil(body_dt / self.dt - 1e-9)))
+
 
 def parse_fe_options(node: Node | None) -> FEOptions:
     """Read a ``finite_element:`` mapping (``None``: all defaults)."""
@@ -63,8 +99,19 @@ def parse_fe_options(node: Node | None) -> FEOptions:
         return FEOptions()
     node.reject_unknown(_KEYS)
     kw = {}
+    if "element_length" in node and "n_elements" in node:
+        raise node.error("n_elements", "either element_length or n_elements, not both",
+                         node.raw("n_elements"))
+    if "dt" in node and "substeps" in node:
+        raise node.error("dt", "either dt or substeps, not both", node.raw("dt"))
     if "element_length" in node:
         kw["element_length"] = node.float("element_length", gt=0.0, unit="m")
+    if "n_elements" in node:
+        kw["n_elements"] = node.int("n_elements", ge=1)
+    if "dt" in node:
+        kw["dt"] = node.float("dt", gt=0.0, unit="s")
+    if "integrator" in node:
+        kw["integrator"] = node.str("integrator", choices=list(INTEGRATORS))
     if "internal_damping" in node:
         kw["internal_damping"] = node.float("internal_damping", unit="N s (or -zeta)")
     if "rho_inf" in node:
@@ -100,3 +147,52 @@ def parse_fe_options(node: Node | None) -> FEOptions:
                 d[k] = fr.float(k, gt=0.0, unit=unit)
         kw["friction"] = Friction(**d)
     return FEOptions(**kw)
+
+
+@dataclass(frozen=True, kw_only=True)
+class LineModels:
+    """The line model of every line of a ``mooring:`` section and the FE options.
+
+    ``models`` maps line name -> ``"quasi-static"`` or ``"finite-element"`` (in the order of the
+    section); ``options`` are the ``finite_element:`` options (defaults when absent).
+    """
+
+    models: dict
+    options: FEOptions = field(default_factory=FEOptions)
+
+    def model_of(self, name: str) -> str:
+        """The model of line ``name`` (quasi-static for a name not in the section)."""
+        return self.models.get(name, "quasi-static")
+
+    @property
+    def finite_element_lines(self) -> list:
+        """Names of the lines modelled with finite elements."""
+        return [n for n, m in self.models.items() if m == "finite-element"]
+
+    @property
+    def any_finite_element(self) -> bool:
+        return any(m == "finite-element" for m in self.models.values())
+
+
+def parse_line_models(node: Node) -> LineModels:
+    """Model choice of every line of a ``mooring:`` mapping (``node``) and its FE options.
+
+    ``model:`` at the top sets the default of all lines (``quasi-static`` when absent);
+    ``lines[i].model`` overrides it for one line.  A ``finite_element:`` mapping without any
+    finite-element line is accepted (its options are validated) but unused.  Only the keys
+    ``model`` and ``finite_element`` are read here; the rest of the section is the business of
+    :func:`floatmoor.io.mooring_section.parse_mooring`.
+
+    Raises
+    ------
+    SceneError
+        Unknown model name (naming file, key and the names available) or bad FE option.
+    """
+    default = node.str("model", "quasi-static", choices=list(MOORING_MODELS))
+    models = {}
+    for i, ln in enumerate(node.item_nodes("lines", [])):
+        name = ln.str("name") if "name" in ln else f"lines[{i}]"
+        models[name] = ln.str("model", default, choices=list(MOORING_MODELS))
+    options = parse_fe_options(node.child("finite_element") if "finite_element" in node
+                               else None)
+    return LineModels(models=models, options=options)

@@ -34,3 +34,78 @@ def test_options_are_read():
 def test_bad_options_name_the_key(d, key):
     with pytest.raises(SceneError, match=rf"scene.yaml: mooring.finite_element.{key}"):
         parse_fe_options(_node(d))
+
+
+def test_more_options_and_the_derived_keywords():
+    o = parse_fe_options(_node({"n_elements": 40, "dt": 0.04, "integrator": "explicit"}))
+    assert o.n_elements == 40 and o.integrator == "explicit"
+    assert o.substeps_for(0.1) == 3                    # ceil(0.1 / 0.04)
+    assert o.substeps_for(0.04) == 1
+    assert parse_fe_options(_node({"substeps": 4})).substeps_for(0.1) == 4
+    assert o.start_kw() == {"rho_inf": 0.7, "integrator": "explicit"}
+    kw = o.spec_kw(320.0)
+    assert kw["n_elements"] == 40 and kw["seabed"].depth == 320.0 and "friction" not in kw
+
+
+@pytest.mark.parametrize("d,key", [
+    ({"element_length": 10.0, "n_elements": 30}, "n_elements"),
+    ({"dt": 0.05, "substeps": 2}, "dt"),
+    ({"integrator": "rk4"}, "integrator"),
+    ({"n_elements": 0}, "n_elements"),
+])
+def test_conflicting_or_bad_options(d, key):
+    with pytest.raises(SceneError, match=rf"scene.yaml: mooring.finite_element.{key}"):
+        parse_fe_options(_node(d))
+
+
+def _mooring(extra_top=None, line2=None):
+    seg = [{"type": "chain_studless_R3", "diameter": 0.09, "length": 902.2}]
+    lines = [{"name": "l1", "anchor": [853.87, 0.0, -320.0], "fairlead": [5.2, 0.0, -70.0],
+              "segments": seg},
+             {"name": "l2", "anchor": [-853.87, 0.0, -320.0], "fairlead": [-5.2, 0.0, -70.0],
+              "segments": seg, **(line2 or {})}]
+    return Node({"lines": lines, **(extra_top or {})}, "scene.yaml", "mooring")
+
+
+def test_line_models_from_the_mooring_section():
+    """``mooring: {model: ...}`` for all lines, ``lines[i].model`` per line, default
+    quasi-static; the parsed choice is kept on the MooringSystem for the builder."""
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe.options import parse_line_models
+
+    ms = parse_mooring(_mooring(), water_depth=320.0)
+    assert ms.line_models.models == {"l1": "quasi-static", "l2": "quasi-static"}
+    assert not ms.line_models.any_finite_element
+    ms = parse_mooring(_mooring({"model": "finite-element",
+                                 "finite_element": {"n_elements": 30}},
+                                {"model": "quasi-static"}), water_depth=320.0)
+    assert ms.line_models.finite_element_lines == ["l1"]
+    assert ms.line_models.model_of("l2") == "quasi-static"
+    assert ms.line_models.options.n_elements == 30
+    lm = parse_line_models(_mooring(None, {"model": "finite-element"}))
+    assert lm.finite_element_lines == ["l2"]
+
+
+@pytest.mark.parametrize("top,line2,key", [
+    ({"model": "lumped"}, None, r"mooring.model"),
+    (None, {"model": "fe"}, r"mooring.lines\[1\].model"),
+    ({"finite_element": {"rho_inf": -1}}, None, r"mooring.finite_element.rho_inf"),
+])
+def test_bad_line_model_names_file_and_key(top, line2, key):
+    from floatmoor.io.mooring_section import parse_mooring
+
+    with pytest.raises(SceneError, match=rf"scene.yaml: {key}") as e:
+        parse_mooring(_mooring(top, line2), water_depth=320.0)
+    if "model" in key and "finite" not in key:
+        assert "finite-element" in str(e.value)
+
+
+def test_element_count_of_the_whole_line_is_shared_by_length():
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe.from_system import _split_elements, spec_from_linedef
+
+    assert _split_elements([762.0, 1828.8, 76.2], 50) == [14, 34, 2]   # 50 x L_i / 2667
+    assert sum(_split_elements([1.0, 5.0, 300.0], 7)) == 7
+    assert _split_elements([1.0, 1.0, 1.0], 2) == [1, 1, 1]            # at least one each
+    ms = parse_mooring(_mooring(), water_depth=320.0)
+    assert spec_from_linedef(ms.lines[0], water_depth=320.0, n_elements=37).n_elements == 37
