@@ -203,6 +203,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("fd", "floatmoor.commands.fd"),
     ("convergence", "floatmoor.commands.convergence"),
     ("report", "floatmoor.commands.report"),
+    ("lines", "floatmoor.commands.lines"),
 ]
 """The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
 ``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""

@@ -11,7 +11,8 @@ from .config import (FRICTION_MODELS, SEABED_MODELS, FELineSpec, FESegment, Fric
                      Seabed)
 from .from_system import spec_from_linedef, specs_from_system
 from .line import FELine, StaticSolution, gen_alpha_coefficients
-from .options import MOORING_MODELS, FEOptions, parse_fe_options
+from .decoupled import harmonic_poses, run_decoupled
+from .options import MOORING_MODELS, FEOptions, LineModels, parse_fe_options, parse_line_models
 from .prescribed import (HarmonicMotion, TimeSeriesMotion, daf, decoupled_analysis,
                          fairlead_track_from_body, quasi_static_tension, run_prescribed)
 
@@ -20,4 +21,5 @@ __all__ = ["FELineSpec", "FESegment", "Friction", "PointBody", "Seabed", "FRICTI
            "HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
            "quasi_static_tension", "daf", "transverse_friction_static", "spec_from_linedef",
            "specs_from_system", "FEMooring", "decoupled_analysis", "FEOptions",
-           "parse_fe_options", "MOORING_MODELS"]
+           "parse_fe_options", "MOORING_MODELS", "LineModels", "parse_line_models",
+           "run_decoupled", "harmonic_poses"]

@@ -1,0 +1,145 @@
+"""``floatmoor lines``: decoupled FE line analysis driven by a short OC3-Hywind run (seed 002
+chapter 8 workflow) or a harmonic; exit status 2 for bad input, 3 for a numerical failure."""
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from floatmoor.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = ROOT / "scenes" / "oc3_hywind.yaml"
+
+
+@pytest.fixture(scope="module")
+def run_file(tmp_path_factory):
+    """60 s of OC3-Hywind in Hs 6 m / Tp 10 s head seas (floatmoor.simulate, seed 1), written
+    like a `floatmoor run` seed file."""
+    from floatmoor.simulate import simulate
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = simulate(SCENE, seed=1, duration=60.0, transient=20.0, ramp=10.0, dt=0.1)
+    path = tmp_path_factory.mktemp("run") / "seed0001.nc"
+    ds.to_netcdf(path)
+    return path
+
+
+def test_lines_from_a_run_table_file_and_checks(run_file, tmp_path, capsys):
+    out = tmp_path / "lines.nc"
+    assert main(["lines", str(SCENE), "--motion", str(run_file), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "DAF" in text and "line1" in text and f"written: {out}" in text
+    res = xr.load_dataset(out)
+    for v in res.data_vars.values():
+        assert "units" in v.attrs and "long_name" in v.attrs
+    assert list(res.line.values) == ["line1", "line2", "line3"]
+    sel = res.time.values >= 20.0                      # the run's transient is the default
+    # independent check of the fairlead track (body rotation, reference pose): the catenary
+    # along it reproduces the coupled run's own quasi-static line tension
+    qs, ref = res.qs_tension.values[:, sel], res.run_tension.values[:, sel]
+    assert np.max(np.abs(qs - ref)) < 1e-4 * ref.max()
+    # eq. 8.1 (seed 002) recomputed from the written series
+    fe = res.fe_tension.values[:, sel]
+    daf = (fe.max(1) - fe.mean(1)) / (qs.max(1) - qs.mean(1))
+    assert np.allclose(res.daf.values, daf, rtol=1e-12)
+    assert np.allclose(res.fe_std.values, fe.std(1), rtol=1e-12)
+    # physics: same mean tension within 1.5% (the dynamics hardly shift the mean), larger
+    # wave-frequency range from drag and inertia (seed 002 ch. 8 found DAF > 1 as well)
+    assert np.allclose(res.fe_mean.values, res.qs_mean.values, rtol=0.015)
+    assert np.all(res.daf.values > 1.0)
+    # head seas: lines 2 and 3 (at +-120 deg) are mirror images
+    assert res.fe_tension.values[1] == pytest.approx(res.fe_tension.values[2], rel=1e-6)
+    # along-line maximum at least the top element tension; grounded length inside the line
+    assert np.all(res.max_tension_along_line.values > 0.95 * res.fe_max.values)
+    assert np.all((res.grounded_length_min.values > 0.0)
+                  & (res.grounded_length_max.values < 902.2))
+
+
+def test_lines_selection_and_same_numbers_as_the_library(run_file, tmp_path, capsys):
+    """--lines picks lines; the FE series equal the library's decoupled_analysis (the same
+    line model and default options) for that line."""
+    from floatmoor.core.config import Node
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe import decoupled_analysis
+
+    out = tmp_path / "l2.nc"
+    assert main(["lines", str(SCENE), "--motion", str(run_file), "--lines", "line2",
+                 "--duration", "40", "--discard", "10", "--out", str(out)]) == 0
+    res = xr.load_dataset(out)
+    assert list(res.line.values) == ["line2"] and res.time.values[-1] == pytest.approx(40.0)
+    run = xr.load_dataset(run_file)
+    keep = run.time.values <= 40.0 + 1e-9
+    ms = parse_mooring(Node.load(ROOT / "vessels" / "oc3_hywind" / "mooring.yaml"),
+                       water_depth=320.0)
+    lib = decoupled_analysis(ms, run.time.values[keep], run.motion.values[keep],
+                             lines=["line2"], discard=10.0)
+    assert np.allclose(res.fe_tension.values[0], lib.fe_tension.values[0], rtol=1e-9)
+    assert res.daf.values[0] == pytest.approx(float(lib.daf.values[0]), rel=1e-9)
+
+
+def test_lines_harmonic_surge_quasi_static_peak(tmp_path, capsys):
+    """--harmonic surge:3:16: the quasi-static maximum of line1 (anchor on +x) is at surge -3 m
+    (t = 12 + 16 k s on the 0.1 s grid) and equals the MooringSystem catenary at that pose."""
+    from floatmoor.core.config import Node
+    from floatmoor.io.mooring_section import parse_mooring
+
+    out = tmp_path / "h.nc"
+    assert main(["lines", str(SCENE), "--harmonic", "surge:3:16", "--lines", "line1",
+                 "--duration", "48", "--out", str(out)]) == 0
+    assert "harmonic surge 3 (m) at 16 s" in capsys.readouterr().out
+    res = xr.load_dataset(out)
+    ms = parse_mooring(Node.load(ROOT / "vessels" / "oc3_hywind" / "mooring.yaml"),
+                       water_depth=320.0)
+    t_ref = float(ms.tensions(np.array([-3.0, 0, 0, 0, 0, 0]))["fairlead_tension"][0])
+    assert float(res.qs_max.values[0]) == pytest.approx(t_ref, rel=1e-6)
+    assert res.attrs["discard_s"] == 32.0           # default: ramp + one period
+
+
+def _write(p, text):
+    p.write_text(text)
+    return p
+
+
+@pytest.mark.parametrize("argv,message", [
+    (["--motion", "{tmp}/missing.nc"], "no such file"),
+    (["--motion", "{tmp}/nomotion.nc"], "motion(time, dof)"),
+    (["--harmonic", "surge:3"], "DOF:AMPLITUDE:PERIOD"),
+    (["--harmonic", "twist:3:10"], "unknown DOF"),
+    (["--harmonic", "surge:3:10", "--lines", "line9"], "unknown line(s) line9"),
+    (["--harmonic", "surge:3:10", "--duration", "20", "--discard", "30"], "not shorter"),
+])
+def test_bad_input_exit_2(argv, message, tmp_path, capsys):
+    xr.Dataset({"x": ("t", np.zeros(3))}).to_netcdf(tmp_path / "nomotion.nc")
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    assert main(["lines", str(SCENE), *argv, "--out", str(tmp_path / "o.nc")]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_bad_finite_element_option_exit_2(tmp_path, capsys):
+    m = yaml.safe_load((ROOT / "vessels" / "oc3_hywind" / "mooring.yaml").read_text())
+    m["finite_element"] = {"integrator": "rk45"}
+    p = _write(tmp_path / "s.yaml", yaml.safe_dump({"name": "x", "site": {"water_depth": 320.0},
+                                                    "mooring": m}))
+    assert main(["lines", str(p), "--harmonic", "surge:3:15"]) == 2
+    assert "mooring.finite_element.integrator" in capsys.readouterr().err
+
+
+def test_numerical_failure_exit_3_names_time_line_node_remedy(tmp_path, capsys):
+    """The explicit integrator at the 0.1 s body step is far beyond the axial-wave limit of the
+    stiff OC3 line (about 3 ms for 20 m elements): it must fail loudly, not write numbers."""
+    m = yaml.safe_load((ROOT / "vessels" / "oc3_hywind" / "mooring.yaml").read_text())
+    m["finite_element"] = {"integrator": "explicit"}
+    p = _write(tmp_path / "s.yaml", yaml.safe_dump({"name": "x", "site": {"water_depth": 320.0},
+                                                    "mooring": m}))
+    out = tmp_path / "o.nc"
+    assert main(["lines", str(p), "--harmonic", "surge:3:15", "--duration", "20",
+                 "--discard", "5", "--out", str(out)]) == 3
+    err = capsys.readouterr().err
+    assert "numerical error" in err and "t = " in err and "line line1" in err
+    assert "node" in err and "remedy" in err and "dt" in err
+    assert not out.exists()
