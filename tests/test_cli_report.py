@@ -236,6 +236,16 @@ def test_failed_seed_is_listed_and_left_out(data, tmp_path, capsys):
     assert meta["seeds"].startswith(f"{len(INTACT_SEEDS)}:")
 
 
+def test_other_netcdf_files_are_skipped_with_a_warning(data, tmp_path, capsys):
+    d = tmp_path / "res"
+    shutil.copytree(data["intact"], d)
+    shutil.copy(data["fd"], d / "fd.nc")
+    code, stdout, stderr = run_report([d, "--out", tmp_path / "r"], capsys)
+    assert code == 0
+    assert "ignored 1 netCDF file(s)" in stderr and "fd.nc" in stderr
+    assert f"({len(INTACT_SEEDS)} seeds from" in stdout
+
+
 def test_mbs_from_the_scene_when_the_results_lack_it(data, intact_report, tmp_path, capsys):
     d = tmp_path / "nombs"
     d.mkdir()
@@ -312,7 +322,9 @@ def test_bad_input_exits_2_without_traceback(case, data, tmp_path, capsys):
         shutil.copytree(data["intact"], d)
         if case == "mixed":
             shutil.copy(next(data["als"].glob("*.nc")), d)
-        elif case == "not_a_result":
+        elif case == "not_a_result":          # only a non-result netCDF file in the folder
+            for f in d.glob("*.nc"):
+                f.unlink()
             shutil.copy(data["fd"], d / "fd.nc")
         elif case == "failed_line_without_als":
             argv += ["--failed-line", "line1"]
@@ -335,7 +347,7 @@ def test_bad_input_exits_2_without_traceback(case, data, tmp_path, capsys):
     assert not (tmp_path / "r" / "report.html").exists()
     expected_words = {"missing": "no such folder", "empty": "found 'none'",
                       "only_errors": "1 failed seed", "mixed": "one scene",
-                      "not_a_result": "floatmoor run result", "failed_line_without_als": "--als-dir",
+                      "not_a_result": "only other netCDF files: fd.nc", "failed_line_without_als": "--als-dir",
                       "unknown_failed_line": "line9", "fd_missing": "no such file",
                       "fd_other_scene": "another-scene", "duplicate_seed": "more than once"}
     assert expected_words[case] in stderr

@@ -98,8 +98,9 @@ def read_results(folder, key: str = "RESULTS_DIR"):
     Raises
     ------
     SceneError
-        No such folder, no result file, a file that is not a floatmoor run result, results of
-        different scenes, durations, time steps or line sets, or a seed twice.
+        No such folder, no result file, an unreadable file, results of different scenes,
+        durations, time steps or line sets, or a seed twice.  NetCDF files that are not
+        floatmoor run results (e.g. a ``floatmoor fd --out`` file) are skipped with a warning.
     """
     import xarray as xr
 
@@ -118,7 +119,7 @@ def read_results(folder, key: str = "RESULTS_DIR"):
         extra = f" ({len(failed)} failed seed(s): see *.error.txt)" if failed else ""
         raise _scene_error(folder, key, "per-seed result files *.nc written by floatmoor run",
                            "none" + extra)
-    datasets = []
+    datasets, ignored = [], []
     for f in files:
         try:
             with xr.open_dataset(f) as ds:
@@ -128,11 +129,20 @@ def read_results(folder, key: str = "RESULTS_DIR"):
         except (OSError, ValueError) as exc:
             raise _scene_error(f, key, "a readable netCDF file",
                                f"{type(exc).__name__}: {exc}") from None
-        if ds is None:
-            raise _scene_error(f, key, "a floatmoor run result (line_tension(time, line) in N)",
-                               "variables " + ", ".join(names[:8]))
+        if ds is None:                     # e.g. a floatmoor fd --out file put beside the seeds
+            ignored.append(f"{f.name} (variables {', '.join(names[:5])}...)")
+            continue
         ds.attrs["source_file"] = str(f)
         datasets.append(ds)
+    if ignored and datasets:
+        from ..core.errors import FloatmoorWarning
+        warnings.warn(f"{key} {folder}: ignored {len(ignored)} netCDF file(s) that are not "
+                      "floatmoor run results (no line_tension(time, line)): "
+                      + "; ".join(ignored), FloatmoorWarning, stacklevel=2)
+    if not datasets:
+        raise _scene_error(folder, key, "per-seed result files *.nc written by floatmoor run "
+                           "(with line_tension(time, line))",
+                           f"only other netCDF files: {', '.join(i.split(' ')[0] for i in ignored)}")
     _check_consistent(datasets, key)
     datasets.sort(key=lambda d: int(d.attrs.get("seed", 0)))
     return datasets, failed
