@@ -273,7 +273,9 @@ def consistency_report(ds: xr.Dataset, *, band=DEFAULT_BAND, t=None, rel_tol_cut
     xarray.Dataset with ``retardation_function(influenced_dof, radiating_dof, time)``,
     ``cutoff_time``, ``infinite_frequency_added_mass``, ``a_inf_fitted`` (bool),
     ``max_rel_error_added_mass``, ``max_rel_error_damping``, ``tail_exponent`` and attrs
-    ``band``, ``warnings``.
+    ``band``, ``warnings`` (and ``limitations``, copied from the database's attribute of that
+    name when present: known limits written by the database's author, printed by
+    :func:`format_consistency`).
     """
     where = ds.attrs.get("source", "<database>")
     omega = ds["omega"].values
@@ -359,6 +361,8 @@ def consistency_report(ds: xr.Dataset, *, band=DEFAULT_BAND, t=None, rel_tol_cut
     )
     rep.attrs.update({"band": np.asarray(band, float), "source": where,
                       "warnings": "\n".join(msgs)})
+    if ds.attrs.get("limitations"):  # known limits recorded by the database's author
+        rep.attrs["limitations"] = str(ds.attrs["limitations"])
     return rep
 
 
@@ -389,6 +393,9 @@ def format_consistency(report: xr.Dataset, *, min_scale_only: bool = True) -> st
             lines.append(f"{di + '-' + dj:<14}{100 * ea:>9.3f}{100 * eb:>9.3f}"
                          f"{float(report.cutoff_time.values[i, j]):>9.1f}"
                          f"{n:>8.2f}{ainf:>13.4g}")
+    if report.attrs.get("limitations"):
+        lines.append("database limitations (recorded with the database):")
+        lines.extend("  " + m for m in report.attrs["limitations"].split("\n"))
     if report.attrs.get("warnings"):
         lines.append("warnings:")
         lines.extend("  " + m for m in report.attrs["warnings"].split("\n"))

@@ -130,3 +130,27 @@ class _nowarn:
 
     def __exit__(self, *exc):
         return self._c.__exit__(*exc)
+
+
+def test_report_prints_the_limitations_recorded_with_the_database(oc4_db):
+    from floatmoor.hydro import format_consistency
+    ds = oc4_db.copy(deep=True)
+    ds.attrs["limitations"] = "first known limit\nsecond known limit"
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FloatmoorWarning)
+        rep = consistency_report(ds)
+        ds.attrs.pop("limitations")
+        plain = format_consistency(consistency_report(ds))
+    text = format_consistency(rep)
+    assert "database limitations" in text
+    assert "  first known limit" in text and "  second known limit" in text
+    assert "database limitations" not in plain
+
+
+def test_floatel_database_records_its_frequency_range_limitation():
+    from floatmoor.hydro import load_database
+    from .conftest import VESSELS
+    ds = load_database(VESSELS / "floatel_like" / "database.nc")
+    assert float(ds.omega.max()) == pytest.approx(2.5)
+    assert "2.5 rad/s" in ds.attrs["limitations"]

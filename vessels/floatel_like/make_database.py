@@ -45,6 +45,17 @@ from floatmoor.hydro.vessel import gravity_stiffness, rigid_body_mass_matrix
 from floatmoor.core.config import Node
 
 HERE = Path(__file__).resolve().parent
+
+# Known limits, stored as the database attribute ``limitations`` and printed with the
+# consistency report (``floatmoor check``).
+LIMITATIONS = (
+    "frequency range ends at 2.5 rad/s, where the damping has not decayed (surge 5 %, sway 5 %, "
+    "yaw 7 % of its peak): the retardation functions depend on the tail model and reproduce the "
+    "database only to 8-16 % in sway, pitch and yaw (consistency report, band 0.2-2 rad/s). "
+    "Extending to 4 rad/s needs panels of lambda/6-8 = 0.5-0.6 m there (lambda = 3.85 m), "
+    "about 33,000 panels instead of 1,616: not feasible with a dense BEM solver here.\n"
+    "the 2.5 m panels are lambda/6 only up to 2.0 rad/s and lambda/8 up to 1.75 rad/s; the "
+    "values above 2 rad/s (e.g. the sway spike at 2.4 rad/s) are less reliable than below")
 RHO, G, DEPTH = 1025.0, 9.80665, 150.0
 PONTOON_X = 25.25
 PONTOON_W, PONTOON_H, PONTOON_L = 14.0, 8.625, 90.0
@@ -180,6 +191,7 @@ def main(h=2.5, omegas=None, headings_deg=None, out=HERE / "database.nc"):
     ds = symmetrize(ds)
     ds.attrs["displaced_volume"] = float(mesh.volume)
     ds.attrs["mesh_panels"] = int(mesh.nb_faces)
+    ds.attrs["limitations"] = LIMITATIONS
     ds.attrs["mean_drift_method"] = ("Capytaine far-field (Maruo/Kochin) formula with "
                                      "free-floating RAOs from vessel.yaml")
     ds.attrs["source"] = ("Capytaine " + cpt.__version__ + ", vessels/floatel_like/make_database.py, "
