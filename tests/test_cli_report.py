@@ -277,6 +277,10 @@ def test_als_from_a_second_results_dir(data, tmp_path, capsys):
     exp = expected_from_files(data["als"])
     assert float(rows["line2"]["cells"][8]) == pytest.approx(exp["line2"]["p90"] / 1e3,
                                                              abs=0.051 + 1e-5 * exp["line2"]["p90"] / 1e3)
+    assert float(rows["line2"]["cells"][4]) == pytest.approx(exp["line2"]["mpm"] / 1e3,
+                                                             abs=0.051 + 1e-5 * exp["line2"]["mpm"] / 1e3)
+    assert float(rows["line2"]["cells"][1]) == pytest.approx(exp["line2"]["mean"] / 1e3, abs=0.051)
+    assert rows["line1"]["cells"][1] == ""                  # the failed line has no statistics
     # the same with the failed line named
     code2, _, _ = run_report([data["intact"], "--als-dir", data["als"], "--failed-line", "line1",
                               "--out", tmp_path / "r2"], capsys)

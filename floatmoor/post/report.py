@@ -133,7 +133,8 @@ def _variables(ds: xr.Dataset) -> list[str]:
 def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Dataset] | None = None,
               failed_lines: Sequence | None = None, consequence_class: int = 2,
               analysis: str = "dynamic", start: float | None = None, end: float | None = None,
-              cutoff: float = DEFAULT_CUTOFF_HZ, p: float = 0.9, method: str = "mle"):
+              cutoff: float = DEFAULT_CUTOFF_HZ, p: float = 0.9, method: str = "mle",
+              return_als: bool = False):
     """Statistics, characteristic tensions and design checks of a set of seeds.
 
     Parameters
@@ -157,6 +158,9 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         Gumbel fractile of the characteristic tension (0.9).
     method : str
         Gumbel fit method.
+    return_als : bool
+        Also return ``(characteristic, statistics)`` of the ALS seeds (lines not failed; None
+        without ALS results) as a fourth item.
 
     Returns
     -------
@@ -173,7 +177,7 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
     ct = dnv.characteristic_tensions(stats["line_tension_max"], stats["line_tension_mean"],
                                      p=p, method=method)
     lines = list(ct["line"].values)
-    als_mean = als_max = None
+    als_mean = als_max = als_detail = None
     if als_results is not None:
         als_results = _check_results(als_results, "als_results")
         als_start = transient_of(als_results) if start_given is None else start_given
@@ -199,6 +203,7 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         sub_max = astats["line_tension_max"].isel(line=np.flatnonzero(alive))
         sub_mean = astats["line_tension_mean"].isel(line=np.flatnonzero(alive))
         act = dnv.characteristic_tensions(sub_max, sub_mean, p=p, method=method)
+        als_detail = (act, astats)
         als_mean = np.full(len(lines), np.nan)
         als_max = np.full(len(lines), np.nan)
         als_mean[alive] = act["t_c_mean"].values
@@ -219,6 +224,8 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         checks.attrs["n_seeds_als"] = len(als_results)
     if als_results is not None:
         checks.attrs["failed_lines"] = ", ".join(sorted(failed))
+    if return_als:
+        return checks, stats, ct, als_detail
     return checks, stats, ct
 
 
@@ -284,8 +291,10 @@ class _Table:
         return "\n".join(lines) + "\n"
 
 
-def _line_table(checks, ct, stats, ls):
+def _line_table(checks, ct, stats, ls, als_detail=None):
     c = checks.sel(limit_state=ls)
+    if ls == "ALS" and als_detail is not None:
+        return _line_table_als(checks, c, als_detail)
     header = ["line", "mean [kN]", "std [kN]", "max obs. [kN]", "Gumbel MPM [kN]",
               "Gumbel 90% [kN]", "T_C-mean [kN]", "T_C-dyn [kN]", "T_C [kN]", "S_C [kN]",
               "gamma_mean", "gamma_dyn", "design T [kN]", "utilisation", "check",
@@ -350,6 +359,43 @@ def _motion_rows(stats):
             rows.append((str(dof), unit, f, {k: stats[f"motion_{k}"].values[:, j] for k in
                                              ("mean", "std", "max", "min", "lf_max", "wf_sig")}))
     return rows
+
+
+def _line_table_als(checks, c, als_detail):
+    """ALS table: statistics of the ALS seeds for the lines not failed."""
+    act, astats = als_detail
+    names = [str(v) for v in act["line"].values]
+    std = astats["line_tension_std"].mean("seed")
+    header = ["line", "mean [kN]", "std [kN]", "max obs. [kN]", "Gumbel MPM [kN]",
+              "Gumbel 90% [kN]", "T_C-mean [kN]", "T_C-dyn [kN]", "T_C [kN]", "S_C [kN]",
+              "gamma_mean", "gamma_dyn", "design T [kN]", "utilisation", "check",
+              "SF = MBS/T_C"]
+    rows, hl = [], []
+    for j, line in enumerate(c["line"].values):
+        checked = bool(c["checked"].values[j])
+        row = [str(line)]
+        if checked and str(line) in names:
+            k = names.index(str(line))
+            row += [_fmt(act["t_c_mean"].values[k] * _KN),
+                    _fmt(float(std.sel(line=_line_key(std, line))) * _KN),
+                    _fmt(act["max_observed"].values[k] * _KN), _fmt(act["gumbel_mpm"].values[k] * _KN),
+                    _fmt(act["gumbel_p90"].values[k] * _KN)]
+        else:
+            row += ["", "", "", "", ""]
+        row += [_fmt(c["t_c_mean"].values[j] * _KN), _fmt(c["t_c_dyn"].values[j] * _KN),
+                _fmt(c["t_c"].values[j] * _KN), _fmt(c["s_c"].values[j] * _KN),
+                _fmt(c["gamma_mean"].values[j], 2), _fmt(c["gamma_dyn"].values[j], 2),
+                _fmt(c["design_tension"].values[j] * _KN), _fmt(c["utilisation"].values[j], 3),
+                ("PASS" if c["passed"].values[j] else "FAIL") if checked else "failed line",
+                _fmt(c["safety_factor"].values[j], 2)]
+        rows.append(row)
+        hl.append(bool(c["governing"].values[j]))
+    caption = (f"ALS: per-line tensions of the seeds with line(s) "
+               f"{checks.attrs.get('failed_lines', '?')} failed and DNV-OS-E301 check "
+               f"(consequence class {checks.attrs['consequence_class']}, "
+               f"{checks.attrs['analysis']} analysis); governing line "
+               f"{c['governing_line'].item()} highlighted")
+    return _Table("lines_als", caption, header, rows, highlight=hl, status_col=14)
 
 
 def _motion_table(stats):
@@ -564,9 +610,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     ReportFiles
     """
     results = [_prepared(ds) for ds in _check_results(results, "results")]
-    if start is None:
-        start = transient_of(results)
-    checks, stats, ct = summarise(results, mbs, als_results=als_results,
+    plot_start = transient_of(results) if start is None else start
+    checks, stats, ct, als_detail = summarise(results, mbs, als_results=als_results, return_als=True,
                                   failed_lines=failed_lines,
                                   consequence_class=consequence_class, analysis=analysis,
                                   start=start, end=end, cutoff=cutoff, p=p, method=method)
@@ -619,7 +664,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
                      f"{fd.attrs.get('drift_method', '?')}, tension model "
                      f"{fd.attrs.get('tension_model', '?')}"))
     meta += [(str(k), str(v)) for k, v in extra_meta]
-    tables = [_line_table(checks, ct, stats, ls) for ls in checks["limit_state"].values]
+    tables = [_line_table(checks, ct, stats, ls, als_detail)
+              for ls in checks["limit_state"].values]
     mt = _motion_table(stats)
     if mt is not None:
         tables.append(mt)
@@ -628,7 +674,7 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         ft = _fd_offsets_table(fd, stats)
         if ft is not None:
             tables.append(ft)
-    figs = _plots(results, checks, ct, stats, start, end) if plots else []
+    figs = _plots(results, checks, ct, stats, plot_start, end) if plots else []
 
     # HTML
     parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
