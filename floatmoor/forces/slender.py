@@ -56,6 +56,7 @@ class SlenderGeometry:
     ey: np.ndarray
     ez: np.ndarray
     c2: np.ndarray
+    cm: np.ndarray
     n_strips: np.ndarray
     st_first: np.ndarray
     st_count: np.ndarray
@@ -85,6 +86,7 @@ def slender_geometry(elements: list, *, station_spacing: float = 10.0,
     ey = np.array([a[1] for a in axes])
     ez = np.array([a[2] for a in axes])
     c2 = np.array([e.c2 for e in elements], float).reshape(ne, 3)
+    cm = np.array([getattr(e, "cm", (0.0, 0.0, 0.0)) for e in elements], float).reshape(ne, 3)
     n_strips = np.array([e.n_strips for e in elements], np.int64)
     st_first = np.zeros(ne, np.int64)
     st_count = np.zeros(ne, np.int64)
@@ -99,7 +101,7 @@ def slender_geometry(elements: list, *, station_spacing: float = 10.0,
             q = p1[i] + (j + 0.5) / n * (p2[i] - p1[i])
             st.append((origin[0] + c * q[0] - s * q[1], origin[1] + s * q[0] + c * q[1]))
     return SlenderGeometry(names=tuple(e.name for e in elements), p1=p1, p2=p2, ex=ex, ey=ey,
-                           ez=ez, c2=c2, n_strips=n_strips, st_first=st_first,
+                           ez=ez, c2=c2, cm=cm, n_strips=n_strips, st_first=st_first,
                            st_count=st_count, stations=np.array(st, float).reshape(-1, 2))
 
 
@@ -107,7 +109,8 @@ def slender_geometry(elements: list, *, station_spacing: float = 10.0,
 class KinematicsTable:
     """Elevation ``eta`` (nt, ns) (m) and wave velocity ``u`` (nt, ns, nl, 3) (m/s, earth axes)
     at the stations, times ``i H`` (s), stretched levels ``lev0 + l dlev`` (m, top level 0).
-    ``wheeler``: Wheeler stretching (else constant above the MWL); ``depth`` (m, inf = deep)."""
+    ``wheeler``: Wheeler stretching (else constant above the MWL); ``depth`` (m, inf = deep);
+    ``a`` the wave acceleration (m/s^2) like ``u``, or None (no inertia terms)."""
 
     eta: np.ndarray
     u: np.ndarray
@@ -116,10 +119,11 @@ class KinematicsTable:
     dlev: float
     depth: float
     wheeler: bool
+    a: np.ndarray | None = None
 
     @property
     def nbytes(self) -> int:
-        return int(self.eta.nbytes + self.u.nbytes)
+        return int(self.eta.nbytes + self.u.nbytes + (0 if self.a is None else self.a.nbytes))
 
 
 def _factors(k, z, depth):
@@ -169,8 +173,8 @@ def _sample(omega, coeffs, n_t: int, H: float, grid: FrequencyGrid | None) -> np
 
 def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, duration: float,
                            H: float, depth: float, lev0: float, dlev: float = 3.0,
-                           wheeler: bool = True, grid: FrequencyGrid | None = None
-                           ) -> KinematicsTable:
+                           wheeler: bool = True, grid: FrequencyGrid | None = None,
+                           acceleration: bool = False) -> KinematicsTable:
     """Precompute elevation and linear wave velocity at ``stations`` (ns, 2) (m).
 
     Parameters
@@ -183,6 +187,7 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
     depth : water depth (m), inf for deep water.
     lev0, dlev : deepest level (m, < 0) and the level step (m); levels lev0 .. 0.
     wheeler : Wheeler stretching (True) or constant above the MWL (False).
+    acceleration : also tabulate the particle acceleration (for the inertia terms).
     """
     omega = np.asarray(omega, float)
     amp = np.asarray(amplitude, float)
@@ -199,6 +204,7 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
     ns = stations.shape[0]
     eta = np.zeros((n_t, ns))
     u = np.zeros((n_t, ns, nl, 3), np.float32)   # float32: half the memory, 1e-7 relative
+    acc = np.zeros((n_t, ns, nl, 3), np.float32) if acceleration else None
     cb, sb = np.cos(beta), np.sin(beta)
     Cs = np.empty((omega.size, nl))
     Ss = np.empty((omega.size, nl))
@@ -207,16 +213,21 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
     for s in range(ns):
         x, y = stations[s]
         base = amp * np.exp(1j * (ph - kk * (x * cb + y * sb)))
-        coeffs = np.empty((omega.size, 1 + 3 * nl), complex)
+        nv = 1 + 3 * nl
+        coeffs = np.empty((omega.size, nv * 2 - 1 if acceleration else nv), complex)
         coeffs[:, 0] = base
         uh = (base * omega)[:, None] * Cs
-        coeffs[:, 1::3] = uh * cb[:, None]
-        coeffs[:, 2::3] = uh * sb[:, None]
-        coeffs[:, 3::3] = (1j * base * omega)[:, None] * Ss
+        coeffs[:, 1:nv:3] = uh * cb[:, None]
+        coeffs[:, 2:nv:3] = uh * sb[:, None]
+        coeffs[:, 3:nv:3] = (1j * base * omega)[:, None] * Ss
+        if acceleration:  # d/dt of exp(i w t): i w
+            coeffs[:, nv:] = coeffs[:, 1:nv] * (1j * omega)[:, None]
         vals = _sample(omega, coeffs, n_t, H, grid)
         eta[:, s] = vals[0]
-        u[:, s, :, :] = vals[1:].T.reshape(n_t, nl, 3)
-    return KinematicsTable(eta=eta, u=u, H=float(H), lev0=float(lev0),
+        u[:, s, :, :] = vals[1:nv].T.reshape(n_t, nl, 3)
+        if acceleration:
+            acc[:, s, :, :] = vals[nv:].T.reshape(n_t, nl, 3)
+    return KinematicsTable(eta=eta, u=u, a=acc, H=float(H), lev0=float(lev0),
                            dlev=float(dlev), depth=float(depth), wheeler=bool(wheeler))
 
 
@@ -255,11 +266,13 @@ def slender_force(geom: SlenderGeometry, table: KinematicsTable, t: float, pose,
     cs = np.zeros(0) if current_speed is None else np.ascontiguousarray(current_speed, float)
     out = np.zeros(6)
     R = np.zeros((3, 3))
+    inertia = table.a is not None and bool(np.any(geom.cm != 0.0))
+    a_tab = table.a if inertia else np.zeros((2, 1, 2, 3), np.float32)
     slender_force_into(float(t) / table.H, pose, np.ascontiguousarray(vel[:3]), omega, geom.p1,
-                       geom.p2, geom.ex, geom.ey, geom.ez, geom.c2, geom.n_strips,
-                       geom.st_first, geom.st_count, table.eta, table.u, table.lev0, table.dlev,
-                       table.depth, table.wheeler, float(wave_factor), cz, cs,
-                       math.cos(current_heading), math.sin(current_heading), R, out)
+                       geom.p2, geom.ex, geom.ey, geom.ez, geom.c2, geom.cm, geom.n_strips,
+                       geom.st_first, geom.st_count, table.eta, table.u, a_tab, inertia,
+                       table.lev0, table.dlev, table.depth, table.wheeler, float(wave_factor),
+                       cz, cs, math.cos(current_heading), math.sin(current_heading), R, out)
     return out
 
 
@@ -346,6 +359,11 @@ class SlenderElements(ForceModel):
         geom = slender_geometry(elements, station_spacing=getattr(spec, "station_spacing", 10.0),
                                 yaw0=ctx.yaw0)
         wheeler = bool(getattr(spec, "wheeler", True))
+        inertia = bool(getattr(spec, "inertia", False))
+        if inertia and not np.any(geom.cm != 0.0):
+            raise SceneError(v.file, "slender_elements.inertia_per_length",
+                             "inertia coefficients (kg/m) for forces: viscous_drift: inertia: "
+                             "true")
         h = ctx.sample_dt
         duration = ctx.n_samples * h
         depth = float(scene.site.water_depth)
@@ -360,13 +378,13 @@ class SlenderElements(ForceModel):
             table = build_kinematics_table(r.omega, r.amplitude, r.phase, r.k, r.direction,
                                            geom.stations, duration=duration, H=m * h,
                                            depth=depth, lev0=lev0, dlev=dlev, wheeler=wheeler,
-                                           grid=comp.grid)
+                                           grid=comp.grid, acceleration=inertia)
         else:
             m = max(1, ctx.n_samples)
             nl = int(math.ceil(-lev0 / dlev)) + 1
             table = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0])),
                                     u=np.zeros((2, geom.stations.shape[0], nl, 3), np.float32),
-                                    H=m * h,
+                                    a=None, H=m * h,
                                     lev0=-(nl - 1) * dlev, dlev=dlev, depth=depth,
                                     wheeler=wheeler)
         cz, cs, chead = _current_profile(scene, table.lev0)
@@ -377,11 +395,13 @@ class SlenderElements(ForceModel):
         self.ramp = np.ascontiguousarray(ctx.ramp_series(), float)
         self.current_z, self.current_speed, self.current_heading = cz, cs, chead
         self.fel = np.ascontiguousarray(np.hstack([geom.p1, geom.p2, geom.ex, geom.ey, geom.ez,
-                                                   geom.c2]))
+                                                   geom.c2, geom.cm]))
         self.iel = np.ascontiguousarray(np.stack([geom.n_strips, geom.st_first, geom.st_count],
                                                  axis=1).astype(np.int64))
+        has_inertia = table.a is not None
+        self.a_tab = table.a if has_inertia else np.zeros((2, 1, 2, 3), np.float32)
         self.par = np.array([float(m), table.lev0, table.dlev, table.depth, float(wheeler),
-                             math.cos(chead), math.sin(chead), 0.0])
+                             math.cos(chead), math.sin(chead), float(has_inertia)])
         self.cur = np.ascontiguousarray(np.stack([cz, cs], axis=1)) if cz.size else \
             np.zeros((0, 2))
         self._freeze()
@@ -407,8 +427,9 @@ class SlenderElements(ForceModel):
         return covered_current_dofs(self.geom)
 
     def kernel_arrays(self) -> tuple:
-        """(fel, iel, eta, u, par, cur, ramp) for :func:`slender_packed_into`."""
-        return (self.fel, self.iel, self.table.eta, self.table.u, self.par, self.cur, self.ramp)
+        """(fel, iel, eta, u, a, par, cur, ramp) for :func:`slender_packed_into`."""
+        return (self.fel, self.iel, self.table.eta, self.table.u, self.a_tab, self.par, self.cur,
+                self.ramp)
 
     def contribute(self, asm: KernelAssembly):
         asm.slender = self.kernel_arrays()

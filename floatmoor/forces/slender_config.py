@@ -11,6 +11,8 @@ slender_elements:
     column:                       #     Re ~ 1e5), per local axis: width D facing the flow,
       y: {d: 12.5, l: 14.0, r: 3.0}   # length L along the flow, corner radius R (m)
       z: {d: 14.0, l: 12.5, r: 3.0}
+  inertia_per_length:             # optional, rho C_M A per local axis (kg/m), used only with
+    column: {my: 3.5e5, mz: 3.5e5}  # forces: viscous_drift: {inertia: true}
   elements:
     - {name: column_1, type: column, p1: [-25.25, -25.5, 14.5], p2: [-25.25, -25.5, -4.375]}
     - {name: pontoon_1, type: pontoon, p1: [...], p2: [...], n_strips: 12}
@@ -77,13 +79,15 @@ def dnv_rounded_rectangle_cd(l_over_d: float, r_over_d: float, *,
 @dataclass(frozen=True, kw_only=True)
 class SlenderElementSpec:
     """One element: name, end points p1, p2 (m, body), drag per length c2 = (cx, cy, cz)
-    (N s^2/m^3) along the local axes, number of strips."""
+    (N s^2/m^3) along the local axes, number of strips, inertia per length cm = rho C_M A
+    (kg/m) along the local axes (used only with the inertia option)."""
 
     name: str
     p1: tuple
     p2: tuple
     c2: tuple
     n_strips: int
+    cm: tuple = (0.0, 0.0, 0.0)
 
 
 def _type_coefficients(node: Node, rho: float) -> dict:
@@ -157,9 +161,17 @@ def parse_slender_elements(raw, *, file=None, key: str = "slender_elements",
         raise SceneError(file, key, "a slender_elements section in the vessel file")
     node = Node(raw, file, key)
     node.reject_unknown({"n_strips", "quadratic_drag_per_length", "drag_coefficients",
-                         "dnv_rounded_rectangle", "elements"})
+                         "dnv_rounded_rectangle", "inertia_per_length", "elements"})
     n_default = node.int("n_strips", 10, ge=1)
     coeffs = _type_coefficients(node, rho)
+    inertia = {}
+    if "inertia_per_length" in node:
+        q = node.child("inertia_per_length")
+        for t in q.keys():
+            tn = q.child(t)
+            tn.reject_unknown({"mx", "my", "mz"})
+            inertia[str(t)] = tuple(tn.float(k, 0.0, ge=0.0, unit="kg/m")
+                                    for k in ("mx", "my", "mz"))
     if scale:
         for t, c in scale.items():
             if t not in coeffs:
@@ -182,8 +194,10 @@ def parse_slender_elements(raw, *, file=None, key: str = "slender_elements",
         p2 = en.array("p2", shape=(3,), unit="m")
         if np.linalg.norm(p2 - p1) <= 0.0:
             raise en.error("p2", "an end point different from p1", list(p2))
+        cm = (0.0, 0.0, 0.0)
         if "type" in en:
             t = en.str("type")
+            cm = inertia.get(t, cm)
             if t not in coeffs:
                 raise en.error("type", "a type with drag coefficients: " +
                                (", ".join(sorted(coeffs)) or "(none given)"), t)
@@ -192,5 +206,6 @@ def parse_slender_elements(raw, *, file=None, key: str = "slender_elements",
             c2 = tuple(en.float(k, 0.0, ge=0.0, unit="N s^2/m^3") for k in ("c2x", "c2y", "c2z"))
         out.append(SlenderElementSpec(name=name, p1=tuple(map(float, p1)),
                                       p2=tuple(map(float, p2)), c2=tuple(map(float, c2)),
-                                      n_strips=en.int("n_strips", n_default, ge=1)))
+                                      n_strips=en.int("n_strips", n_default, ge=1),
+                                      cm=tuple(map(float, cm))))
     return out

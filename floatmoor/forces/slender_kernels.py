@@ -7,6 +7,10 @@ made perpendicular to ``x`` ("up") and ``y = z x x``; for a vertical element (|x
 0.999) local ``y`` is the body's ``x`` axis made perpendicular to ``x`` and ``z = x x y``.  (So a
 pontoon along body y has local y = body x, local z = up; a column has local y = body x.)
 
+Inertia (optional, off by default: the potential-flow database already carries it): ``cm_j a_j``
+per unit length, ``cm_j = rho C_M A_j`` (kg/m) and ``a_j`` the wave particle acceleration along
+local axis j (no body-acceleration term).
+
 Force per unit length, quadratic drag per local axis (seed 002 eq. 6.3 and 6.7-6.8)::
 
     f = sum_j C_j |v_j| v_j e_j,    v_j = e_j . (u_current + u_wave - v_body)
@@ -149,9 +153,9 @@ def _current_at(cur_z, cur_speed, z):
 
 
 @njit(cache=True)
-def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_strips,
-                       st_first, st_count, eta_tab, u_tab, lev0, dlev, depth, wheeler,
-                       wave_factor, cur_z, cur_speed, cur_cos, cur_sin, R, out):
+def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, n_strips,
+                       st_first, st_count, eta_tab, u_tab, a_tab, has_inertia, lev0, dlev,
+                       depth, wheeler, wave_factor, cur_z, cur_speed, cur_cos, cur_sin, R, out):
     """Add the slender-element drag force and moment (earth axes) into ``out`` (6,).
 
     Parameters
@@ -163,10 +167,15 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
     omega : (3,) angular velocity (rad/s), earth axes.
     p1, p2, ex_b, ey_b, ez_b : (ne, 3) end points (m) and local unit axes, body coordinates.
     c2 : (ne, 3) quadratic drag per unit length along local x, y, z (N s^2/m^3).
+    cm : (ne, 3) inertia per unit length rho C_M A along local x, y, z (kg/m): force
+        cm_j a_j with a_j the wave particle acceleration along axis j (Froude-Krylov +
+        diffraction of a fixed strip; the body-acceleration (added-mass) term is left to the
+        potential-flow added mass).  Used only when ``has_inertia``.
     n_strips : (ne,) int strips per element (over its wetted length).
     st_first, st_count : (ne,) int first station and number of stations of each element
         (stations at s = (i + 0.5) / st_count along the element).
-    eta_tab : (nt, ns) elevation (m); u_tab : (nt, ns, nl, 3) wave velocity (m/s, earth).
+    eta_tab : (nt, ns) elevation (m); u_tab : (nt, ns, nl, 3) wave velocity (m/s, earth);
+        a_tab : the same for the wave acceleration (m/s^2) (any array when not has_inertia).
     lev0, dlev : deepest level (m, < 0) and level spacing (m) of u_tab.
     depth : water depth (m) (inf: deep water); wheeler : bool, Wheeler stretching.
     wave_factor : float, ramp factor on the wave kinematics (0..1).
@@ -297,6 +306,32 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
                                  + w101 * u_tab[i0 + 1, sa, l0 + 1, 2]
                                  + w110 * u_tab[i0 + 1, sb, l0, 2]
                                  + w111 * u_tab[i0 + 1, sb, l0 + 1, 2])
+            if has_inertia:
+                aw0 = wave_factor * (w000 * a_tab[i0, sa, l0, 0] + w001 * a_tab[i0, sa, l0 + 1, 0]
+                                     + w010 * a_tab[i0, sb, l0, 0]
+                                     + w011 * a_tab[i0, sb, l0 + 1, 0]
+                                     + w100 * a_tab[i0 + 1, sa, l0, 0]
+                                     + w101 * a_tab[i0 + 1, sa, l0 + 1, 0]
+                                     + w110 * a_tab[i0 + 1, sb, l0, 0]
+                                     + w111 * a_tab[i0 + 1, sb, l0 + 1, 0])
+                aw1 = wave_factor * (w000 * a_tab[i0, sa, l0, 1] + w001 * a_tab[i0, sa, l0 + 1, 1]
+                                     + w010 * a_tab[i0, sb, l0, 1]
+                                     + w011 * a_tab[i0, sb, l0 + 1, 1]
+                                     + w100 * a_tab[i0 + 1, sa, l0, 1]
+                                     + w101 * a_tab[i0 + 1, sa, l0 + 1, 1]
+                                     + w110 * a_tab[i0 + 1, sb, l0, 1]
+                                     + w111 * a_tab[i0 + 1, sb, l0 + 1, 1])
+                aw2 = wave_factor * (w000 * a_tab[i0, sa, l0, 2] + w001 * a_tab[i0, sa, l0 + 1, 2]
+                                     + w010 * a_tab[i0, sb, l0, 2]
+                                     + w011 * a_tab[i0, sb, l0 + 1, 2]
+                                     + w100 * a_tab[i0 + 1, sa, l0, 2]
+                                     + w101 * a_tab[i0 + 1, sa, l0 + 1, 2]
+                                     + w110 * a_tab[i0 + 1, sb, l0, 2]
+                                     + w111 * a_tab[i0 + 1, sb, l0 + 1, 2])
+            else:
+                aw0 = 0.0
+                aw1 = 0.0
+                aw2 = 0.0
             uc = _current_at(cur_z, cur_speed, pz)
             rx = px - pose[0]
             ry = py - pose[1]
@@ -310,6 +345,10 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
             gx = c2[e, 0] * abs(qx) * qx * seg
             gy = c2[e, 1] * abs(qy) * qy * seg
             gz = c2[e, 2] * abs(qz) * qz * seg
+            if has_inertia:
+                gx += cm[e, 0] * (ex0 * aw0 + ex1 * aw1 + ex2 * aw2) * seg
+                gy += cm[e, 1] * (ey0 * aw0 + ey1 * aw1 + ey2 * aw2) * seg
+                gz += cm[e, 2] * (ez0 * aw0 + ez1 * aw1 + ez2 * aw2) * seg
             fx = gx * ex0 + gy * ey0 + gz * ez0
             fy = gx * ex1 + gy * ey1 + gz * ez1
             fz = gx * ex2 + gy * ey2 + gz * ez2
@@ -322,14 +361,15 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, n_st
 
 
 @njit(cache=True)
-def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, par, cur, ramp, R, sc, out):
+def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, a_tab, par, cur, ramp, R, sc, out):
     """:func:`slender_force_into` on the packed arrays of the time-domain kernel.
 
     j : sample index (time j h, h = dt/2); x : pose (6,); v : velocity in the yaw-following
     frame (6,) as in the solver (horizontal velocity and roll/pitch rates about the turned
-    axes).  fel (ne, 18) = [p1, p2, ex, ey, ez, c2]; iel (ne, 3) = [n_strips, st_first,
-    st_count]; par = [m (samples per table step), lev0, dlev, depth, wheeler, cos, sin of the
-    current heading]; cur (nc, 2) = current profile [z, speed]; ramp (n_samples,) the factor on
+    axes).  fel (ne, 21) = [p1, p2, ex, ey, ez, c2, cm]; iel (ne, 3) = [n_strips, st_first,
+    st_count]; a_tab the acceleration table (used when par[7] > 0.5); par = [m (samples per
+    table step), lev0, dlev, depth, wheeler, cos, sin of the current heading, inertia on];
+    cur (nc, 2) = current profile [z, speed]; ramp (n_samples,) the factor on
     the wave kinematics; R (3, 3), sc (6,) scratch.  Adds into ``out`` (6,), earth axes.
     """
     cy = math.cos(x[5])
@@ -343,6 +383,7 @@ def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, par, cur, ramp, R, sc
     n = ramp.shape[0]
     jj = j if j < n else n - 1
     slender_force_into(j / par[0], x, sc[0:3], sc[3:6], fel[:, 0:3], fel[:, 3:6], fel[:, 6:9],
-                       fel[:, 9:12], fel[:, 12:15], fel[:, 15:18], iel[:, 0], iel[:, 1],
-                       iel[:, 2], eta_tab, u_tab, par[1], par[2], par[3], par[4] > 0.5,
-                       ramp[jj], cur[:, 0], cur[:, 1], par[5], par[6], R, out)
+                       fel[:, 9:12], fel[:, 12:15], fel[:, 15:18], fel[:, 18:21], iel[:, 0],
+                       iel[:, 1], iel[:, 2], eta_tab, u_tab, a_tab, par[7] > 0.5, par[1],
+                       par[2], par[3], par[4] > 0.5, ramp[jj], cur[:, 0], cur[:, 1], par[5],
+                       par[6], R, out)

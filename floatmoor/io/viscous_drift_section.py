@@ -8,6 +8,8 @@ forces:
     double_counting: true          # zero the hull current coefficients in the DOFs the
                                    # elements cover (seed 002 section 6.1.2), with a warning
     stretching: wheeler            # wheeler | constant (MWL velocity in the splash zone)
+    inertia: false                 # Morison inertia cm a (vessel file inertia_per_length);
+                                   # off by default: potential flow already carries it
     drag:                          # optional per-type override, N s^2/m^3 (cases 3 and 4)
       column: {c2y: 4144.37}
       pontoon: {c2x: 0.0, c2y: 0.0, c2z: 0.0}
@@ -35,7 +37,7 @@ __all__ = ["ViscousDriftSpec", "parse_viscous_drift", "VISCOUS_DRIFT_MODELS"]
 
 VISCOUS_DRIFT_MODELS = ("slender_elements", "correction_formula", "none")
 _SLENDER_KEYS = {"double_counting", "stretching", "drag", "station_spacing", "level_step",
-                 "table_step"}
+                 "table_step", "inertia"}
 _CF_KEYS = {"column_diameters", "main_column_diameter", "cp", "g_time", "b0", "current_speed",
             "extra_damping"}
 
@@ -47,6 +49,7 @@ class ViscousDriftSpec:
     model: str = "none"
     double_counting: bool = True
     wheeler: bool = True
+    inertia: bool = False
     drag: dict = field(default_factory=dict)
     station_spacing: float = 10.0
     level_step: float = 3.0
@@ -84,6 +87,7 @@ def parse_viscous_drift(node: Node, *, drift: str | None = None) -> ViscousDrift
     kw = {"model": model, "file": node.file}
     if model == "slender_elements":
         kw["double_counting"] = node.bool("double_counting", True)
+        kw["inertia"] = node.bool("inertia", False)
         kw["wheeler"] = node.str("stretching", "wheeler", choices=("wheeler", "constant")) \
             == "wheeler"
         drag = {}

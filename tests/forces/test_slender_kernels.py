@@ -239,3 +239,30 @@ def test_dry_element_gives_no_force():
     f = slender_force(geom, tab, 3.0, np.zeros(6), np.zeros(3), np.zeros(3),
                       current_z=np.array([0.0]), current_speed=np.array([1.0]))
     assert np.all(f == 0.0)
+
+
+def test_inertia_option_closed_form():
+    """Optional inertia: a fixed submerged strip with cm = rho C_M A (kg/m) feels
+    cm a_x, a_x = -a w^2 cosh k(z+d)/sinh kd sin(w t) (linear theory, Faltinsen table 2.1);
+    without the acceleration table (the default) the inertia term is absent."""
+    a, w, depth = 1.0, 0.6, 100.0
+    zc, L = -10.0, 0.2
+    cm = RHO * 2.0 * math.pi * 4.0 ** 2 / 4.0   # C_M = 2, D = 4 m
+    el = SlenderElementSpec(name="c", p1=(0.0, 0.0, zc + L / 2), p2=(0.0, 0.0, zc - L / 2),
+                            c2=(0.0, 0.0, 0.0), n_strips=1, cm=(0.0, cm, cm))
+    geom = slender_geometry([el])
+    k = float(wavenumber([w], depth)[0])
+    T = 2 * math.pi / w
+    H = T / 200
+    tab = build_kinematics_table([w], [a], [0.0], [k], 0.0, geom.stations, duration=2 * T,
+                                 H=H, depth=depth, lev0=-60.0, dlev=0.25, wheeler=False,
+                                 acceleration=True)
+    for i in (0, 23, 77, 150):
+        t = i * H
+        ax = -a * w * w * math.cosh(k * (zc + depth)) / math.sinh(k * depth) * math.sin(w * t)
+        f = slender_force(geom, tab, t, np.zeros(6), np.zeros(3), np.zeros(3))
+        assert f[0] / L == pytest.approx(cm * ax, rel=1e-5, abs=1e-3)
+    tab0 = build_kinematics_table([w], [a], [0.0], [k], 0.0, geom.stations, duration=2 * T,
+                                  H=H, depth=depth, lev0=-60.0, dlev=0.25, wheeler=False)
+    assert np.all(slender_force(geom, tab0, 23 * H, np.zeros(6), np.zeros(3),
+                                np.zeros(3)) == 0.0)
