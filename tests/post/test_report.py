@@ -190,3 +190,29 @@ def test_headless_browser_screenshot(report, tmp_path):
                     "--window-size=1280,2400", report.html.as_uri()], check=True, timeout=120,
                    capture_output=True)
     assert shot.stat().st_size > 10_000
+
+
+def test_window_starts_at_the_transient_attribute(tmp_path):
+    """Without ``start`` the statistics window begins at the results' ``transient`` attribute."""
+    from floatmoor.post.report import summarise
+    runs = [seed_result(s) for s in range(1, 11)]
+    for r in runs:
+        r.attrs["transient"] = 300.0
+    checks, stats, ct = summarise(runs, 8.5e6)
+    assert stats.attrs["window_start_s"] == pytest.approx(300.0)
+    # the same as an explicit start
+    _, stats2, ct2 = summarise(runs, 8.5e6, start=300.0)
+    np.testing.assert_array_equal(ct["t_c"].values, ct2["t_c"].values)
+    _, stats0, _ = summarise([seed_result(s) for s in range(1, 11)], 8.5e6)
+    assert stats0.attrs["window_start_s"] == 0.0
+
+
+def test_detect_failed_lines():
+    """A line removed from the start (zero throughout) or broken during the run (zero at the
+    end) is found; an intact line is not."""
+    from floatmoor.post.report import detect_failed_lines
+    a = seed_result(1, failed=2)
+    b = seed_result(2)
+    b["line_tension"][-100:, 2] = 0.0          # broken near the end of seed 2
+    assert detect_failed_lines([a, b]) == ["L3"]
+    assert detect_failed_lines([seed_result(3), b]) == []
