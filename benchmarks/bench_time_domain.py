@@ -7,7 +7,8 @@ dt = 0.1 s, 10800 s simulated.  Prints
   (``NUMBA_CACHE_DIR`` in a temp folder) -- compile from scratch -- and with the project's
   cache (cache load);
 * the 3-hour run: setup (scene build, realisations, FFT series, retardation functions, static
-  equilibrium) and the time loop separately, and the real-time factor of the loop and of the
+  equilibrium, the linear WF velocity for the wind/current relative velocity) and the time loop
+  separately, and the real-time factor of the loop and of the
   whole call.
 
 Run: ``.venv/bin/python benchmarks/bench_time_domain.py [--duration 10800] [--dt 0.1]``
@@ -80,7 +81,8 @@ def main() -> None:
     setup = ds.attrs["setup_time_s"]
     n = ds.sizes["time"] - 1
     print(f"scene {SCENE.name}: {args.duration:g} s at dt {args.dt:g} s ({n} RK4 steps), "
-          f"models {', '.join(ds.attrs['models'])}, {ds.sizes.get('line', 0)} lines")
+          f"models {', '.join(ds.attrs['models'])}, {ds.sizes.get('line', 0)} lines, wind and "
+          f"current relative to the {ds.attrs['relative_velocity']} body velocity")
     print(f"setup (build, realisations, FFT series, retardation, statics): {setup:.2f} s")
     print(f"time loop: {loop:.2f} s = {1e6 * loop / n:.1f} us/step, "
           f"{args.duration / loop:.0f}x real time")

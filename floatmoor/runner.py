@@ -29,7 +29,8 @@ __all__ = ["run_seeds", "SeedOutcome", "BatchResult", "seed_file"]
 class SeedOutcome:
     """One seed: ``status`` "done", "skipped" or "failed"; ``path`` of the netCDF file;
     ``error`` text when failed; ``wall_time`` (s) of the simulation (0 when skipped);
-    ``summary`` a few statistics (dict) when done."""
+    ``summary`` a few statistics (dict) when done; ``warnings`` the distinct FloatmoorWarning
+    messages of the run (e.g. a line above its MBS, a yaw far from the wave heading)."""
 
     seed: int
     status: str
@@ -37,6 +38,7 @@ class SeedOutcome:
     error: str = ""
     wall_time: float = 0.0
     summary: dict = field(default_factory=dict)
+    warnings: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -63,6 +65,7 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> Seed
 
     import numpy as np
 
+    from .core.errors import FloatmoorWarning
     from .io.scene import load_scene
     from .simulate import simulate
 
@@ -70,10 +73,15 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> Seed
     err_file = out.with_suffix(".error.txt")
     t0 = time.perf_counter()
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings():  # the parent has shown the scene's warnings
             warnings.simplefilter("ignore")
             scene = load_scene(scene_path)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("ignore")
+            warnings.simplefilter("always", FloatmoorWarning)
             ds = simulate(scene, seed=seed, **overrides)
+        messages = tuple(dict.fromkeys(str(w.message) for w in caught
+                                       if issubclass(w.category, FloatmoorWarning)))
         tmp = out.with_name(out.name + ".tmp")
         ds.to_netcdf(tmp)
         os.replace(tmp, out)
@@ -86,7 +94,7 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> Seed
         if "line_tension" in ds:
             summary["max_tension"] = float(ds["line_tension"].values[sel].max())
         return SeedOutcome(seed, "done", out, wall_time=time.perf_counter() - t0,
-                           summary=summary)
+                           summary=summary, warnings=messages)
     except Exception as exc:  # keep the batch going; record the error
         text = f"{type(exc).__name__}: {exc}"
         try:
@@ -174,6 +182,8 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
                 extra = ", ".join(f"{k} {v / 1e3:.0f} kN" if k == "max_tension" else
                                   f"{k} {v:.2f} m" for k, v in o.summary.items())
                 echo(head + f"done in {o.wall_time:.1f} s ({extra}) -> {o.path.name}")
+                for text in o.warnings:
+                    echo(f"    warning (seed {o.seed}): {text}")
             else:
                 echo(head + f"FAILED: {o.error}")
 

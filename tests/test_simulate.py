@@ -233,3 +233,22 @@ def test_large_yaw_excursion_warns_about_the_wave_heading(scene_file):
     with warnings.catch_warnings():
         warnings.simplefilter("error", FloatmoorWarning)
         simulate(b, seed=1, duration=60.0, dt=0.1)   # small yaw: no warning
+
+
+def test_runner_reports_the_warnings_of_a_seed(scene_file, tmp_path):
+    """The workers' FloatmoorWarnings (here the yaw far from the wave heading) are kept in the
+    outcome and echoed, not lost in the worker process."""
+    from floatmoor.runner import run_seeds
+    from floatmoor.solvers.time_domain import assemble
+    from floatmoor.io.build import build
+    from floatmoor.io.scene import load_scene
+
+    a = assemble(build(load_scene(scene_file)), seed=1, dt=0.1, duration=10.0)
+    x0 = a.x0.copy()
+    x0[5] += math.radians(25.0)
+    lines = []
+    batch = run_seeds(scene_file, [1], tmp_path / "o", workers=1, echo=lines.append,
+                      progress=False, overrides={"duration": 60.0, "start_pose": x0})
+    assert len(batch.outcomes[0].warnings) == 1       # the scene's own warnings not repeated
+    assert "start heading" in batch.outcomes[0].warnings[0]
+    assert any(s.startswith("    warning (seed 1):") for s in lines)
