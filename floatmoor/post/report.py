@@ -1,16 +1,23 @@
 """Design report from time-domain seeds: self-contained HTML, Markdown, CSV and netCDF summary.
 
 :func:`build_report` takes the per-seed result Datasets of one sea state (the simulator's format:
-``motion(time, dof)`` in m / rad, ``line_tension(time, line)`` in N, attributes ``seed`` and
-``scene``) and writes
+``motion(time, dof)`` in m / rad, ``line_tension(time, line)`` in N, attributes ``seed``,
+``scene_name``, ``scene`` (YAML), ``transient``) and writes
 
 * ``report.html`` -- opens in a browser with no network: CSS inline, plots as base64 PNG;
 * ``report.md`` -- the same tables in Markdown (plots as separate PNG files beside it);
 * ``summary.csv`` -- one row per line and limit state;
 * ``summary.nc`` -- the per-line check Dataset and the statistics.
 
+Tables: the header (scene, scene file and its YAML, software versions, standard edition and
+clauses, seeds and failed seeds, window), per-line ULS (and ALS) tensions and checks with the
+governing line highlighted, offsets and motions, and, with ``fd=``, the frequency-domain maxima
+and safety factors beside the time-domain Gumbel values.  Plots: governing-line time series (the
+seed with its largest maximum), Gumbel plot, tension per line, offset.
+
 Method (seed ``002_783d33d2c304eef8.txt`` section 5.4.4 and chapter 3): per seed, statistics in
-the window; per line, a Gumbel fit of the seed maxima; the characteristic tension is its 90 %
+the window (default: from the results' ``transient`` attribute); per line, a Gumbel fit of the
+seed maxima; the characteristic tension is its 90 %
 fractile; the design check is DNV-OS-E301 eq. 3.4 with the partial factors of
 :mod:`floatmoor.post.dnv_os_e301`.  Plots need matplotlib (optional); without it the report has
 tables only and says so.
