@@ -51,3 +51,26 @@ for name in ("oc3_hywind", "oc4_semi", "floatel_like"):
     if (p.parent / "database.nc").exists():
         t, _ = best(lambda: load_vessel(p))
         print(f"load_vessel {name}: {t * 1e3:.0f} ms")
+
+# `floatmoor check` prints consistency_report of the scene's vessel database (issue 4): its cost
+# on the shipped databases, and the whole `floatmoor check` command in a fresh interpreter.
+for name in ("oc3_hywind", "oc4_semi", "floatel_like"):
+    p = ROOT / "vessels" / name / "vessel.yaml"
+    if (p.parent / "database.nc").exists():
+        v = load_vessel(p)
+        t, _ = best(lambda: consistency_report(v.database))
+        print(f"consistency_report shipped {name} ({v.database.omega.size} frequencies): "
+              f"{t * 1e3:.0f} ms")
+import subprocess  # noqa: E402
+
+for scene in ("oc3_hywind", "floatel_100yr"):
+    path = ROOT / "scenes" / f"{scene}.yaml"
+    for extra in ([], ["--quick"]):
+        cmd = [sys.executable, "-m", "floatmoor.cli", "check", *extra, str(path)]
+        ts = []
+        for _ in range(3):
+            t0 = time.perf_counter()
+            subprocess.run(cmd, check=True, capture_output=True, cwd=ROOT)
+            ts.append(time.perf_counter() - t0)
+        print(f"floatmoor check {' '.join(extra)} scenes/{scene}.yaml (new process): "
+              f"{min(ts):.2f} s")

@@ -21,12 +21,34 @@ panel size 3 m (927 panels) A11 = 9.628e6 kg, 2 m (1911 panels) 9.346e6 kg; Rich
 extrapolation (observed order 2.0) gives 9.12e6 kg.  The default panel size is 2 m.
 With 2 m panels the diagonal added mass is within 5 % of WAMIT over 0.3-2 rad/s (surge 5.0 %,
 heave 4.1 %, pitch 1.2 %, yaw 4.8 %) but the damping is not (surge 9.2 %, heave 13.9 %, pitch
-7.3 %, yaw 5.9 % of max |B|), and 1.5 m panels do not close that gap (surge B at 1.6 rad/s:
-4.75e6 -> 4.70e6 N s/m, WAMIT 4.11e6): the WAMIT panel model evidently differs from the RAFT
-member geometry.  The far-field mean surge drift agrees with the WAMIT QTF diagonal within
-4 % of its maximum over 0.5-2 rad/s.
+7.3 %, yaw 5.9 % of max |B|), and 1.5 m panels do not close that gap.
 
-Usage:  OMP_NUM_THREADS=1 python make_database.py [reference_dir] [panel_size]
+Cause of the damping gap (investigated 2026-11-21): the WAMIT panel model includes the
+pontoons and cross braces, which RAFT flags ``potMod: False`` and the shipped mesh leaves out.
+Evidence: HydroDyn's OC4 deck flags every member ``PropPot = TRUE``; marin_semi.hst's
+waterplane area C33 / (rho g) = 380.06 m^2 equals the columns' 372.47 m^2 plus the three cross
+braces cut at the water line (3 x 2.54 m^2), 380.10 m^2 in the mesh with ``--slender``; and
+adding them (``slender_parts``: 1.6 m tubes, 8 panels round, 1.5 m long, ends on the column
+walls) moves Capytaine onto WAMIT in heave and pitch, e.g. at 0.7 rad/s heave B 2.76e5 ->
+3.49e5 N s/m (WAMIT 3.66e5), pitch B 6.12e8 -> 6.55e8 (WAMIT 6.53e8), and surge B at 1.6 rad/s
+4.75e6 -> 4.22e6 (WAMIT 4.11e6).  Refining the tubes (12 round, 1 m) changes A and B by < 0.4 %.
+With the slender members the remaining difference is the column mesh: 2 m -> 1.5 m column panels
+(4,474 panels) and Richardson extrapolation (order 2) give, at 0.7 / 1.0 rad/s, surge A +2.8 /
++2.4 %, surge B +4.2 / +2.8 %, yaw A +2.1 / +1.6 %, yaw B +2.9 / +2.8 %, heave B -0.6 / -4.9 %,
+pitch B -1.7 / -0.5 % of WAMIT's value there (1.5 m panels alone: surge A +5.3 / +4.8 %,
+surge B +7.8 / +6.2 %, yaw B +6.0 / +5.8 %).
+Ruled out: water depth (WAMIT is at finite depth: at 0.2 rad/s Capytaine's surge B is 3.00e3 N
+s/m at 200 m and 1.70e3 in deep water, WAMIT 2.83e3; above 0.3 rad/s depth changes B by < 2 %),
+units (B = rho omega Bbar; a wrong factor would not give 2 % agreement at 0.1 rad/s), irregular
+frequencies (Capytaine has a lid; WAMIT's 0.01 rad/s grid shows no spike below 3.5 rad/s) and
+the column geometry (drafts 20 m, base columns 24 m x 6 m with closed bottoms, upper columns
+12 m, main column 6.5 m closed at -20 m, as in RAFT and the OC4 definition).
+The shipped database.nc is still the columns-only 2 m model: regenerating it with
+``--slender`` costs about 50 s per frequency on one core (2,919 panels; 59 frequencies x 13
+problems), and with 2 m column panels it would still be 5-8 % high in surge A and yaw B; the
+1.5 m model (about 160 s per frequency) was beyond the CPU budget of the session.
+
+Usage:  OMP_NUM_THREADS=1 python make_database.py [reference_dir] [panel_size] [--slender]
 """
 
 from __future__ import annotations
@@ -115,7 +137,105 @@ def column_parts(stations, diameters, h):
     return parts
 
 
-def build_mesh(raft_yaml: Path, h: float):
+def _columns(members):
+    """(x, y, z_bottom, stations, diameters) of every vertical potential-flow column."""
+    cols = []
+    for m in members:
+        rA, rB = np.array(m["rA"], float), np.array(m["rB"], float)
+        if not m.get("potMod", False) or not np.allclose(rA[:2], rB[:2]):
+            continue
+        st = np.array(m["stations"], float)
+        st = rA[2] + (st - st[0]) / (st[-1] - st[0]) * (rB[2] - rA[2])
+        d = np.atleast_1d(np.array(m["d"], float))
+        hds = m.get("heading", [0.0])
+        for hd in (hds if isinstance(hds, list) else [hds]):
+            c, s = math.cos(math.radians(hd)), math.sin(math.radians(hd))
+            cols.append((c * rA[0] - s * rA[1], s * rA[0] + c * rA[1], st, d))
+    return cols
+
+
+def _column_radius_at(col, z):
+    x, y, st, d = col
+    for k in range(len(st) - 1):
+        if st[k] - 1e-9 <= z <= st[k + 1] + 1e-9 and st[k + 1] > st[k]:
+            return d[k] / 2
+    return None
+
+
+def _end_param(p, off, e, cols, z_clip=0.0):
+    """Axial parameter s (m) at which the line p + off + s e meets the surface the member
+    end p lies on: the wall of a column (vertical cylinder) or the still-water plane."""
+    for col in cols:
+        R = _column_radius_at(col, p[2])
+        if R is None:
+            continue
+        q = np.array([p[0] + off[0] - col[0], p[1] + off[1] - col[1]])
+        if abs(math.hypot(p[0] - col[0], p[1] - col[1]) - R) > 0.05:
+            continue
+        eh = e[:2]
+        a, b, c = eh @ eh, 2 * q @ eh, q @ q - R * R
+        disc = math.sqrt(max(b * b - 4 * a * c, 0.0))
+        roots = [(-b - disc) / (2 * a), (-b + disc) / (2 * a)]
+        return min(roots, key=abs)
+    if abs(p[2] - z_clip) < 1e-9 and abs(e[2]) > 1e-9:
+        return -(off[2]) / e[2]
+    raise ValueError(f"member end {p} lies neither on a column wall nor on the water plane")
+
+
+def slender_parts(members, h_axial, n_theta, include=None):
+    """Wetted panels of the submerged pontoons and braces (``potMod: False`` in RAFT but part
+    of the WAMIT panel model: HydroDyn's OC4 deck flags every member ``PropPot = TRUE``, and
+    marin_semi.hst's waterplane area 380.06 m^2 = columns 372.47 + three braces cut at the
+    water line 3 x 2.54).  Open tubes whose ends follow the column wall they meet (or the
+    water plane for the cross braces), so there is no overlap with the column panels; the
+    column wall patch under each tube end is kept."""
+    cols = _columns(members)
+    parts = []
+    for m in members:
+        if m.get("potMod", False) or (include is not None and m["name"] not in include):
+            continue
+        rA, rB = np.array(m["rA"], float), np.array(m["rB"], float)
+        hds = m.get("heading", [0.0])
+        for hd in (hds if isinstance(hds, list) else [hds]):
+            c, s = math.cos(math.radians(hd)), math.sin(math.radians(hd))
+            Rz = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+            a, b = Rz @ rA, Rz @ rB
+            if min(a[2], b[2]) >= 0.0:
+                continue  # dry member
+            if max(a[2], b[2]) > 0.0:  # clip at the water line
+                t = (0.0 - a[2]) / (b[2] - a[2])
+                wl = a + t * (b - a)
+                a, b = (a, wl) if a[2] < 0 else (wl, b)
+            L = float(np.linalg.norm(b - a))
+            e = (b - a) / L
+            u = np.cross(e, [0, 0, 1.0]) if abs(e[2]) < 0.99 else np.array([1.0, 0, 0])
+            u /= np.linalg.norm(u)
+            v = np.cross(e, u)
+            r = float(np.atleast_1d(m["d"])[0]) / 2 * _area_factor(n_theta)
+            th = np.linspace(0, 2 * np.pi, n_theta + 1)[:-1]
+            offs = [r * (math.cos(t) * u + math.sin(t) * v) for t in th]
+            s0 = [_end_param(a, o, e, cols) for o in offs]
+            s1 = [L + _end_param(b, o, e, cols) for o in offs]
+            n_s = max(1, math.ceil(L / h_axial))
+            verts = np.array([a + o + (s0[j] + (s1[j] - s0[j]) * i / n_s) * e
+                              for i in range(n_s + 1) for j, o in enumerate(offs)])
+            faces = []
+            for i in range(n_s):
+                for j in range(n_theta):
+                    p0, p1 = i * n_theta + j, i * n_theta + (j + 1) % n_theta
+                    faces.append([p0, p0 + n_theta, p1 + n_theta, p1])
+            f = np.array(faces)
+            # outward normals: flip if the first face points towards the axis
+            P = verts[f[0]]
+            nrm = np.cross(P[2] - P[0], P[3] - P[1])
+            if nrm @ offs[0] + nrm @ offs[1] < 0:
+                f = f[:, ::-1]
+            parts.append((verts, f))
+    return parts
+
+
+def build_mesh(raft_yaml: Path, h: float, slender: bool = True, h_slender: float = 1.0,
+               n_theta_slender: int = 8, include=None):
     data = yaml.safe_load(raft_yaml.read_text().replace("\r", ""))
     members = data["platform"]["members"]
     allv, allf, n = [], [], 0
@@ -144,6 +264,11 @@ def build_mesh(raft_yaml: Path, h: float):
             lid_v.append(v + [x, y, 0.0])
             lid_f.append(f + nl)
             nl += v.shape[0]
+    if slender:
+        for v, f in slender_parts(members, h_slender, n_theta_slender, include):
+            allv.append(v)
+            allf.append(f + n)
+            n += v.shape[0]
     mesh = cpt.Mesh(np.concatenate(allv), np.concatenate(allf), name="oc4_semi")
     lid = cpt.Mesh(np.concatenate(lid_v), np.concatenate(lid_f), name="oc4_lid")
     return mesh, lid
@@ -177,11 +302,11 @@ def far_field_drift(cds, C_hst):
     return md
 
 
-def main(ref: Path, h: float = 2.0, out=HERE / "database.nc"):
+def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = False):
     t0 = time.time()
     omegas = np.round(np.arange(0.10, 3.0001, 0.05), 2)
     headings_deg = np.array([0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0])
-    mesh, lid = build_mesh(ref / "RAFT_OC4semi.yaml", h)
+    mesh, lid = build_mesh(ref / "RAFT_OC4semi.yaml", h, slender=slender)
     print(f"panels {mesh.nb_faces} + lid {lid.nb_faces}; volume {mesh.volume:.1f} m^3", flush=True)
     body = cpt.FloatingBody(mesh=mesh, lid_mesh=lid,
                             dofs=cpt.rigid_body_dofs(rotation_center=(0, 0, 0)),
@@ -228,7 +353,8 @@ def main(ref: Path, h: float = 2.0, out=HERE / "database.nc"):
                                                            "(panel model of make_database.py)"})
     ds.attrs.update({
         "source": ("WAMIT marin_semi.1, .hst, .12d (OpenFAST r-test) + Capytaine "
-                   f"{cpt.__version__} excitation ({mesh.nb_faces} panels + lid)"),
+                   f"{cpt.__version__} excitation ({mesh.nb_faces} panels + lid"
+                   f"{', columns, pontoons and braces' if slender else ', columns only'})"),
         "water_depth": DEPTH, "displaced_volume": 13917.0,
         "capytaine_mesh_volume": float(mesh.volume),
         "mean_drift_method": "diagonal of the WAMIT difference-frequency QTF (marin_semi.12d)",
@@ -252,6 +378,7 @@ def main(ref: Path, h: float = 2.0, out=HERE / "database.nc"):
 
 
 if __name__ == "__main__":
-    ref = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/work/shared/reference/OC4_DeepCwind_semi")
-    h = float(sys.argv[2]) if len(sys.argv) > 2 else 2.0
-    main(ref, h)
+    args = [a for a in sys.argv[1:] if a != "--slender"]
+    ref = Path(args[0]) if len(args) > 0 else Path("/work/shared/reference/OC4_DeepCwind_semi")
+    h = float(args[1]) if len(args) > 1 else 2.0
+    main(ref, h, slender="--slender" in sys.argv[1:])
