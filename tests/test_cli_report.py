@@ -355,3 +355,16 @@ def test_bad_input_exits_2_without_traceback(case, data, tmp_path, capsys):
                       "unknown_failed_line": "line9", "fd_missing": "no such file",
                       "fd_other_scene": "another-scene", "duplicate_seed": "more than once"}
     assert expected_words[case] in stderr
+
+
+def test_quasi_static_class_1_factors(data, tmp_path, capsys):
+    """Seed 002 table 3.1, consequence class 1, quasi-static: one factor 1.70 on the total."""
+    code, stdout, _ = run_report([data["intact"], "--consequence-class", "1", "--analysis",
+                                  "quasi-static", "--out", tmp_path / "r"], capsys)
+    assert code == 0 and "consequence class 1, quasi-static analysis" in stdout
+    exp = expected_from_files(data["intact"])
+    rows = line_rows(parse(tmp_path / "r" / "report.html").tables["lines_uls"])
+    for line, e in exp.items():
+        cells = rows[line]["cells"]
+        assert cells[10] == "1.70" and cells[11] == "1.70"
+        assert float(cells[13]) == pytest.approx(1.7 * e["p90"] / (0.95 * e["mbs"]), abs=6e-4)
