@@ -1,5 +1,6 @@
 """The floatmoor command: check, environment, --help, --version, exit codes, no tracebacks."""
 
+import importlib
 import subprocess
 import sys
 
@@ -131,7 +132,7 @@ def test_cli_import_does_not_import_numba():
 
 # -- environment ---------------------------------------------------------------------------------
 def test_environment_prints_the_realised_statistics(tmp_path, capsys):
-    pytest.importorskip("floatmoor.metocean.summary")
+    importlib.import_module("floatmoor.metocean.summary")
     scene_path, _ = write_case(tmp_path)
     args = ["environment", str(scene_path), "--seed", "3", "--duration", "600", "--dt", "0.5"]
     assert main(args) == 0
@@ -148,7 +149,7 @@ def test_environment_prints_the_realised_statistics(tmp_path, capsys):
 
 
 def test_environment_defaults_come_from_the_scene(tmp_path, capsys):
-    pytest.importorskip("floatmoor.metocean.summary")
+    importlib.import_module("floatmoor.metocean.summary")
     scene_path, _ = write_case(tmp_path, {"analysis": {"duration": 300.0, "dt": 0.25,
                                                        "seeds": [7, 9]}},
                                {"wind": DELETE, "current": DELETE})
@@ -183,7 +184,7 @@ def test_environment_scene_error_exits_2(tmp_path, capsys):
 
 # -- check reads the referenced vessel file --------------------------------------------------------
 def test_check_reads_the_vessel_file_and_names_its_mistakes(tmp_path, capsys):
-    pytest.importorskip("floatmoor.hydro.vessel")
+    importlib.import_module("floatmoor.hydro.vessel")
     (tmp_path / "vessels").mkdir()
     vessel = tmp_path / "vessels" / "vessel.yaml"
     vessel.write_text("name: broken\nmass: -1.0\ncentre_of_gravity: [0, 0, 0]\n"
@@ -198,7 +199,7 @@ def test_check_reads_the_vessel_file_and_names_its_mistakes(tmp_path, capsys):
 
 
 def test_check_reads_a_real_vessel(tmp_path, capsys):
-    pytest.importorskip("floatmoor.hydro.vessel")
+    importlib.import_module("floatmoor.hydro.vessel")
     from .io.test_example_scenes import REPO
     vessel = REPO / "vessels" / "oc3_hywind" / "vessel.yaml"
     if not vessel.exists():
@@ -218,7 +219,7 @@ def _one_line_mooring(length):
 
 
 def test_check_reads_an_inline_mooring(tmp_path, capsys):
-    pytest.importorskip("floatmoor.io.mooring_section")
+    importlib.import_module("floatmoor.io.mooring_section")
     scene_path, _ = write_case(tmp_path, {"mooring": _one_line_mooring(900.0)})
     assert main(["check", str(scene_path)]) == 0
     out = capsys.readouterr().out
@@ -227,7 +228,7 @@ def test_check_reads_an_inline_mooring(tmp_path, capsys):
 
 
 def test_check_names_a_mooring_mistake_in_the_scene_file(tmp_path, capsys):
-    pytest.importorskip("floatmoor.io.mooring_section")
+    importlib.import_module("floatmoor.io.mooring_section")
     scene_path, _ = write_case(tmp_path, {"mooring": _one_line_mooring(-900.0)})
     assert main(["check", str(scene_path)]) == 2
     err = capsys.readouterr().err
