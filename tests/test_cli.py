@@ -202,8 +202,7 @@ def test_check_reads_a_real_vessel(tmp_path, capsys):
     importlib.import_module("floatmoor.hydro.vessel")
     from .io.test_example_scenes import REPO
     vessel = REPO / "vessels" / "oc3_hywind" / "vessel.yaml"
-    if not vessel.exists():
-        pytest.skip("vessels/oc3_hywind not in this tree")
+    assert vessel.exists(), "the shipped OC3-Hywind vessel file is missing"
     scene_path, _ = write_case(tmp_path, {"vessel": str(vessel.parent), "site.water_depth": 320.0})
     assert main(["check", str(scene_path)]) == 0
     out = capsys.readouterr().out
