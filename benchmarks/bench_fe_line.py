@@ -7,7 +7,11 @@
 3. Wall time of floatmoor vs MoorDyn at equal or better accuracy in one run.
 4. Largest stable dt of the explicit scheme; the implicit scheme at large dt.
 
-Run: ``.venv/bin/python benchmarks/bench_fe_line.py [--quick]``.  MoorDyn rows are skipped
+5. Storm projection: 12 lines x 50 elements on a moving body through ``FEMooring``, line by
+   line and with all lines in one numba call per body step.
+
+Run: ``.venv/bin/python benchmarks/bench_fe_line.py [--quick] [--storm]`` (``--storm``: part 5
+only).  MoorDyn rows are skipped
 when the ``moordyn`` package is missing.
 """
 
@@ -148,7 +152,7 @@ def main(quick=False):
             print(f"gen-alpha 50 elements dt {dt} s: {e}")
 
 
-def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000):
+def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000, fast=True):
     """Time of FEMooring.advance/accept for 12 OC3-like lines of 50 elements around a body in
     harmonic surge/sway/yaw, projected to a 3-hour run (the coupled solver is not part of this
     issue's work yet: body dynamics excluded)."""
@@ -163,7 +167,7 @@ def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000):
         specs.append(FELineSpec(**{**base.__dict__, "name": f"line{k + 1}",
                                    "anchor": (853.87 * c, 853.87 * s_, -320.0), "fairlead": fb}))
         fair_b.append(fb)
-    fm = FEMooring(specs, fair_b)
+    fm = FEMooring(specs, fair_b, fast=fast)
     fm.solve_static(np.zeros(6))
     fm.start()
     t0 = time.perf_counter()
@@ -177,12 +181,17 @@ def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000):
         fm.advance(t, dt, pose, vel)
         fm.accept()
     wall = time.perf_counter() - t0
-    print(f"{n_lines} lines x {n_el} elements, {n_steps} steps of {dt} s: {wall:.2f} s -> 3 h "
-          f"({int(10800 / dt)} steps): {wall * 10800 / dt / n_steps:.0f} s (lines only)")
+    print(f"{'one numba call per body step' if fast else 'line by line (FELine.advance)'}: "
+          f"{n_lines} lines x {n_el} elements, {n_steps} steps of {dt} s: {wall:.2f} s -> 3 h "
+          f"({int(10800 / dt)} steps): {wall * 10800 / dt / n_steps:.0f} s (lines only), "
+          f"{int(fm.newton_iterations.sum())} Newton iterations")
 
 
 if __name__ == "__main__":
-    main(quick="--quick" in sys.argv)
-    print()
-    storm_projection()
-    storm_projection(dt=0.2)
+    if "--storm" not in sys.argv:
+        main(quick="--quick" in sys.argv)
+        print()
+    storm_projection(n_steps=50)     # warm-up: numba compilation or cache load
+    for dt in (0.1, 0.2):
+        for fast in (False, True):
+            storm_projection(dt=dt, fast=fast)

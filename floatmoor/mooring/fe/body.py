@@ -27,12 +27,18 @@ class FEMooring:
         Fairleads in body axes relative to the body reference point, m.
     pose0 : (6,), optional
         Pose at which the specs' fairleads are given (default zero).
+    fast : bool
+        Advance all lines in one numba call per body step (:mod:`.multi`; same kernels, same
+        numbers) when every line uses the generalised-alpha integrator without wave
+        kinematics; otherwise (or ``fast=False``) line by line through :meth:`FELine.advance`.
     **line_kw
         Passed to :class:`FELine` (``dynamic_ea``, ``axial_stiffness_limit``).
     """
 
-    def __init__(self, specs, fairleads_body, pose0=None, **line_kw):
+    def __init__(self, specs, fairleads_body, pose0=None, *, fast: bool = True, **line_kw):
         self.lines = [FELine(s, **line_kw) for s in specs]
+        self.fast = bool(fast)
+        self._packed = None
         self.fairleads_body = np.asarray(fairleads_body, float).reshape(len(self.lines), 3)
         self._R = np.zeros((3, 3))
         self._pose0 = np.zeros(6) if pose0 is None else np.asarray(pose0, float)
@@ -72,20 +78,82 @@ class FEMooring:
         """Start the dynamics of every line (see :meth:`FELine.start`)."""
         for ln in self.lines:
             ln.start(**kw)
+        self._packed = None
+        if self.fast and all(ln.integrator == "generalized_alpha" and ln.waves is None
+                             for ln in self.lines):
+            from .multi import pack
+
+            n = len(self.lines)
+            per_line, scalars, work = pack(self.lines)
+            self._packed = (per_line, scalars, work)
+            self._R = np.zeros((3, 3))
+            self._rf = np.zeros((n, 3))
+            self._vf = np.zeros((n, 3))
+            self._arm = np.zeros((n, 3))
+            self._fail = np.zeros(1, dtype=np.int64)
+            self._vel = np.zeros(6)
+            self.counters = np.zeros((n, 2))
 
     def advance(self, t1, dt, pose1, velocity1, *, substeps: int = 1) -> np.ndarray:
         """Trial step of every line to ``t1`` with the body at ``pose1`` moving with
         ``velocity1``; returns the generalised force on the body (6,).  Repeatable until
         :meth:`accept`."""
         pose1 = np.asarray(pose1, float)
+        if self._packed is not None:
+            return self._advance_packed(float(t1), float(dt), pose1, velocity1, int(substeps))
         pos, vel = self.fairlead_kinematics(pose1, velocity1)
         for i, ln in enumerate(self.lines):
             self._line_forces[i] = ln.advance(t1, dt, pos[i], vel[i], substeps=substeps)
         return self._sum(pose1, self._line_forces)
 
-    def accept(self):
+    def _advance_packed(self, t1, dt, pose1, velocity1, substeps):
+        from .multi import body_advance
+
+        per_line, (fric, coef, tol, maxit), work = self._packed
+        vel = self._vel
+        if velocity1 is None:
+            vel[:] = 0.0
+        else:
+            vel[:] = velocity1
+        st = body_advance(t1, dt, substeps, FELine.MAX_SPLIT, pose1, vel,
+                          self.fairleads_body, self._R, self._rf, self._vf, self._arm, self._Q,
+                          self._line_forces, self._fail, self.counters, *per_line, fric, coef,
+                          tol, maxit, *work)
+        if st < 0:
+            ln = self.lines[int(self._fail[0])]
+            msg = {-1: f"no Newton convergence in {ln.maxit} iterations",
+                   -2: "singular iteration matrix", -3: "NaN in the line state"}[st]
+            ln._fail(float(ln._info[0]), int(ln._info[1]), msg,
+                     f"reduce dt (the step was already halved {FELine.MAX_SPLIT} times), add "
+                     "elements, or check for a slack line hit by a snap load")
         for ln in self.lines:
-            ln.accept()
+            ln._t1 = t1
+            ln._trial = True
+        return self._Q.copy()
+
+    def accept(self):
+        """Commit the trial state of every line."""
+        if self._packed is None:
+            for ln in self.lines:
+                ln.accept()
+            return
+        from .multi import body_accept
+
+        ln0 = self.lines[0]
+        if not ln0._trial:
+            raise RuntimeError("accept() without a preceding advance()")
+        p = self._packed[0]
+        body_accept(*p[:10])
+        for ln in self.lines:
+            ln.time = ln._t1
+            ln._trial = False
+
+    @property
+    def newton_iterations(self) -> np.ndarray:
+        """Newton iterations of every line since :meth:`start` (n,)."""
+        if self._packed is None:
+            return np.array([ln.newton_iterations for ln in self.lines])
+        return self.counters[:, 0].astype(int)
 
     @property
     def line_forces(self) -> np.ndarray:
