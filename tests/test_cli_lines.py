@@ -143,3 +143,20 @@ def test_numerical_failure_exit_3_names_time_line_node_remedy(tmp_path, capsys):
     assert "numerical error" in err and "t = " in err and "line line1" in err
     assert "node" in err and "remedy" in err and "dt" in err
     assert not out.exists()
+
+
+def test_scene_finite_element_options_reach_the_lines(tmp_path, capsys):
+    """``mooring.finite_element`` of the scene sets the FE model of ``floatmoor lines``:
+    element count, line step (dt 0.05 s -> 2 steps per 0.1 s sample) and friction."""
+    m = yaml.safe_load((ROOT / "vessels" / "oc3_hywind" / "mooring.yaml").read_text())
+    m["finite_element"] = {"n_elements": 30, "dt": 0.05,
+                           "friction": {"model": "velocity_ramp", "mu_axial": 0.7,
+                                        "mu_lateral": 1.0}}
+    p = _write(tmp_path / "s.yaml", yaml.safe_dump({"name": "x", "site": {"water_depth": 320.0},
+                                                    "mooring": m}))
+    out = tmp_path / "o.nc"
+    assert main(["lines", str(p), "--harmonic", "sway:3:15", "--lines", "line1",
+                 "--duration", "20", "--discard", "5", "--out", str(out)]) == 0
+    res = xr.load_dataset(out)
+    assert int(res.n_elements.values[0]) == 30 and res.attrs["substeps"] == 2
+    assert "velocity_ramp" in res.attrs["friction"]

@@ -216,3 +216,28 @@ def test_decoupled_analysis_from_a_body_motion_history():
     single = run_prescribed(line, fairlead_track_from_body(t, poses, ms.lines[0].fairlead),
                             45.0, 0.1)
     assert np.allclose(single.fairlead_tension.values, ds.fe_tension.values[0], rtol=1e-9)
+
+
+def test_harmonic_poses_and_run_decoupled_input_checks():
+    """harmonic_poses uses the ramp of HarmonicMotion; run_decoupled refuses a non-uniform time
+    base and a window left empty by the discarded start-up."""
+    from pathlib import Path
+
+    from floatmoor.core.config import Node
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe.decoupled import harmonic_poses, run_decoupled
+
+    t = np.arange(0.0, 40.0, 0.1)
+    p = harmonic_poses(t, [(0, 3.0, 15.0), (4, 0.02, 20.0)], ramp=15.0)
+    m0 = HarmonicMotion(amplitude=(3.0,), period=15.0, ramp=15.0)
+    m4 = HarmonicMotion(amplitude=(0.02,), period=20.0, ramp=15.0)
+    assert np.allclose(p[:, 0], [m0(tt)[0][0] for tt in t], atol=1e-12)
+    assert np.allclose(p[:, 4], [m4(tt)[0][0] for tt in t], atol=1e-12)
+    assert np.all(p[:, [1, 2, 3, 5]] == 0.0)
+    root = Path(__file__).resolve().parents[3]
+    ms = parse_mooring(Node.load(root / "vessels" / "oc3_hywind" / "mooring.yaml"),
+                       water_depth=320.0)
+    with pytest.raises(ValueError, match="uniformly"):
+        run_decoupled(ms, np.array([0.0, 0.1, 0.3, 0.4]), np.zeros((4, 6)))
+    with pytest.raises(ValueError, match="discarding"):
+        run_decoupled(ms, t, p, discard=100.0)
