@@ -45,6 +45,46 @@ class FEMooring:
         self._Q = np.zeros(6)
         self._line_forces = np.zeros((len(self.lines), 3))
 
+    @classmethod
+    def from_system(cls, system, line_models=None, *, pose=None, fast: bool = True):
+        """The FE lines of a :class:`~floatmoor.mooring.MooringSystem` as chosen by the scene.
+
+        Parameters
+        ----------
+        system : MooringSystem
+            As built by :func:`floatmoor.io.mooring_section.parse_mooring`.
+        line_models : LineModels, optional
+            Model choice and FE options (default ``system.line_models``; without it, every
+            active line with default options).
+        pose : (6,), optional
+            Body pose of the initial fairlead positions (default zero), m and rad.
+
+        Returns
+        -------
+        (FEMooring or None, list of str)
+            The FE lines (``None`` when the scene has none) and their names; the remaining
+            active lines stay quasi-static.  Statics are not solved yet
+            (:meth:`solve_static`), :meth:`start` takes ``options.start_kw()``.
+        """
+        from .from_system import spec_from_linedef
+        from .options import LineModels
+
+        lm = line_models if line_models is not None else getattr(system, "line_models", None)
+        if lm is None:
+            lm = LineModels(models={n: "finite-element" for n in system.names})
+        opts = lm.options
+        names = [n for n, a in zip(system.names, system.active)
+                 if a and lm.model_of(n) == "finite-element"]
+        if not names:
+            return None, []
+        lines = [system.lines[system.names.index(n)] for n in names]
+        specs = [spec_from_linedef(ld, water_depth=system.water_depth, pose=pose,
+                                   water_density=system.water_density, gravity=system.gravity,
+                                   **opts.spec_kw(system.water_depth)) for ld in lines]
+        fm = cls(specs, [ld.fairlead for ld in lines], pose0=pose, fast=fast, **opts.line_kw())
+        fm.options = opts
+        return fm, names
+
     def fairlead_kinematics(self, pose, velocity=None):
         """Earth positions (n, 3) and velocities (n, 3) of the fairleads; ``velocity`` is
         ``[u, v, w, omega_x, omega_y, omega_z]`` with the angular velocity in earth axes (rad/s;

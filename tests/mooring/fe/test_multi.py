@@ -74,3 +74,24 @@ def test_fast_path_failure_names_time_line_node():
             fm.advance(k * 0.1, 0.1, 20 * pose, 20 * vel)
             fm.accept()
     assert e.value.time is not None and 0.0 <= e.value.time <= 1.9
+
+
+def test_fe_mooring_from_the_scene_choice():
+    """FEMooring.from_system takes the lines the scene marks finite-element, with the scene's
+    options; its static force equals the sum of those lines' quasi-static forces (0.3 %)."""
+    import yaml
+
+    d = yaml.safe_load((ROOT / "vessels" / "oc3_hywind" / "mooring.yaml").read_text())
+    d["finite_element"] = {"n_elements": 36}
+    d["model"] = "finite-element"
+    d["lines"][2]["model"] = "quasi-static"
+    ms = parse_mooring(Node(d, ROOT / "vessels" / "oc3_hywind" / "mooring.yaml"),
+                       water_depth=320.0)
+    fm, names = FEMooring.from_system(ms)
+    assert names == ["line1", "line2"]
+    assert [ln.n_nodes - 1 for ln in fm.lines] == [36, 36]
+    pose = np.array([4.0, -2.0, 0.0, 0.0, 0.0, 0.03])
+    Q = fm.solve_static(pose)
+    Qqs = ms.without_lines(["line3"]).force(pose)
+    assert np.allclose(Q[:3], Qqs[:3], atol=3e-3 * np.abs(Qqs[:3]).max())
+    assert FEMooring.from_system(_system()) == (None, [])     # default: quasi-static
