@@ -61,3 +61,13 @@ def test_floatel_head_sea_symmetry_and_line_failure():
 def test_build_refuses_unknown_failed_line():
     with pytest.raises(SceneError, match="line7x"):
         build(ROOT / "scenes/floatel_100yr.yaml", failed_lines=["line7x"])
+
+
+def test_failed_lines_keep_the_line_model_choice(tmp_path):
+    # the FE/quasi-static choice parsed from the mooring file survives line removal (ALS)
+    b = build(ROOT / "scenes/floatel_100yr.yaml")
+    failed = build(ROOT / "scenes/floatel_100yr.yaml", failed_lines=["line7"])
+    assert b.mooring.line_models is not None
+    assert failed.mooring.line_models is b.mooring.line_models or \
+        failed.mooring.line_models == b.mooring.line_models
+    assert failed.mooring.with_dynamic_ea().line_models == failed.mooring.line_models

@@ -164,8 +164,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                              "a line name, one of: " + ", ".join(names), f)
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
                        gravity=gravity, source=str(node.file) if node.file else "<scene>",
-                       failed=failed)
-    ms.line_models = line_models
+                       failed=failed, line_models=line_models)
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
     return ms

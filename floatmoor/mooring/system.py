@@ -258,6 +258,10 @@ class MooringSystem:
         Used only to report; submerged weights are already in the segments.
     source : str
         Where the definition came from (file path), for messages.
+    failed : names of failed (removed) lines.
+    line_models : the line model chosen per line (quasi-static or finite-element, with the FE
+        options), :class:`floatmoor.mooring.fe.options.LineModels`; None means quasi-static.
+        Carried over by :meth:`without_lines` and :meth:`with_dynamic_ea`.
 
     Notes
     -----
@@ -265,10 +269,12 @@ class MooringSystem:
     """
 
     def __init__(self, lines: Sequence[LineDef], *, water_depth: float, water_density: float = 1025.0,
-                 gravity: float = 9.80665, source: str = "", failed: Iterable[str] = ()):
+                 gravity: float = 9.80665, source: str = "", failed: Iterable[str] = (),
+                 line_models=None):
         if not lines:
             raise ValueError("a mooring system needs at least one line")
         self.lines = tuple(lines)
+        self.line_models = line_models
         names = [l.name for l in self.lines]
         if len(set(names)) != len(names):
             raise ValueError(f"line names must be unique: {names}")
@@ -312,7 +318,8 @@ class MooringSystem:
                 raise KeyError(f"unknown line {nme!r}; lines: {', '.join(self.names)}")
         return MooringSystem(self.lines, water_depth=self.water_depth,
                              water_density=self.water_density, gravity=self.gravity,
-                             source=self.source, failed=tuple(self.failed) + tuple(names))
+                             source=self.source, failed=tuple(self.failed) + tuple(names),
+                             line_models=self.line_models)
 
     remove_lines = without_lines
 
@@ -323,7 +330,8 @@ class MooringSystem:
         lines = [replace(l, segments=tuple(replace(s, ea=s.ea_dynamic or s.ea) for s in l.segments))
                  for l in self.lines]
         return MooringSystem(lines, water_depth=self.water_depth, water_density=self.water_density,
-                             gravity=self.gravity, source=self.source, failed=self.failed)
+                             gravity=self.gravity, source=self.source, failed=self.failed,
+                             line_models=self.line_models)
 
     @property
     def n_lines(self) -> int:
