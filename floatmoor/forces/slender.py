@@ -19,7 +19,9 @@ points and 4 RK4 stages per step would be ~20 ms per step, 300x the whole storm 
 is exact at its nodes (FFT of the full realisation); in between, linear interpolation in time
 (step H, default 0.4 s: amplitude error (w H)^2/8, 0.2 % at the 18 s peak, 3 % at 5 s), in
 stretched depth (default 3 m: relative error (k dz)^2/8, 0.5 % at 8 s period) and along pontoons
-(stations every ``station_spacing`` m, default 10 m).
+(stations every ``station_spacing`` m, default 10 m).  The elevation, which sets the wetted
+length of the columns, is tabulated at every half step (exact in the time loop): with it at
+0.4 s too, the surge force peaks were 17 % off a fine table (0.1 s) in the 100-year sea.
 """
 
 from __future__ import annotations
@@ -120,6 +122,12 @@ class KinematicsTable:
     depth: float
     wheeler: bool
     a: np.ndarray | None = None
+    H_eta: float | None = None
+
+    @property
+    def eta_step(self) -> float:
+        """Time step (s) of the elevation table (default the velocity table's)."""
+        return self.H if self.H_eta is None else self.H_eta
 
     @property
     def nbytes(self) -> int:
@@ -174,7 +182,8 @@ def _sample(omega, coeffs, n_t: int, H: float, grid: FrequencyGrid | None) -> np
 def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, duration: float,
                            H: float, depth: float, lev0: float, dlev: float = 3.0,
                            wheeler: bool = True, grid: FrequencyGrid | None = None,
-                           acceleration: bool = False) -> KinematicsTable:
+                           acceleration: bool = False, H_eta: float | None = None
+                           ) -> KinematicsTable:
     """Precompute elevation and linear wave velocity at ``stations`` (ns, 2) (m).
 
     Parameters
@@ -188,6 +197,9 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
     lev0, dlev : deepest level (m, < 0) and the level step (m); levels lev0 .. 0.
     wheeler : Wheeler stretching (True) or constant above the MWL (False).
     acceleration : also tabulate the particle acceleration (for the inertia terms).
+    H_eta : time step (s) of the elevation table (default H).  The wetted length of a
+        surface-piercing element follows the elevation: a finer elevation table removes most
+        of the interpolation error at steep crests for little memory (one series per station).
     """
     omega = np.asarray(omega, float)
     amp = np.asarray(amplitude, float)
@@ -202,7 +214,9 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
     levels = lev0 + dlev * np.arange(nl)
     n_t = int(math.ceil(duration / H - 1e-9)) + 2
     ns = stations.shape[0]
-    eta = np.zeros((n_t, ns))
+    He = H if H_eta is None else float(H_eta)
+    n_te = int(math.ceil(duration / He - 1e-9)) + 2
+    eta = np.zeros((n_te, ns))
     u = np.zeros((n_t, ns, nl, 3), np.float32)   # float32: half the memory, 1e-7 relative
     acc = np.zeros((n_t, ns, nl, 3), np.float32) if acceleration else None
     cb, sb = np.cos(beta), np.sin(beta)
@@ -223,11 +237,11 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
         if acceleration:  # d/dt of exp(i w t): i w
             coeffs[:, nv:] = coeffs[:, 1:nv] * (1j * omega)[:, None]
         vals = _sample(omega, coeffs, n_t, H, grid)
-        eta[:, s] = vals[0]
+        eta[:, s] = vals[0] if He == H else _sample(omega, coeffs[:, :1], n_te, He, grid)[0]
         u[:, s, :, :] = vals[1:nv].T.reshape(n_t, nl, 3)
         if acceleration:
             acc[:, s, :, :] = vals[nv:].T.reshape(n_t, nl, 3)
-    return KinematicsTable(eta=eta, u=u, a=acc, H=float(H), lev0=float(lev0),
+    return KinematicsTable(eta=eta, u=u, a=acc, H=float(H), H_eta=float(He), lev0=float(lev0),
                            dlev=float(dlev), depth=float(depth), wheeler=bool(wheeler))
 
 
@@ -268,7 +282,7 @@ def slender_force(geom: SlenderGeometry, table: KinematicsTable, t: float, pose,
     R = np.zeros((3, 3))
     inertia = table.a is not None and bool(np.any(geom.cm != 0.0))
     a_tab = table.a if inertia else np.zeros((2, 1, 2, 3), np.float32)
-    slender_force_into(float(t) / table.H, pose, np.ascontiguousarray(vel[:3]), omega, geom.p1,
+    slender_force_into(float(t) / table.H, float(t) / table.eta_step, pose, np.ascontiguousarray(vel[:3]), omega, geom.p1,
                        geom.p2, geom.ex, geom.ey, geom.ez, geom.c2, geom.cm, geom.n_strips,
                        geom.st_first, geom.st_count, table.eta, table.u, a_tab, inertia,
                        table.lev0, table.dlev, table.depth, table.wheeler, float(wave_factor),
@@ -282,8 +296,8 @@ def covered_current_dofs(geom: SlenderGeometry, *, rel_tol: float = 0.01) -> tup
     exceeds ``rel_tol`` times the largest of the DOF's kind (forces vs moments / 100 m)."""
     nl = 2
     tab = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0])),
-                          u=np.zeros((2, geom.stations.shape[0], nl, 3)), H=1.0, lev0=-1.0e4,
-                          dlev=1.0e4, depth=math.inf, wheeler=False)
+                          u=np.zeros((2, geom.stations.shape[0], nl, 3), np.float32), H=1.0,
+                          lev0=-1.0e4, dlev=1.0e4, depth=math.inf, wheeler=False)
     peak = np.zeros(6)
     for hd in np.radians(np.arange(0.0, 360.0, 15.0)):
         f = slender_force(geom, tab, 0.0, np.zeros(6), np.zeros(3), np.zeros(3),
@@ -376,7 +390,7 @@ class SlenderElements(ForceModel):
             r = comp.realisation
             m = _table_ratio(comp.grid, h, float(getattr(spec, "table_step", 0.4)))
             table = build_kinematics_table(r.omega, r.amplitude, r.phase, r.k, r.direction,
-                                           geom.stations, duration=duration, H=m * h,
+                                           geom.stations, duration=duration, H=m * h, H_eta=h,
                                            depth=depth, lev0=lev0, dlev=dlev, wheeler=wheeler,
                                            grid=comp.grid, acceleration=inertia)
         else:
@@ -401,7 +415,8 @@ class SlenderElements(ForceModel):
         has_inertia = table.a is not None
         self.a_tab = table.a if has_inertia else np.zeros((2, 1, 2, 3), np.float32)
         self.par = np.array([float(m), table.lev0, table.dlev, table.depth, float(wheeler),
-                             math.cos(chead), math.sin(chead), float(has_inertia)])
+                             math.cos(chead), math.sin(chead), float(has_inertia),
+                             float(round(table.eta_step / h))])
         self.cur = np.ascontiguousarray(np.stack([cz, cs], axis=1)) if cz.size else \
             np.zeros((0, 2))
         self._freeze()

@@ -153,15 +153,16 @@ def _current_at(cur_z, cur_speed, z):
 
 
 @njit(cache=True)
-def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, n_strips,
+def slender_force_into(tau, tau_e, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, n_strips,
                        st_first, st_count, eta_tab, u_tab, a_tab, has_inertia, lev0, dlev,
                        depth, wheeler, wave_factor, cur_z, cur_speed, cur_cos, cur_sin, R, out):
     """Add the slender-element drag force and moment (earth axes) into ``out`` (6,).
 
     Parameters
     ----------
-    tau : float
-        Time in table samples (t / H).  Beyond the table the last sample is held.
+    tau, tau_e : float
+        Time in samples of the velocity table (t / H) and of the elevation table (t / H_eta).
+        Beyond a table its last sample is held.
     pose : (6,) x, y, z (m), roll, pitch, yaw (rad) of the reference point.
     vel : (3,) earth velocity (m/s) of the reference point.
     omega : (3,) angular velocity (rad/s), earth axes.
@@ -174,7 +175,7 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, 
     n_strips : (ne,) int strips per element (over its wetted length).
     st_first, st_count : (ne,) int first station and number of stations of each element
         (stations at s = (i + 0.5) / st_count along the element).
-    eta_tab : (nt, ns) elevation (m); u_tab : (nt, ns, nl, 3) wave velocity (m/s, earth);
+    eta_tab : (nte, ns) elevation (m); u_tab : (nt, ns, nl, 3) wave velocity (m/s, earth);
         a_tab : the same for the wave acceleration (m/s^2) (any array when not has_inertia).
     lev0, dlev : deepest level (m, < 0) and level spacing (m) of u_tab.
     depth : water depth (m) (inf: deep water); wheeler : bool, Wheeler stretching.
@@ -193,6 +194,16 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, 
     else:
         i0 = int(tau)
         wt = tau - i0
+    nte = eta_tab.shape[0]
+    if tau_e <= 0.0:
+        ie = 0
+        we = 0.0
+    elif tau_e >= nte - 1:
+        ie = nte - 2
+        we = 1.0
+    else:
+        ie = int(tau_e)
+        we = tau_e - ie
     ne = p1.shape[0]
     for e in range(ne):
         # end points and axes in earth coordinates
@@ -224,7 +235,7 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, 
                 k0 = int(x)
                 ws = x - k0
             k1 = k0 + 1 if nst > 1 else k0
-            eta = wave_factor * _eta_at(eta_tab, i0, wt, sf + k0, sf + k1, ws)
+            eta = wave_factor * _eta_at(eta_tab, ie, we, sf + k0, sf + k1, ws)
             sw = (eta - a2) / dz
             if dz < 0.0:  # p1 above p2: wet for s >= sw
                 s_lo = min(max(sw, 0.0), 1.0)
@@ -261,7 +272,7 @@ def slender_force_into(tau, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, 
                 k0 = int(x)
                 ws = x - k0
             k1 = k0 + 1 if nst > 1 else k0
-            eta = wave_factor * _eta_at(eta_tab, i0, wt, sf + k0, sf + k1, ws)
+            eta = wave_factor * _eta_at(eta_tab, ie, we, sf + k0, sf + k1, ws)
             if pz > eta:
                 continue  # dry strip
             zs = stretched_level(pz, eta, depth, wheeler)
@@ -368,7 +379,8 @@ def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, a_tab, par, cur, ramp
     frame (6,) as in the solver (horizontal velocity and roll/pitch rates about the turned
     axes).  fel (ne, 21) = [p1, p2, ex, ey, ez, c2, cm]; iel (ne, 3) = [n_strips, st_first,
     st_count]; a_tab the acceleration table (used when par[7] > 0.5); par = [m (samples per
-    table step), lev0, dlev, depth, wheeler, cos, sin of the current heading, inertia on];
+    table step), lev0, dlev, depth, wheeler, cos, sin of the current heading, inertia on,
+    samples per elevation-table step];
     cur (nc, 2) = current profile [z, speed]; ramp (n_samples,) the factor on
     the wave kinematics; R (3, 3), sc (6,) scratch.  Adds into ``out`` (6,), earth axes.
     """
@@ -382,7 +394,7 @@ def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, a_tab, par, cur, ramp
     sc[5] = v[5]
     n = ramp.shape[0]
     jj = j if j < n else n - 1
-    slender_force_into(j / par[0], x, sc[0:3], sc[3:6], fel[:, 0:3], fel[:, 3:6], fel[:, 6:9],
+    slender_force_into(j / par[0], j / par[8], x, sc[0:3], sc[3:6], fel[:, 0:3], fel[:, 3:6], fel[:, 6:9],
                        fel[:, 9:12], fel[:, 12:15], fel[:, 15:18], fel[:, 18:21], iel[:, 0],
                        iel[:, 1], iel[:, 2], eta_tab, u_tab, a_tab, par[7] > 0.5, par[1],
                        par[2], par[3], par[4] > 0.5, ramp[jj], cur[:, 0], cur[:, 1], par[5],
