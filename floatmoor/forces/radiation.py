@@ -15,6 +15,8 @@ fit of Ogilvie's relation (:func:`floatmoor.hydro.fit_infinite_frequency_added_m
 
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 
 from ..hydro.retardation import (cutoff_time, fit_infinite_frequency_added_mass,
@@ -39,17 +41,33 @@ def retardation_matrix(db, t) -> np.ndarray:
     return retardation_function(w, B, np.asarray(t, float))
 
 
+_A_INF_CACHE: dict = {}
+
+
 def infinite_frequency_added_mass(db) -> np.ndarray:
-    """A_inf (6, 6): from the database, else fitted (module docstring)."""
+    """A_inf (6, 6): from the database, else fitted (module docstring).
+
+    The fit (about 0.5 s) is kept per database object while that object lives, so repeated
+    runs of one built scene (seeds, convergence studies) do it once; a copy is returned."""
     if "infinite_frequency_added_mass" in db:
         return np.asarray(db["infinite_frequency_added_mass"].transpose(
             "influenced_dof", "radiating_dof").values, float)
+    hit = _A_INF_CACHE.get(id(db))
+    if hit is not None and hit[0]() is db:
+        return hit[1].copy()
     w = np.asarray(db["omega"].values, float)
     t = np.arange(0.0, 200.0, 0.05)
     K = retardation_matrix(db, t)
     A = np.asarray(db["added_mass"].transpose("influenced_dof", "radiating_dof", "omega").values,
                    float)
-    return fit_infinite_frequency_added_mass(w, A, t, K)
+    a_inf = fit_infinite_frequency_added_mass(w, A, t, K)
+    key = id(db)
+    try:
+        ref = weakref.ref(db, lambda _r, key=key: _A_INF_CACHE.pop(key, None))
+    except TypeError:  # not weak-referenceable: no cache
+        return a_inf
+    _A_INF_CACHE[key] = (ref, a_inf.copy())
+    return a_inf
 
 
 @register
