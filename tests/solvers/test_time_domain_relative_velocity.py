@@ -115,7 +115,9 @@ def test_current_damping_of_lf_surge_preserved_in_waves(waves_current, current_o
     """(c) Free surge decay (4 m from the static position, 1000 s) with current, linear
     damping and drift excluded.  The LF decay rate is sigma = C V / (M + A11(w_n)) (current
     damping 2 C V, eq. 2.27) plus the decay without current (sigma_0 = 0.00090 1/s, from the
-    radiation memory): measured sigma - sigma_0 = 0.00561 against 0.00570 (-1.5 %).  In waves
+    radiation memory; mostly numerical: 2.9e-5, 2.0e-4, 9.0e-4, 3.8e-3 1/s at dt 0.05, 0.1,
+    0.2, 0.4 s, about second order, while the database's B11(w_n) alone gives 7e-6):
+    measured sigma - sigma_0 = 0.00561 against 0.00570 (-1.5 %).  In waves
     (Hs 16 m, WF surge velocity std 1.25 m/s) the decay is the offset run minus the run of the
     same seed from the static position (the wave response removed by superposition): with the
     low-frequency relative velocity the decay rate stays (seed 1: -0.9 %; 1500 s runs of seeds
