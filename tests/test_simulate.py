@@ -252,3 +252,12 @@ def test_runner_reports_the_warnings_of_a_seed(scene_file, tmp_path):
     assert len(batch.outcomes[0].warnings) == 1       # the scene's own warnings not repeated
     assert "start heading" in batch.outcomes[0].warnings[0]
     assert any(s.startswith("    warning (seed 1):") for s in lines)
+
+
+def test_relative_velocity_option_from_the_scene_file(tmp_path):
+    p = _scene(tmp_path, extra="forces: {relative_velocity: total}\n")
+    ds = simulate(p, seed=1, duration=60.0)
+    assert ds.attrs["relative_velocity"] == "total"
+    p2 = _scene(tmp_path, extra="forces: {relative_velocity: lowfrequency}\n")
+    with pytest.raises(SceneError, match="forces.relative_velocity"):
+        simulate(p2, seed=1, duration=60.0)
