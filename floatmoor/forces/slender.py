@@ -216,7 +216,7 @@ def build_kinematics_table(omega, amplitude, phase, k, direction, stations, *, d
     ns = stations.shape[0]
     He = H if H_eta is None else float(H_eta)
     n_te = int(math.ceil(duration / He - 1e-9)) + 2
-    eta = np.zeros((n_te, ns))
+    eta = np.zeros((n_te, ns), np.float32)
     u = np.zeros((n_t, ns, nl, 3), np.float32)   # float32: half the memory, 1e-7 relative
     acc = np.zeros((n_t, ns, nl, 3), np.float32) if acceleration else None
     cb, sb = np.cos(beta), np.sin(beta)
@@ -295,7 +295,7 @@ def covered_current_dofs(geom: SlenderGeometry, *, rel_tol: float = 0.01) -> tup
     (no waves, body at rest) over headings 0, 15, ..., 345 deg, where its largest magnitude
     exceeds ``rel_tol`` times the largest of the DOF's kind (forces vs moments / 100 m)."""
     nl = 2
-    tab = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0])),
+    tab = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0]), np.float32),
                           u=np.zeros((2, geom.stations.shape[0], nl, 3), np.float32), H=1.0,
                           lev0=-1.0e4, dlev=1.0e4, depth=math.inf, wheeler=False)
     peak = np.zeros(6)
@@ -396,7 +396,7 @@ class SlenderElements(ForceModel):
         else:
             m = max(1, ctx.n_samples)
             nl = int(math.ceil(-lev0 / dlev)) + 1
-            table = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0])),
+            table = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0]), np.float32),
                                     u=np.zeros((2, geom.stations.shape[0], nl, 3), np.float32),
                                     a=None, H=m * h,
                                     lev0=-(nl - 1) * dlev, dlev=dlev, depth=depth,
