@@ -73,7 +73,7 @@ def test_model_force_equals_packed_kernel(built):
         m.force(j * m.h, x, rate, f_py)
         f_k = np.zeros(6)
         slender_packed_into(j, x, v_yaw, *m.kernel_arrays(), R, sc, f_k)
-        assert np.allclose(f_k, f_py, rtol=1e-12, atol=1e-6)
+        assert np.allclose(f_k, f_py, rtol=1e-7, atol=1e-6)  # float32 tables (NUMBA_DISABLE_JIT)
         assert np.abs(f_k[0]) > 0.0
 
 
