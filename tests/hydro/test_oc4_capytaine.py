@@ -23,7 +23,7 @@ def db():
 DAMPING_GAP = (
     "not met by the shipped columns-only 2 m model: max |Capytaine - WAMIT| / max|WAMIT| over "
     "0.3-2 rad/s = 9.2 % surge/sway, 13.9 % heave, 7.3 % roll/pitch, 5.9 % yaw (3 m panels: "
-    "13.7, 16.9, 11.8, 10.1 %; 1.5 m panels barely move B).  Cause found 2026-11-21: the WAMIT "
+    "13.7, 16.9, 11.8, 10.1 %; 1.5 m panels barely move B).  Main cause found 2026-11-21: the WAMIT "
     "model includes the pontoons and cross braces (HydroDyn PropPot = TRUE for all 25 members; "
     "marin_semi.hst waterplane 380.06 m^2 = columns 372.47 + 3 braces 2.54 at the water line). "
     "With them (make_database.py --slender, 2,919 panels) at 0.7 rad/s heave B 2.76e5 -> 3.49e5 "
