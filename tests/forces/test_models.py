@@ -83,8 +83,7 @@ def test_relative_flow_force_closed_form():
 
 @pytest.fixture(scope="module")
 def floatel(tmp_path_factory):
-    if not (FL / "database.nc").is_file():
-        pytest.skip("floatel_like database not present")
+    assert (FL / "database.nc").is_file(), "the shipped floatel_like database is missing"
     p = tmp_path_factory.mktemp("fl") / "s.yaml"
     p.write_text(f"name: fl\nsite: {{water_depth: 150.0}}\nvessel: {FL / 'vessel.yaml'}\n"
                  f"mooring: {FL / 'mooring.yaml'}\nenvironment: {ROOT / 'metocean' / 'heidrun_100yr.yaml'}\n")
@@ -158,8 +157,7 @@ OC4 = ROOT / "vessels" / "oc4_semi"
 
 @pytest.fixture(scope="module")
 def oc4(tmp_path_factory):
-    if not (OC4 / "database.nc").is_file():
-        pytest.skip("oc4_semi database not present")
+    assert (OC4 / "database.nc").is_file(), "the shipped oc4_semi database is missing"
     p = tmp_path_factory.mktemp("oc4") / "s.yaml"
     p.write_text(f"name: oc4\nsite: {{water_depth: 200.0}}\nvessel: {OC4 / 'vessel.yaml'}\n"
                  "environment:\n  waves: {spectrum: jonswap, hs: 4.0, tp: 8.0, "

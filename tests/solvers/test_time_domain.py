@@ -187,8 +187,7 @@ def test_steady_wind_current_offset_equals_statics(tmp_path):
     surge offset after the transient equals the static equilibrium under the same mean loads
     within 0.5 %."""
     fl = ROOT / "vessels" / "floatel_like"
-    if not (fl / "database.nc").is_file():
-        pytest.skip("floatel_like database not present")
+    assert (fl / "database.nc").is_file(), "the shipped floatel_like database is missing"
     p = tmp_path / "s.yaml"
     p.write_text(f"name: steady\nsite: {{water_depth: 150.0}}\nvessel: {fl / 'vessel.yaml'}\n"
                  f"mooring: {fl / 'mooring.yaml'}\n"
@@ -299,8 +298,7 @@ def test_radiation_only_decay_against_frequency_domain(tmp_path):
     database frequencies 0.35 and 0.40 rad/s around w_n = 0.363 rad/s, so the interpolated
     B(w_n) itself is uncertain by several percent)."""
     oc4 = ROOT / "vessels" / "oc4_semi"
-    if not (oc4 / "database.nc").is_file():
-        pytest.skip("oc4_semi database not present")
+    assert (oc4 / "database.nc").is_file(), "the shipped oc4_semi database is missing"
     from scipy.signal import find_peaks
 
     p = tmp_path / "oc4.yaml"
@@ -349,8 +347,7 @@ def test_large_yaw_kirchhoff_invariants(tmp_path):
     (the invariants of Kirchhoff's equations in the plane), while the earth velocity turns (it would not for an isotropic
     body; a formulation with the matrices fixed in earth axes keeps it constant instead)."""
     fl = ROOT / "vessels" / "floatel_like"
-    if not (fl / "database.nc").is_file():
-        pytest.skip("floatel_like database not present")
+    assert (fl / "database.nc").is_file(), "the shipped floatel_like database is missing"
     p = tmp_path / "free.yaml"
     p.write_text(f"name: free\nsite: {{water_depth: 150.0}}\nvessel: {fl / 'vessel.yaml'}\n")
     with warnings.catch_warnings():

@@ -31,8 +31,7 @@ def extreme_scene(tmp_path: Path, kind: str) -> Path:
     """Scene file of one case: ``storm`` (the Floatel-like mooring), ``taut`` (12 polyester
     lines of 400 m, 1 % stretched at rest), ``slack`` (anchors 100 m closer: 100 m of extra
     chain on the seabed, a fraction of the pretension)."""
-    if not (FL / "database.nc").is_file():
-        pytest.skip("floatel_like database not present")
+    assert (FL / "database.nc").is_file(), "the shipped floatel_like database is missing"
     moor = yaml.safe_load((FL / "mooring.yaml").read_text())
     for line in moor["lines"]:
         fx, fy, fz = line["fairlead"]

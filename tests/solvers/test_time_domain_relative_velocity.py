@@ -36,8 +36,7 @@ WIND = "  wind: {spectrum: npd, u10: 36.0, heading_deg: 0.0}\n"
 
 
 def _build(tmp_path_factory, name, env):
-    if not (FL / "database.nc").is_file():
-        pytest.skip("floatel_like database not present")
+    assert (FL / "database.nc").is_file(), "the shipped floatel_like database is missing"
     p = tmp_path_factory.mktemp(name) / "s.yaml"
     p.write_text(f"name: {name}\nsite: {{water_depth: 150.0}}\nvessel: {FL / 'vessel.yaml'}\n"
                  f"mooring: {FL / 'mooring.yaml'}\n" + ("environment:\n" + env if env else ""))
