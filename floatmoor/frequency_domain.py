@@ -146,24 +146,11 @@ def combine_maxima(mean, lf_sig, lf_max, wf_sig, wf_max):
     return np.asarray(mean) + exc, np.asarray(mean) - exc, np.where(a >= b, 1, 2)
 
 
-def _at_heading(db, variable: str, heading: float, dim: str = "wave_direction"):
-    """``interpolate_heading``, but an exact database heading is taken as is: the linear
-    interpolation would otherwise give 0 x NaN = NaN where the neighbouring heading has NaN
-    (e.g. a QTF-derived mean drift known at one heading only)."""
-    beta = np.asarray(db[dim].values, float)
-    d = np.abs(np.angle(np.exp(1j * (beta - heading))))
-    k = int(np.argmin(d))
-    if d[k] < 1e-9:
-        da = db[variable]
-        return np.moveaxis(np.asarray(da.values), da.dims.index(dim), 0)[k]
-    return interpolate_heading(db, variable, heading, dim=dim)
-
-
 def _qtf_function(db, heading_rel: float, T: np.ndarray):
     """Callable (w1, w2) -> (n, 6) complex QTF at the relative heading, earth axes; bilinear in
     (w1, w2), zero outside the QTF grid."""
     from scipy.interpolate import RegularGridInterpolator
-    q = _at_heading(db, "difference_frequency_qtf", heading_rel, dim="qtf_wave_direction")
+    q = interpolate_heading(db, "difference_frequency_qtf", heading_rel, dim="qtf_wave_direction")
     w1 = np.asarray(db["qtf_omega"].values, float)
     w2 = np.asarray(db["qtf_omega_2"].values, float)
     q = np.nan_to_num(q) @ T.T
@@ -281,7 +268,7 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     def drift_coefficients(yaw):
         if "mean_drift_force" not in db or waves is None:
             return np.zeros((w.size, 6))
-        c = _at_heading(db, "mean_drift_force", beta - yaw)  # (n_db, 6)
+        c = interpolate_heading(db, "mean_drift_force", beta - yaw)  # (n_db, 6)
         if np.any(np.isnan(c)):
             bad = np.isnan(c).any(axis=1)
             frac = float(np.trapezoid(np.where(_interp0(w, w_db, bad.astype(float)) > 0, S, 0), w)
@@ -345,7 +332,7 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
 
     # -- wave frequency ingredients ----------------------------------------------------------
     if waves is not None:
-        X = _at_heading(db, "excitation_force", beta - yaw)  # (n_db, 6) complex
+        X = interpolate_heading(db, "excitation_force", beta - yaw)  # (n_db, 6) complex
         X = _interp0(w, w_db, X) @ T6.T
     else:
         X = np.zeros((w.size, 6), complex)

@@ -281,7 +281,8 @@ def test_fd_command_prints_table_and_writes_netcdf(oc3, tmp_path, capsys):
 def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     """OC4 semi (WAMIT QTF; its mean drift is the QTF diagonal): the slowly varying surge drift
     spectrum from the full QTF equals Newman's at mu = 0 and departs from it as mu grows."""
-    from floatmoor.frequency_domain import _at_heading, _interp0, _qtf_function
+    from floatmoor.frequency_domain import _interp0, _qtf_function
+    from floatmoor.hydro.database import interpolate_heading
     from floatmoor.hydro.database import load_database
     from floatmoor.metocean.spectra import jonswap
     from floatmoor.solvers.frequency_domain import newman_drift_spectrum, qtf_drift_spectrum
@@ -291,7 +292,7 @@ def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     db = load_database(path)
     w = np.linspace(0.25, 3.0, 551)
     S = jonswap(w, 6.0, 10.0, 3.3)
-    C = _interp0(w, db.omega.values, np.nan_to_num(_at_heading(db, "mean_drift_force", 0.0)))
+    C = _interp0(w, db.omega.values, np.nan_to_num(interpolate_heading(db, "mean_drift_force", 0.0)))
     mu = np.array([0.0, 0.2])
     a = newman_drift_spectrum(w, S, C, mu)[:, 0, 0]
     b = qtf_drift_spectrum(w, S, _qtf_function(db, 0.0, np.eye(6)), mu)[:, 0, 0]
