@@ -2,11 +2,14 @@
 
 ``floatmoor check SCENE.yaml``        validate a scene and print what it would build
 ``floatmoor environment SCENE.yaml``  realise the scene's environment and print its statistics
+``floatmoor statics SCENE.yaml``      equilibrium, tensions, stiffness (:mod:`floatmoor.commands.statics`)
 ``floatmoor run SCENE.yaml``          time-domain storms (:mod:`floatmoor.commands.run`)
 ``floatmoor fd SCENE.yaml``           frequency-domain analysis (:mod:`floatmoor.commands.fd`)
 ``floatmoor convergence SCENE.yaml``  time-step convergence (:mod:`floatmoor.commands.convergence`)
+``floatmoor lines SCENE.yaml``        FE lines driven by recorded or harmonic motion (:mod:`floatmoor.commands.lines`)
+``floatmoor report RESULTS_DIR``      Gumbel statistics and DNV-OS-E301 checks (:mod:`floatmoor.commands.report`)
 
-Exit status: 0 success, 2 a mistake in an input file (:class:`~floatmoor.SceneError`, printed
+Exit status: 0 success (``report``: 1 when a line fails its design check), 2 a mistake in an input file (:class:`~floatmoor.SceneError`, printed
 as ``floatmoor: error: <message>`` without a traceback) or on the command line, 3 a numerical
 failure (:class:`~floatmoor.NumericalError`), 130 interrupted (Ctrl-C).
 
