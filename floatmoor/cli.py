@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from typing import Callable, Sequence
 
 from . import __version__
+from .commands.argtypes import positive_float, seed_int  # noqa: F401 (re-exported)
 from .core.errors import FloatmoorWarning, NumericalError, SceneError
 
 __all__ = ["main", "Command", "COMMANDS", "commands", "module_command", "build_parser",
@@ -68,26 +69,6 @@ def module_command(name: str, module: str) -> Command:
 
 
 # -- argument types -------------------------------------------------------------------------------
-def positive_float(text: str) -> float:
-    """An argparse type: a finite number > 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not (value > 0.0 and value < float("inf")):
-        raise argparse.ArgumentTypeError(f"expected a number > 0, found {text}")
-    return value
-
-
-def seed_int(text: str) -> int:
-    """An argparse type: a seed, an integer >= 0."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an integer seed, found {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected a seed >= 0, found {text}")
-    return value
 
 
 # -- check ----------------------------------------------------------------------------------------

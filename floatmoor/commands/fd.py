@@ -9,17 +9,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .argtypes import positive_float
+
 HELP = "frequency-domain analysis (mean, LF, WF, Rayleigh maxima, line tensions)"
-
-
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not (0.0 < v < float("inf")):
-        raise argparse.ArgumentTypeError(f"expected a number > 0, found {text}")
-    return v
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -27,13 +19,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("scene", metavar="SCENE.yaml", help="the scene file (vessel and mooring needed)")
     p.add_argument("--out", metavar="FILE", default=None,
                    help="write the result Dataset as netCDF (.nc)")
-    p.add_argument("--duration", type=_positive, default=None, metavar="S",
+    p.add_argument("--duration", type=positive_float, default=None, metavar="S",
                    help="storm duration for the Rayleigh maxima, s (default 10800)")
     p.add_argument("--drift", choices=("auto", "newman", "qtf"), default=None,
                    help="slowly varying drift: full QTF when present (auto), Newman, or QTF")
     p.add_argument("--wave-drift-damping", action="store_true",
                    help="add Aranha's wave drift damping to the LF system")
-    p.add_argument("--lf-cutoff", type=_positive, default=None, metavar="S",
+    p.add_argument("--lf-cutoff", type=positive_float, default=None, metavar="S",
                    help="LF cut-off period, s (default 30)")
 
 

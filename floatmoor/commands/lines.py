@@ -30,31 +30,13 @@ import argparse
 import math
 from pathlib import Path
 
+from .argtypes import positive_float, nonnegative_float
+
 HELP = "decoupled FE analysis of mooring lines driven by a floater run's motion (DAF per line)"
 
 _DOF_KEYS = {"surge": (0, 1.0), "sway": (1, 1.0), "heave": (2, 1.0),
              "roll_deg": (3, math.pi / 180.0), "pitch_deg": (4, math.pi / 180.0),
              "yaw_deg": (5, math.pi / 180.0)}
-
-
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not (0.0 < v < float("inf")):
-        raise argparse.ArgumentTypeError(f"expected a number > 0, found {text}")
-    return v
-
-
-def _nonnegative(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not (0.0 <= v < float("inf")):
-        raise argparse.ArgumentTypeError(f"expected a number >= 0, found {text}")
-    return v
 
 
 def parse_harmonic(text: str) -> list[tuple[int, float, float]]:
@@ -97,12 +79,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", default=None, metavar="FILE",
                    help="netCDF output (default: <motion file>_lines.nc next to the motion file, "
                         "or lines_harmonic.nc in the current folder)")
-    p.add_argument("--duration", type=_positive, default=None, metavar="S",
+    p.add_argument("--duration", type=positive_float, default=None, metavar="S",
                    help="use only the first S seconds of the motion (harmonic: default 10 longest "
                         "periods plus the ramp)")
-    p.add_argument("--dt", type=_positive, default=None, metavar="S",
+    p.add_argument("--dt", type=positive_float, default=None, metavar="S",
                    help="harmonic only: sample interval of the body motion (default 0.1 s)")
-    p.add_argument("--discard", type=_nonnegative, default=None, metavar="S",
+    p.add_argument("--discard", type=nonnegative_float, default=None, metavar="S",
                    help="start-up time left out of the statistics (default: the run's transient, "
                         "or the ramp plus one period for --harmonic)")
     p.add_argument("--substeps", type=int, default=None, metavar="N",

@@ -12,17 +12,9 @@ import argparse
 import sys
 from pathlib import Path
 
+from .argtypes import positive_float
+
 HELP = "time-domain storm simulation of seeds in parallel (one netCDF file per seed)"
-
-
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number, found {text!r}") from None
-    if not (0.0 < v < float("inf")):
-        raise argparse.ArgumentTypeError(f"expected a number > 0, found {text}")
-    return v
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -34,9 +26,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="output folder (default: results/<scene name> next to the scene file)")
     p.add_argument("--workers", type=int, default=None, metavar="N",
                    help="parallel processes (default: the local cores)")
-    p.add_argument("--duration", type=_positive, default=None, metavar="S",
+    p.add_argument("--duration", type=positive_float, default=None, metavar="S",
                    help="simulated length in s (default: analysis.duration)")
-    p.add_argument("--dt", type=_positive, default=None, metavar="S",
+    p.add_argument("--dt", type=positive_float, default=None, metavar="S",
                    help="time step in s (default: analysis.dt)")
     p.add_argument("--lines", type=int, default=3, metavar="N",
                    help="most loaded lines shown in the table (default 3)")
