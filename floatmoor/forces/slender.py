@@ -41,7 +41,8 @@ from .slender_kernels import local_axes, slender_force_into
 __all__ = ["SlenderGeometry", "KinematicsTable", "slender_geometry", "build_kinematics_table",
            "slender_force", "covered_current_dofs", "current_table_without",
            "angular_velocity_earth", "DOF_NAMES", "SlenderElements", "hull_current_table",
-           "drift_database", "linear_damping_matrix", "viscous_spec"]
+           "drift_database", "linear_damping_matrix", "viscous_spec",
+           "corrected_drift_database", "viscous_linear_damping"]
 
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
@@ -467,13 +468,25 @@ def hull_current_table(ctx, table: np.ndarray, vessel) -> np.ndarray:
 def drift_database(ctx, db):
     """The database whose mean drift coefficients the drift model uses: corrected by eq. 6.6
     when the scene asks for ``viscous_drift: {model: correction_formula}``."""
-    spec = viscous_spec(ctx)
+    return corrected_drift_database(ctx.built, viscous_spec(ctx), db, yaw=ctx.yaw0)
+
+
+def corrected_drift_database(built, spec, db=None, *, yaw: float = 0.0):
+    """``db`` (default the vessel's database) with its mean drift coefficients corrected by
+    eq. 6.6 when ``spec`` (a ``ViscousDriftSpec`` or None) selects the correction formula, for
+    the scene's sea state (Hs), current (speed at z = 0 unless the spec gives one, heading) and
+    the body heading ``yaw`` (rad); else ``db`` itself.  For the time domain (Newman drift) and
+    the frequency domain (mean drift and slow-drift spectrum) alike."""
+    if db is None:
+        db = built.vessel.database
     if spec is None or getattr(spec, "model", "none") != "correction_formula":
         return db
     from ..hydro.viscous_drift import corrected_mean_drift
     from ..metocean.current import current_speed
-    scene = ctx.built.scene
+    scene = built.scene
     env = scene.environment
+    if env.waves is None:
+        return db
     U = spec.current_speed
     head = 0.0
     if env.current is not None:
@@ -483,13 +496,18 @@ def drift_database(ctx, db):
                                                scene.site.water_depth)).reshape(-1)[0])
     return corrected_mean_drift(db, current_speed=float(U or 0.0), current_heading=head,
                                 hs=float(env.waves.hs), formula=spec.correction_formula(),
-                                yaw=ctx.yaw0)
+                                yaw=yaw)
 
 
 def linear_damping_matrix(ctx, D: np.ndarray) -> np.ndarray:
     """The vessel's linear damping, raised in surge and sway by ``extra_damping`` (fraction)
     for the correction-formula case (seed 002 section 6.6)."""
-    spec = viscous_spec(ctx)
+    return viscous_linear_damping(viscous_spec(ctx), D)
+
+
+def viscous_linear_damping(spec, D: np.ndarray) -> np.ndarray:
+    """``D`` raised in surge and sway by ``spec.extra_damping`` when ``spec`` selects the
+    correction formula (seed 002 section 6.6, table 6.10); else ``D`` itself."""
     if spec is None or getattr(spec, "model", "none") != "correction_formula" \
             or not getattr(spec, "extra_damping", 0.0):
         return D

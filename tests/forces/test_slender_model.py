@@ -143,3 +143,17 @@ def test_scene_section_parser():
                                    "column_diameters": [12.5, 12.5, 14.0, 14.0]}, "s.yaml",
                                   "forces.viscous_drift"))
     assert cf.main_column_diameter == 14.0 and cf.correction_formula().d_sum == 53.0
+
+
+def test_scene_level_helpers_for_the_frequency_domain(built):
+    """corrected_drift_database / viscous_linear_damping need no SetupContext (FD use) and
+    give the same as the time-domain hooks."""
+    from floatmoor.forces.slender import corrected_drift_database, viscous_linear_damping
+    spec = ViscousDriftSpec(model="correction_formula", column_diameters=(12.5,) * 4,
+                            main_column_diameter=12.5, extra_damping=0.5)
+    a = corrected_drift_database(built, spec)
+    b = drift_database(_ctx(built, spec, waves=False), built.vessel.database)
+    assert np.array_equal(a.mean_drift_force.values, b.mean_drift_force.values)
+    assert corrected_drift_database(built, None) is built.vessel.database
+    D = viscous_linear_damping(spec, built.vessel.linear_damping)
+    assert D[1, 1] == pytest.approx(1.5 * built.vessel.linear_damping[1, 1])
