@@ -157,3 +157,11 @@ def test_scene_level_helpers_for_the_frequency_domain(built):
     assert corrected_drift_database(built, None) is built.vessel.database
     D = viscous_linear_damping(spec, built.vessel.linear_damping)
     assert D[1, 1] == pytest.approx(1.5 * built.vessel.linear_damping[1, 1])
+
+
+def test_without_waves_current_only(built):
+    m = SlenderElements()
+    m.setup(_ctx(built, ViscousDriftSpec(model="slender_elements"), waves=False))
+    f = np.zeros(6)
+    m.force(50.0, np.zeros(6), np.zeros(6), f)
+    assert f[0] == pytest.approx(0.94 ** 2 * (4 * 7687.5 * 4.375 + 2 * 1768.1 * 90.0), rel=1e-9)
