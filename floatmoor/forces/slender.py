@@ -283,11 +283,12 @@ def slender_force(geom: SlenderGeometry, table: KinematicsTable, t: float, pose,
     R = np.zeros((3, 3))
     inertia = table.a is not None and bool(np.any(geom.cm != 0.0))
     a_tab = table.a if inertia else np.zeros((2, 1, 2, 3), np.float32)
-    slender_force_into(float(t) / table.H, float(t) / table.eta_step, pose, np.ascontiguousarray(vel[:3]), omega, geom.p1,
-                       geom.p2, geom.ex, geom.ey, geom.ez, geom.c2, geom.cm, geom.n_strips,
-                       geom.st_first, geom.st_count, table.eta, table.u, a_tab, inertia,
-                       table.lev0, table.dlev, table.depth, table.wheeler, float(wave_factor),
-                       cz, cs, math.cos(current_heading), math.sin(current_heading), R, out)
+    slender_force_into(float(t) / table.H, float(t) / table.eta_step, pose,
+                       np.ascontiguousarray(vel[:3]), omega, geom.p1, geom.p2, geom.ex,
+                       geom.ey, geom.ez, geom.c2, geom.cm, geom.n_strips, geom.st_first,
+                       geom.st_count, table.eta, table.u, a_tab, inertia, table.lev0,
+                       table.dlev, table.depth, table.wheeler, float(wave_factor), cz, cs,
+                       math.cos(current_heading), math.sin(current_heading), R, out)
     return out
 
 

@@ -394,8 +394,8 @@ def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, a_tab, par, cur, ramp
     sc[5] = v[5]
     n = ramp.shape[0]
     jj = j if j < n else n - 1
-    slender_force_into(j / par[0], j / par[8], x, sc[0:3], sc[3:6], fel[:, 0:3], fel[:, 3:6], fel[:, 6:9],
-                       fel[:, 9:12], fel[:, 12:15], fel[:, 15:18], fel[:, 18:21], iel[:, 0],
-                       iel[:, 1], iel[:, 2], eta_tab, u_tab, a_tab, par[7] > 0.5, par[1],
-                       par[2], par[3], par[4] > 0.5, ramp[jj], cur[:, 0], cur[:, 1], par[5],
-                       par[6], R, out)
+    slender_force_into(j / par[0], j / par[8], x, sc[0:3], sc[3:6], fel[:, 0:3], fel[:, 3:6],
+                       fel[:, 6:9], fel[:, 9:12], fel[:, 12:15], fel[:, 15:18], fel[:, 18:21],
+                       iel[:, 0], iel[:, 1], iel[:, 2], eta_tab, u_tab, a_tab, par[7] > 0.5,
+                       par[1], par[2], par[3], par[4] > 0.5, ramp[jj], cur[:, 0], cur[:, 1],
+                       par[5], par[6], R, out)
