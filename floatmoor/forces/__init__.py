@@ -11,10 +11,11 @@ One interface (:class:`ForceModel`: ``setup``, ``force``, optional ``stiffness``
 * ``drift_newman``      mean + slow drift, Newman's approximation
 * ``drift_qtf``         mean + slow drift from the full difference-frequency QTF
 * ``wind``, ``current`` quadratic in the relative velocity (NPD gust for wind)
+* ``slender_elements`` Morison drag strips on the hull (viscous drift, seed 002 ch. 6)
 """
 
 from .base import (REGISTRY, ForceModel, KernelAssembly, SetupContext, model_class, register)
-from . import hydrostatics, mooring, radiation, waves, environment  # noqa: F401  (register)
+from . import hydrostatics, mooring, radiation, waves, environment, slender  # noqa: F401
 from .environment import Current, Wind, derived_seed
 from .hydrostatics import Hydrostatics, LinearDamping, QuadraticDamping
 from .mooring import QuasiStaticMooring

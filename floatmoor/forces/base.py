@@ -43,11 +43,12 @@ PART_DAMPING_QUADRATIC = 3
 PART_RADIATION = 4
 PART_WIND = 5
 PART_CURRENT = 6
-PART_SERIES = 7
+PART_SLENDER = 7
+PART_SERIES = 8
 MAX_SERIES = 4
 N_PARTS = PART_SERIES + MAX_SERIES
 PART_NAMES = ("hydrostatics", "mooring", "damping_linear", "damping_quadratic", "radiation",
-              "wind", "current")
+              "wind", "current", "slender_elements")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -201,6 +202,8 @@ class KernelAssembly:
     # mooring (quasi-static)
     mooring: Any = None
     fail_time: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    # slender elements: (fel, iel, eta, u, a, par, cur, ramp), see floatmoor.forces.slender
+    slender: Any = None
 
     def add_series(self, name: str, values: np.ndarray) -> None:
         """Add a precomputed force series (n_samples, 6) (N, N m), ramp already applied."""

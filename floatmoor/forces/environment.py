@@ -156,6 +156,8 @@ class Current(_FlowModel):
         spec = scene.environment.current
         v = ctx.built.vessel
         self.table_heading, self.table = _table(v, "current_coefficients", "current")
+        from .slender import hull_current_table  # double counting (seed 002 section 6.1.2)
+        self.table = hull_current_table(ctx, self.table, v)
         self.mean_speed = float(np.asarray(current_speed(spec, np.array([0.0]),
                                                           scene.site.water_depth)).reshape(-1)[0])
         self.heading = float(spec.heading)

@@ -55,7 +55,8 @@ class LinearDamping(ForceModel):
     description = "linear damping matrix of the vessel file"
 
     def setup(self, ctx: SetupContext):
-        self.matrix = np.array(ctx.built.vessel.linear_damping, float)
+        from .slender import linear_damping_matrix  # extra damping, seed 002 section 6.6
+        self.matrix = linear_damping_matrix(ctx, np.array(ctx.built.vessel.linear_damping, float))
         self._freeze()
 
     def force(self, t, pose, velocity, out):

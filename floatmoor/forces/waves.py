@@ -210,7 +210,8 @@ class DriftNewman(_SeriesModel):
     def setup(self, ctx: SetupContext):
         v = ctx.built.vessel
         comp = ctx.waves
-        db = v.database
+        from .slender import drift_database  # viscous correction formula, eq. 6.6
+        db = drift_database(ctx, v.database)
         if "mean_drift_force" not in db:
             raise SceneError(v.file, "database", "a database with mean_drift_force for the "
                              "drift model (or exclude drift in the forces section)")

@@ -11,6 +11,8 @@ forces:
   record_forces: false             # store force(time, model, dof) in the results
   relative_velocity: low_frequency # body velocity in the wind and current relative velocity:
                                    # low_frequency (default) | total
+  viscous_drift: {model: slender_elements}   # | correction_formula | none (default); see
+                                   # floatmoor.io.viscous_drift_section
 ```
 
 ``relative_velocity``: seed 002 writes the hull wind and current forces with the flow velocity
@@ -36,7 +38,7 @@ from ..core.config import Node
 __all__ = ["ForcesSpec", "parse_forces", "FORCES_KEYS", "DRIFT_METHODS", "RELATIVE_VELOCITY"]
 
 FORCES_KEYS = ("exclude", "drift", "retardation", "max_memory", "line_failure", "record_forces",
-               "relative_velocity")
+               "relative_velocity", "viscous_drift")
 RELATIVE_VELOCITY = ("low_frequency", "total")
 DRIFT_METHODS = ("qtf", "newman", "none")
 
@@ -52,6 +54,7 @@ class ForcesSpec:
     line_failure: dict = field(default_factory=dict)
     record_forces: bool = False
     relative_velocity: str = "low_frequency"
+    viscous_drift: object = None     # ViscousDriftSpec (floatmoor.io.viscous_drift_section)
     file: object = field(default=None, compare=False)
 
 
@@ -71,7 +74,10 @@ def parse_forces(node: Node) -> ForcesSpec:
         fl = node.child("line_failure")
         for name in fl.keys():
             failures[str(name)] = fl.float(name, ge=0.0, unit="s")
-    return ForcesSpec(exclude=tuple(exclude), drift=drift,
+    from .viscous_drift_section import parse_viscous_drift
+    viscous = (parse_viscous_drift(node.child("viscous_drift"), drift=drift)
+               if "viscous_drift" in node else None)
+    return ForcesSpec(exclude=tuple(exclude), drift=drift, viscous_drift=viscous,
                       retardation=node.bool("retardation", True),
                       max_memory=node.float("max_memory", None, gt=0.0, unit="s")
                       if "max_memory" in node else None,

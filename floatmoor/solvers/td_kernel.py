@@ -45,8 +45,9 @@ from numba import njit
 
 from ..forces.base import (PART_CURRENT, PART_DAMPING_LINEAR, PART_DAMPING_QUADRATIC,
                            PART_HYDROSTATICS, PART_MOORING, PART_RADIATION, PART_SERIES,
-                           PART_WIND)
+                           PART_SLENDER, PART_WIND)
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
+from ..forces.slender_kernels import slender_packed_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.system import system_force_kernel
 
@@ -59,7 +60,9 @@ STATUS_OK, STATUS_NAN, STATUS_GUARD, STATUS_TENSION, STATUS_CATENARY = range(5)
 @njit(cache=True)
 def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_kernel, ret_i,
          ret_j, s0, s1, series, has_wind, wind_speed, wind_heading, wind_th, wind_tab, has_cur,
-         cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf, has_moor, anchors, fairleads,
+         cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf,
+         has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
+         has_moor, anchors, fairleads,
          seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
          parts, f):
     """Total force ``f`` (6,) and its parts (N_PARTS, 6), all in earth axes (moments about
@@ -121,6 +124,10 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
     if has_cur:
         relative_flow_force_into(cur_speed, cur_heading, vx, vy, x[5], 1.0, cur_th, cur_tab,
                                  coef, parts[PART_CURRENT])
+    # slender elements: drag strips with the total body velocity (seed 002 eq. 6.7-6.8)
+    if has_sl:
+        slender_packed_into(j, x, v, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp,
+                            rot, sl_sc, parts[PART_SLENDER])
     # precomputed series
     for q in range(series.shape[0]):
         for i in range(6):
@@ -179,7 +186,7 @@ def _pose_rate(x, v, out):
 def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
               has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading,
               wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf,
-              has_moor,
+              has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, has_moor,
               anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active,
               fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity, t_fair,
               t_anchor, parts_out, status):
@@ -204,6 +211,7 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
     fm = np.zeros(6)
     stiff = np.zeros((6, 6))
     coef = np.zeros(6)
+    sl_sc = np.zeros(6)
     n_pairs = ret_i.shape[0]
     n_k = hist.shape[1] // 2
     s0 = np.zeros(n_pairs)
@@ -254,7 +262,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
         bad = _rhs(2 * n, 0.0, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
+                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4
@@ -288,7 +297,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
         bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
+                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4
@@ -304,7 +314,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
         bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
+                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4
@@ -320,7 +331,8 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
         bad = _rhs(2 * n + 2, 1.0, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
                    ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
+                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
                    active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
         if bad >= 0:
             status[0] = 4

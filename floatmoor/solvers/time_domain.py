@@ -137,6 +137,8 @@ def default_models(built, options=None) -> list[str]:
         names.append("wind")
     if env.current is not None:
         names.append("current")
+    if getattr(getattr(options, "viscous_drift", None), "model", "none") == "slender_elements":
+        names.append("slender_elements")
     from ..forces import GROUPS, REGISTRY
     drop = set()
     for name in exclude:
@@ -307,6 +309,11 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     cur_th = asm.current_table_heading if asm.has_current else np.zeros(1)
     cur_tab = asm.current_table if asm.has_current else np.zeros((1, 6))
     v_wf = asm.wf_velocity if asm.has_wf_velocity else np.zeros((1, 6))
+    sl = getattr(asm, "slender", None)
+    sl_args = ((True,) + tuple(sl) if sl is not None else
+               (False, np.zeros((0, 21)), np.zeros((0, 3), np.int64),
+                np.zeros((2, 0), np.float32), np.zeros((2, 0, 2, 3), np.float32),
+                np.zeros((2, 1, 2, 3), np.float32), np.ones(9), np.zeros((0, 2)), np.zeros(1)))
     motion = np.zeros((n + 1, 6))
     velocity = np.zeros((n + 1, 6))
     t_fair = np.zeros((n + 1, n_lines))
@@ -323,7 +330,7 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
             ret_kernel, asm.ret_i, asm.ret_j, hist, series, bool(asm.has_wind), wind_speed,
             float(asm.wind_heading), wind_th, wind_tab, bool(asm.has_current),
             float(asm.current_speed), float(asm.current_heading), cur_th, cur_tab,
-            bool(asm.has_wf_velocity), v_wf, moor is not None, anchors, fairleads,
+            bool(asm.has_wf_velocity), v_wf, *sl_args, moor is not None, anchors, fairleads,
             seg[0], seg[1], seg[2], seg[3], line_start, cb, seabed, active, fail_time, mbs,
             warm, guard, float(tension_guard), bool(record_forces), motion, velocity, t_fair,
             t_anchor, parts, status)
