@@ -152,6 +152,17 @@ def _current_at(cur_z, cur_speed, z):
     return (1.0 - w) * cur_speed[i] + w * cur_speed[i + 1]
 
 
+
+@njit(cache=True, inline="always")
+def _trilinear(tab, i0, sa, sb, l0, c, w000, w001, w010, w011, w100, w101, w110, w111):
+    """Component ``c`` of a (time, station, level, 3) table, trilinear with the given weights."""
+    return (w000 * tab[i0, sa, l0, c] + w001 * tab[i0, sa, l0 + 1, c]
+            + w010 * tab[i0, sb, l0, c] + w011 * tab[i0, sb, l0 + 1, c]
+            + w100 * tab[i0 + 1, sa, l0, c]
+            + w101 * tab[i0 + 1, sa, l0 + 1, c]
+            + w110 * tab[i0 + 1, sb, l0, c]
+            + w111 * tab[i0 + 1, sb, l0 + 1, c])
+
 @njit(cache=True)
 def slender_force_into(tau, tau_e, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c2, cm, n_strips,
                        st_first, st_count, eta_tab, u_tab, a_tab, has_inertia, lev0, dlev,
@@ -299,46 +310,19 @@ def slender_force_into(tau, tau_e, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c
             w111 = wt * ws * wl
             sa = sf + k0
             sb = sf + k1
-            uw0 = wave_factor * (w000 * u_tab[i0, sa, l0, 0] + w001 * u_tab[i0, sa, l0 + 1, 0]
-                                 + w010 * u_tab[i0, sb, l0, 0] + w011 * u_tab[i0, sb, l0 + 1, 0]
-                                 + w100 * u_tab[i0 + 1, sa, l0, 0]
-                                 + w101 * u_tab[i0 + 1, sa, l0 + 1, 0]
-                                 + w110 * u_tab[i0 + 1, sb, l0, 0]
-                                 + w111 * u_tab[i0 + 1, sb, l0 + 1, 0])
-            uw1 = wave_factor * (w000 * u_tab[i0, sa, l0, 1] + w001 * u_tab[i0, sa, l0 + 1, 1]
-                                 + w010 * u_tab[i0, sb, l0, 1] + w011 * u_tab[i0, sb, l0 + 1, 1]
-                                 + w100 * u_tab[i0 + 1, sa, l0, 1]
-                                 + w101 * u_tab[i0 + 1, sa, l0 + 1, 1]
-                                 + w110 * u_tab[i0 + 1, sb, l0, 1]
-                                 + w111 * u_tab[i0 + 1, sb, l0 + 1, 1])
-            uw2 = wave_factor * (w000 * u_tab[i0, sa, l0, 2] + w001 * u_tab[i0, sa, l0 + 1, 2]
-                                 + w010 * u_tab[i0, sb, l0, 2] + w011 * u_tab[i0, sb, l0 + 1, 2]
-                                 + w100 * u_tab[i0 + 1, sa, l0, 2]
-                                 + w101 * u_tab[i0 + 1, sa, l0 + 1, 2]
-                                 + w110 * u_tab[i0 + 1, sb, l0, 2]
-                                 + w111 * u_tab[i0 + 1, sb, l0 + 1, 2])
+            uw0 = wave_factor * _trilinear(u_tab, i0, sa, sb, l0, 0, w000, w001,
+                                           w010, w011, w100, w101, w110, w111)
+            uw1 = wave_factor * _trilinear(u_tab, i0, sa, sb, l0, 1, w000, w001,
+                                           w010, w011, w100, w101, w110, w111)
+            uw2 = wave_factor * _trilinear(u_tab, i0, sa, sb, l0, 2, w000, w001,
+                                           w010, w011, w100, w101, w110, w111)
             if has_inertia:
-                aw0 = wave_factor * (w000 * a_tab[i0, sa, l0, 0] + w001 * a_tab[i0, sa, l0 + 1, 0]
-                                     + w010 * a_tab[i0, sb, l0, 0]
-                                     + w011 * a_tab[i0, sb, l0 + 1, 0]
-                                     + w100 * a_tab[i0 + 1, sa, l0, 0]
-                                     + w101 * a_tab[i0 + 1, sa, l0 + 1, 0]
-                                     + w110 * a_tab[i0 + 1, sb, l0, 0]
-                                     + w111 * a_tab[i0 + 1, sb, l0 + 1, 0])
-                aw1 = wave_factor * (w000 * a_tab[i0, sa, l0, 1] + w001 * a_tab[i0, sa, l0 + 1, 1]
-                                     + w010 * a_tab[i0, sb, l0, 1]
-                                     + w011 * a_tab[i0, sb, l0 + 1, 1]
-                                     + w100 * a_tab[i0 + 1, sa, l0, 1]
-                                     + w101 * a_tab[i0 + 1, sa, l0 + 1, 1]
-                                     + w110 * a_tab[i0 + 1, sb, l0, 1]
-                                     + w111 * a_tab[i0 + 1, sb, l0 + 1, 1])
-                aw2 = wave_factor * (w000 * a_tab[i0, sa, l0, 2] + w001 * a_tab[i0, sa, l0 + 1, 2]
-                                     + w010 * a_tab[i0, sb, l0, 2]
-                                     + w011 * a_tab[i0, sb, l0 + 1, 2]
-                                     + w100 * a_tab[i0 + 1, sa, l0, 2]
-                                     + w101 * a_tab[i0 + 1, sa, l0 + 1, 2]
-                                     + w110 * a_tab[i0 + 1, sb, l0, 2]
-                                     + w111 * a_tab[i0 + 1, sb, l0 + 1, 2])
+                aw0 = wave_factor * _trilinear(a_tab, i0, sa, sb, l0, 0, w000, w001,
+                                               w010, w011, w100, w101, w110, w111)
+                aw1 = wave_factor * _trilinear(a_tab, i0, sa, sb, l0, 1, w000, w001,
+                                               w010, w011, w100, w101, w110, w111)
+                aw2 = wave_factor * _trilinear(a_tab, i0, sa, sb, l0, 2, w000, w001,
+                                               w010, w011, w100, w101, w110, w111)
             else:
                 aw0 = 0.0
                 aw1 = 0.0
