@@ -229,14 +229,9 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
     f = np.zeros(6)
     mom = np.zeros(6)
     g = np.zeros(6)
-    a1 = np.zeros(6)
-    a2 = np.zeros(6)
-    a3 = np.zeros(6)
-    a4 = np.zeros(6)
-    q1 = np.zeros(6)
-    q2 = np.zeros(6)
-    q3 = np.zeros(6)
-    q4 = np.zeros(6)
+    # RK4 stage slopes: pose rates q[stage] and accelerations a[stage]
+    q = np.zeros((4, 6))
+    a = np.zeros((4, 6))
     for k in range(6):
         hist[k, 0] = v[k]
         hist[k, n_k] = v[k]
@@ -270,10 +265,10 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
             status[1] = n
             status[2] = bad
             return
-        _pose_rate(x, v, q1)
+        _pose_rate(x, v, q[0])
         for k in range(6):
             motion[n, k] = x[k]
-            velocity[n, k] = q1[k]
+            velocity[n, k] = q[0, k]
         for i in range(n_lines):
             tf = math.sqrt(line_out[i, OUT_HF] ** 2 + line_out[i, OUT_VF] ** 2)
             t_fair[n, i] = tf
@@ -289,61 +284,34 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
                 parts_out[r, p, k] = parts[p, k]
         if n == n_steps:
             break
-        _accel(x, v, f, inertia, minv, mom, g, a1)
-        # stage 2
+        _accel(x, v, f, inertia, minv, mom, g, a[0])
+        # stages 2, 3 and 4: at t + dt/2, t + dt/2 and t + dt (force samples 2n+1, 2n+1, 2n+2)
+        for st in range(1, 4):
+            c = 0.5
+            j = 2 * n + 1
+            if st == 3:
+                c = 1.0
+                j = 2 * n + 2
+            for k in range(6):
+                xs[k] = x[k] + c * dt * q[st - 1, k]
+                vs[k] = v[k] + c * dt * a[st - 1, k]
+            bad = _rhs(j, c, dt, xs, vs, const_force, restoring, dl,
+                       has_dl, dq, has_dq, ret_kernel, ret_i, ret_j, s0, s1, series, has_wind,
+                       wind_speed, wind_heading, wind_th, wind_tab, has_cur, cur_speed,
+                       cur_heading, cur_th, cur_tab, has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta,
+                       sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc, has_moor, anchors, fairleads,
+                       seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work,
+                       rot, line_out, fm, stiff, coef, parts, f)
+            if bad >= 0:
+                status[0] = 4
+                status[1] = n
+                status[2] = bad
+                return
+            _pose_rate(xs, vs, q[st])
+            _accel(xs, vs, f, inertia, minv, mom, g, a[st])
         for k in range(6):
-            xs[k] = x[k] + 0.5 * dt * q1[k]
-            vs[k] = v[k] + 0.5 * dt * a1[k]
-        bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
-                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
-                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
-        if bad >= 0:
-            status[0] = 4
-            status[1] = n
-            status[2] = bad
-            return
-        _pose_rate(xs, vs, q2)
-        _accel(xs, vs, f, inertia, minv, mom, g, a2)
-        # stage 3
-        for k in range(6):
-            xs[k] = x[k] + 0.5 * dt * q2[k]
-            vs[k] = v[k] + 0.5 * dt * a2[k]
-        bad = _rhs(2 * n + 1, 0.5, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
-                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
-                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
-        if bad >= 0:
-            status[0] = 4
-            status[1] = n
-            status[2] = bad
-            return
-        _pose_rate(xs, vs, q3)
-        _accel(xs, vs, f, inertia, minv, mom, g, a3)
-        # stage 4
-        for k in range(6):
-            xs[k] = x[k] + dt * q3[k]
-            vs[k] = v[k] + dt * a3[k]
-        bad = _rhs(2 * n + 2, 1.0, dt, xs, vs, const_force, restoring, dl, has_dl, dq, has_dq,
-                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
-                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
-        if bad >= 0:
-            status[0] = 4
-            status[1] = n
-            status[2] = bad
-            return
-        _pose_rate(xs, vs, q4)
-        _accel(xs, vs, f, inertia, minv, mom, g, a4)
-        for k in range(6):
-            x[k] += dt / 6.0 * (q1[k] + 2.0 * q2[k] + 2.0 * q3[k] + q4[k])
-            v[k] += dt / 6.0 * (a1[k] + 2.0 * a2[k] + 2.0 * a3[k] + a4[k])
+            x[k] += dt / 6.0 * (q[0, k] + 2.0 * q[1, k] + 2.0 * q[2, k] + q[3, k])
+            v[k] += dt / 6.0 * (a[0, k] + 2.0 * a[1, k] + 2.0 * a[2, k] + a[3, k])
         for k in range(6):
             if not (math.isfinite(x[k]) and math.isfinite(v[k])):
                 status[0] = 1
