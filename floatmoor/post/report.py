@@ -298,6 +298,17 @@ class _Table:
         return "\n".join(lines) + "\n"
 
 
+def _check_cells(c, j: int, checked: bool) -> list[str]:
+    """The design-check cells of line ``j`` of a check Dataset (kN, factors, utilisation,
+    verdict, simple safety factor), shared by the ULS and ALS tables."""
+    return [_fmt(c["t_c_mean"].values[j] * _KN), _fmt(c["t_c_dyn"].values[j] * _KN),
+            _fmt(c["t_c"].values[j] * _KN), _fmt(c["s_c"].values[j] * _KN),
+            _fmt(c["gamma_mean"].values[j], 2), _fmt(c["gamma_dyn"].values[j], 2),
+            _fmt(c["design_tension"].values[j] * _KN), _fmt(c["utilisation"].values[j], 3),
+            ("PASS" if c["passed"].values[j] else "FAIL") if checked else "failed line",
+            _fmt(c["safety_factor"].values[j], 2)]
+
+
 def _line_table(checks, ct, stats, ls, als_detail=None):
     c = checks.sel(limit_state=ls)
     if ls == "ALS" and als_detail is not None:
@@ -317,12 +328,7 @@ def _line_table(checks, ct, stats, ls, als_detail=None):
                     _fmt(ct["gumbel_p90"].values[j] * _KN)]
         else:
             row += ["", "", "", "", ""]
-        row += [_fmt(c["t_c_mean"].values[j] * _KN), _fmt(c["t_c_dyn"].values[j] * _KN),
-                _fmt(c["t_c"].values[j] * _KN), _fmt(c["s_c"].values[j] * _KN),
-                _fmt(c["gamma_mean"].values[j], 2), _fmt(c["gamma_dyn"].values[j], 2),
-                _fmt(c["design_tension"].values[j] * _KN), _fmt(c["utilisation"].values[j], 3),
-                ("PASS" if c["passed"].values[j] else "FAIL") if checked else "failed line",
-                _fmt(c["safety_factor"].values[j], 2)]
+        row += _check_cells(c, j, checked)
         if bool(c["common_factor_applied"].values[j]):
             row[11] += " (common 1.3)"
         rows.append(row)
@@ -389,12 +395,7 @@ def _line_table_als(checks, c, als_detail):
                     _fmt(act["gumbel_p90"].values[k] * _KN)]
         else:
             row += ["", "", "", "", ""]
-        row += [_fmt(c["t_c_mean"].values[j] * _KN), _fmt(c["t_c_dyn"].values[j] * _KN),
-                _fmt(c["t_c"].values[j] * _KN), _fmt(c["s_c"].values[j] * _KN),
-                _fmt(c["gamma_mean"].values[j], 2), _fmt(c["gamma_dyn"].values[j], 2),
-                _fmt(c["design_tension"].values[j] * _KN), _fmt(c["utilisation"].values[j], 3),
-                ("PASS" if c["passed"].values[j] else "FAIL") if checked else "failed line",
-                _fmt(c["safety_factor"].values[j], 2)]
+        row += _check_cells(c, j, checked)
         rows.append(row)
         hl.append(bool(c["governing"].values[j]))
     caption = (f"ALS: per-line tensions of the seeds with line(s) "
