@@ -16,9 +16,33 @@ Friction models are registered by name in :data:`FRICTION_MODELS`:
     beyond (the single-parameter transition with ``f(0) = 0, f(1) = 1, f'(1) = 0``).  With
     ``mu_a = mu_l`` the force opposes the velocity with magnitude ``mu N f``.  The ramp velocity
     defaults to ``v_R = D / T_z`` (nominal diameter over the zero-crossing period).  NOTE: the
-    seed text gives the equations only as figures; the double-quadratic *unloading* branch
-    (eq. 9-65) and the exact factor in eq. 9-63 could not be read and are not reproduced; the
-    ramp velocity can be given explicitly.
+    seed text gives the equations only as figures; the exact factor in eq. 9-63 could not be
+    read (the ramp velocity can be given explicitly).  This model has no memory: the same
+    ``f`` whether the speed grows or falls (see ``velocity_ramp_double_quadratic``).
+``velocity_ramp_double_quadratic``
+    As ``velocity_ramp`` (same force direction, axial and lateral coefficients and ``v_R``),
+    with the double-quadratic transition that seed 001 (Aqwa) introduces "to smooth the
+    variation of friction when the magnitude of node velocity decreases compared to the
+    previous time step" (eq. 9-65, figure 9.10).  RECONSTRUCTED, NOT TRANSCRIBED: eq. 9-65 is a
+    figure in the seed and was not found in any public source searched (Aqwa theory manual
+    pages, Ostergaard et al., OrcaFlex/MoorDyn documentation; 2026-11-21).  The form used is
+    the one fixed by the constraints stated in words: (i) from rest and while the speed grows
+    the transition is eq. 9-64, ``f = 2x - x^2`` (``f(0) = 0, f(1) = 1, f'(1) = 0``), ``f = 1``
+    for ``x = u / v_R >= 1``; (ii) a second quadratic is used when the speed is lower than at
+    the previous (accepted) time step; (iii) ``f`` varies continuously in time ("smooth the
+    variation").  Each branch is the quadratic through the state of the previous step
+    ``(x_p, f_p)`` with its vertex at the end it runs to: loading (``x >= x_p``)
+    ``f = 1 - (1 - f_p) ((1 - x) / (1 - x_p))^2`` (vertex (1, 1), the mirror of
+    ``f'(1) = 0``), unloading (``x < x_p``) ``f = f_p (x / x_p)^2`` (vertex (0, 0): the friction
+    fades out with zero slope as the node comes to rest, which is the smoothing of the velocity
+    reversal).  From full sliding the unloading branch is ``x^2``, the point reflection of
+    ``2x - x^2``: the two quadratics of the figure.  Since a quadratic with a given vertex is
+    fixed by one point, anchoring at the previous step is the same as anchoring at the last
+    turning point while the speed changes monotonically (hysteresis loops between the
+    envelopes ``x^2`` and ``2x - x^2``, slopes bounded by ``4 mu N / v_R``).  Memory: the speed
+    and ``f`` of the last accepted step per node (reset when the node leaves the seabed).  The
+    rule uses the speed magnitude, as the seed does: a velocity that reverses within one step
+    without passing near rest keeps its friction level (use steps that resolve the reversal).
 ``displacement_velocity_ramp``
     Seed 000 (Lu 2012, sec. 2.2.2 and figure 8): per direction (axial, lateral) a signed
     coefficient ``c`` in [-1, 1]; nodes slower than 1e-8 m/s keep the previous ``c`` (stick);
@@ -45,7 +69,8 @@ from ..line_types import LineType
 __all__ = ["FESegment", "PointBody", "Seabed", "Friction", "FRICTION_MODELS", "SEABED_MODELS",
            "FELineSpec"]
 
-FRICTION_MODELS = {"none": 0, "velocity_ramp": 1, "displacement_velocity_ramp": 2}
+FRICTION_MODELS = {"none": 0, "velocity_ramp": 1, "displacement_velocity_ramp": 2,
+                   "velocity_ramp_double_quadratic": 4}
 """Registry: friction model name -> kernel code (the code never appears in user input)."""
 
 SEABED_MODELS = ("springs", "mud_layer")

@@ -34,10 +34,13 @@ N_EL = 5
 S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC, S_BEND = range(8)
 N_S = 8
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
-FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC = 0, 1, 2, 3
+FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
-# branch_axial, branch_lateral (seed-000 model: 0 stick, +-1 sliding direction in this step)
+# branch_axial, branch_lateral (seed-000 model: 0 stick, +-1 sliding direction in this step).
+# The double-quadratic velocity ramp (FR_VDQ) keeps the horizontal speed (m/s) and the
+# transition factor f of the last accepted step in columns FS_UPREV and FS_FPREV.
 N_FS = 8
+FS_UPREV, FS_FPREV = 0, 1
 V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
 D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
 V_SB = 0.01             # seabed damping switches off between -V_SB and +V_SB (m/s)
@@ -131,6 +134,65 @@ def _friction_dirs(qx, qy):
         ax = 1.0
         ay = 0.0
     return ax, ay, -ay, ax
+
+
+@njit(cache=True)
+def dq_transition(x, xp, fp):
+    """Double-quadratic transition factor (seed 001 sec. 9.x, eq. 9-62/9-64/9-65 as
+    reconstructed in :mod:`floatmoor.mooring.fe.config`) and its slope ``df/dx``.
+
+    ``x = u / v_R`` (current speed over the ramp velocity), ``xp, fp``: the same and the factor
+    at the last accepted step.  ``f = 1`` for ``x >= 1``.  Below: with the anchor
+    ``(xa, fa) = (min(xp, 1), fp)`` (``fa`` clipped to the reachable band
+    ``[xa^2, 2 xa - xa^2]``), the loading branch (``x >= xa``: speed not lower than at the last
+    step) is the quadratic with its vertex at ``(1, 1)`` through the anchor,
+    ``1 - (1 - fa) ((1 - x) / (1 - xa))^2``, and the unloading branch (``x < xa``) the
+    quadratic with its vertex at ``(0, 0)`` through the anchor, ``fa (x / xa)^2``.  From rest
+    (anchor (0, 0)) the loading branch is ``2x - x^2`` (eq. 9-64); from full sliding (anchor
+    (1, 1)) the unloading branch is ``x^2``.  ``f`` is continuous in ``x`` (kink at ``xa``), so a
+    Newton iteration needs no frozen branch.
+    """
+    if x >= 1.0:
+        return 1.0, 0.0
+    xa = xp if xp < 1.0 else 1.0
+    if xa <= 0.0:
+        return x * (2.0 - x), 2.0 - 2.0 * x
+    fa = fp
+    lo = xa * xa
+    hi = xa * (2.0 - xa)
+    if fa < lo:
+        fa = lo
+    elif fa > hi:
+        fa = hi
+    if x >= xa:
+        c = (1.0 - fa) / ((1.0 - xa) * (1.0 - xa))
+        return 1.0 - c * (1.0 - x) * (1.0 - x), 2.0 * c * (1.0 - x)
+    c = fa / (xa * xa)
+    return c * x * x, 2.0 * c * x
+
+
+@njit(cache=True)
+def _dq_g(u, vR, up, fp):
+    """``g = f(u / v_R) / u`` (s/m) of the double-quadratic ramp and ``dg/du``, without 0/0 at
+    rest (the friction force is ``-N g (mu_a v_a a + mu_l v_l b)``)."""
+    x = u / vR
+    if x >= 1.0:
+        return 1.0 / u, -1.0 / (u * u)
+    xa = up / vR
+    if xa > 1.0:
+        xa = 1.0
+    if xa <= 0.0:
+        # 2x - x^2 from rest: g = (2 - x) / v_R
+        return (2.0 - x) / vR, -1.0 / (vR * vR)
+    if x < xa:
+        # unloading fa (x / xa)^2: g = c x / v_R, linear in u
+        fa = min(max(fp, xa * xa), xa * (2.0 - xa))
+        c = fa / (xa * xa)
+        return c * x / vR, c / (vR * vR)
+    # loading, x >= xa > 0, so u > 0
+    f, df = dq_transition(x, xa, fp)
+    g = f / u
+    return g, (df / vR - g) / u
 
 
 @njit(cache=True)
@@ -337,10 +399,12 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
                 ax, ay, bx, by = _friction_dirs(qx, qy)
                 va = v[i, 0] * ax + v[i, 1] * ay
                 vl = v[i, 0] * bx + v[i, 1] * by
-                if fric == FR_VEL:
+                if fric == FR_VEL or fric == FR_VDQ:
                     vR = S[S_VR]
                     u = math.sqrt(va * va + vl * vl)
-                    if u < vR:
+                    if fric == FR_VDQ:
+                        g, gp = _dq_g(u, vR, fs[i, FS_UPREV], fs[i, FS_FPREV])
+                    elif u < vR:
                         g = 2.0 / vR - u / (vR * vR)
                         gp = -1.0 / (vR * vR)
                     else:
@@ -492,7 +556,21 @@ def friction_decide(r, v, fric, fs, zc):
 @njit(cache=True)
 def friction_commit(r, v, q, fric, fs, P, S, zc):
     """End of an accepted time step: store the seed-000 friction coefficients and the last
-    sliding velocities; a reversal of the sliding direction resets the reference position."""
+    sliding velocities; a reversal of the sliding direction resets the reference position.
+    Double-quadratic ramp: store the horizontal speed and the transition factor of the step
+    (zero for nodes off the seabed: a node touching down starts from rest, eq. 9-67)."""
+    if fric == FR_VDQ:
+        vR = S[S_VR]
+        for i in range(r.shape[0]):
+            if zc - r[i, 2] > 0.0 and P[i, NP_KS] > 0.0:
+                u = math.sqrt(v[i, 0] * v[i, 0] + v[i, 1] * v[i, 1])
+                f, df = dq_transition(u / vR, fs[i, FS_UPREV] / vR, fs[i, FS_FPREV])
+                fs[i, FS_UPREV] = u
+                fs[i, FS_FPREV] = f
+            else:
+                fs[i, FS_UPREV] = 0.0
+                fs[i, FS_FPREV] = 0.0
+        return
     if fric != FR_DISPVEL:
         return
     n = r.shape[0]

@@ -16,6 +16,9 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
         seabed: {model: springs, stiffness: 2.7e5, damping: 2.7e4}
                                        # or {model: mud_layer, mud_depth: 0.1}
         friction: {model: velocity_ramp, mu_axial: 0.7, mu_lateral: 1.0, zero_crossing_period: 10.0}
+                                       # model: none | velocity_ramp |
+                                       #   velocity_ramp_double_quadratic |
+                                       #   displacement_velocity_ramp (config.FRICTION_MODELS)
 
 :func:`parse_fe_options` returns :class:`FEOptions`; the scene builder passes them on to
 :func:`floatmoor.mooring.fe.from_system.spec_from_linedef` (:meth:`FEOptions.spec_kw`),
