@@ -432,9 +432,13 @@ class FELine:
             if st < 0:
                 msg = {-1: f"no Newton convergence in {self.maxit} iterations",
                        -2: "singular iteration matrix", -3: "NaN in the line state"}[st]
-                self._fail(float(self._info[0]), int(self._info[1]), msg,
-                           f"reduce dt (the step was already halved {self.MAX_SPLIT} times), "
-                           "add elements, or check for a slack line hit by a snap load")
+                remedy = (f"reduce dt (the step was already halved {self.MAX_SPLIT} times), "
+                          "add elements, or check for a slack line hit by a snap load")
+                if self.E_dynamic[:, K.EL_C1].max() > self.STIFF_EA:
+                    remedy += (f"; the dynamic EA reaches {self.E_dynamic[:, K.EL_C1].max():.3g}"
+                               " N: set axial_stiffness_limit (e.g. 3.84e11 N) for a "
+                               "practically inextensible line")
+                self._fail(float(self._info[0]), int(self._info[1]), msg, remedy)
         else:
             rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
             rf0[:] = self.r[-1]
@@ -464,6 +468,9 @@ class FELine:
         return self._ends[3:6].copy()
 
     MAX_SPLIT = 5
+    STIFF_EA = 1e12
+    """Dynamic EA (N) above which a failing step suggests ``axial_stiffness_limit`` (the OC3
+    line with EA = 3.84e14 N does not converge in dynamics without it; see RESULTS.md)."""
 
     def accept(self):
         """Commit the state of the last :meth:`advance`."""

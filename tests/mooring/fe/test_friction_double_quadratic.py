@@ -306,3 +306,4 @@ def test_double_quadratic_runs_without_jit():
                              capture_output=True, text=True, check=True)
         vals.append([float(x) for x in out.stdout.strip().splitlines()[-1].split()])
     assert vals[0] == pytest.approx(vals[1], rel=1e-9)
+
