@@ -217,6 +217,22 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
                                   {"units": "N", "long_name": "tension at the anchor"})
         data["mbs"] = (("line",), np.asarray(built.mooring.mbs, float),
                        {"units": "N", "long_name": "minimum breaking strength (weakest segment)"})
+        fe_lines = list(getattr(r, "fe_lines", []) or [])
+        if fe_lines:
+            data["line_tension"][2]["long_name"] = (
+                "effective tension at the fairlead (finite-element lines: FE end force; "
+                "others: quasi-static catenary)")
+            data["line_model"] = (("line",), np.array(
+                ["finite-element" if n in fe_lines else "quasi-static" for n in r.line_names]),
+                {"long_name": "line model"})
+            desc = {"max_tension_along_line": ("N", "largest element tension along the line "
+                                               "(finite-element lines; NaN: quasi-static)"),
+                    "grounded_length": ("m", "unstretched length from the anchor to the last "
+                                        "node in seabed contact (finite-element lines)"),
+                    "touchdown_tension": ("N", "tension of the element above the touchdown node "
+                                          "(finite-element lines)")}
+            for k, (unit, ln) in desc.items():
+                data[k] = (("time", "line"), r.fe_records[k], {"units": unit, "long_name": ln})
     if r.wave_elevation is not None:
         data["wave_elevation"] = (("time",), r.wave_elevation,
                                   {"units": "m", "long_name": "undisturbed wave elevation at the "
@@ -249,6 +265,19 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
                             "not follow the body's yaw or offset",
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
     })
+    if getattr(r, "fe_lines", None):
+        ds.attrs["fe_lines"] = list(r.fe_lines)
+        ds.attrs["fe_coupling"] = ("finite-element lines coupled to the body: one "
+                                   "generalised-alpha advance of every FE line per body step "
+                                   "(staggered); within the RK4 step the FE force is the value "
+                                   "at the step start plus the change of the lines' "
+                                   "quasi-static catenary force (floatmoor/solvers/"
+                                   "fe_coupling.py)")
+        for k in ("fe_substeps", "fe_newton_iterations", "fe_step_halvings"):
+            if k in r.info:
+                ds.attrs[k] = int(r.info[k])
+        if "fe_elements" in r.info:
+            ds.attrs["fe_elements"] = list(r.info["fe_elements"])
     for k, v in _versions().items():
         ds.attrs[f"version_{k}"] = v
     return ds

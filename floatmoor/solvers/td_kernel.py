@@ -51,7 +51,7 @@ from ..forces.slender_kernels import slender_packed_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.system import system_force_kernel
 
-__all__ = ["td_kernel", "STATUS_OK", "STATUS_NAN", "STATUS_GUARD", "STATUS_TENSION",
+__all__ = ["td_kernel", "td_steps", "td_scratch", "start_state", "STATUS_OK", "STATUS_NAN", "STATUS_GUARD", "STATUS_TENSION",
            "STATUS_CATENARY"]
 
 STATUS_OK, STATUS_NAN, STATUS_GUARD, STATUS_TENSION, STATUS_CATENARY = range(5)
@@ -64,10 +64,12 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
          has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
          has_moor, anchors, fairleads,
          seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
-         parts, f):
+         has_mcorr, mcorr, parts, f):
     """Total force ``f`` (6,) and its parts (N_PARTS, 6), all in earth axes (moments about
     the displaced reference point), at sample j (time j dt/2), stage fraction c, pose ``x`` and
-    yaw-frame velocity ``v``.  Returns -1, or the index of a line whose catenary failed."""
+    yaw-frame velocity ``v``.  ``mcorr`` (6,) is added to the mooring force when ``has_mcorr``
+    (the dynamic part of coupled FE lines, :mod:`floatmoor.solvers.fe_coupling`).  Returns -1,
+    or the index of a line whose catenary failed."""
     cy = math.cos(x[5])
     sy = math.sin(x[5])
     for p in range(parts.shape[0]):
@@ -88,6 +90,9 @@ def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_ker
             return bad
         for i in range(6):
             parts[PART_MOORING, i] = fm[i]
+        if has_mcorr:
+            for i in range(6):
+                parts[PART_MOORING, i] += mcorr[i]
     # damping on the yaw-frame velocities
     if has_dl:
         for i in range(6):
@@ -202,43 +207,75 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
     (earth axes) removed from the body velocity in the wind and current relative velocity when
     ``has_vwf`` (else a (1, 6) dummy).
     """
-    n_parts = parts_out.shape[1]
-    parts = np.zeros((n_parts, 6))
-    work = np.zeros(64)
-    rot = np.zeros((3, 3))
-    n_lines = anchors.shape[0]
-    line_out = np.zeros((n_lines, 10))
-    fm = np.zeros(6)
-    stiff = np.zeros((6, 6))
-    coef = np.zeros(6)
-    sl_sc = np.zeros(6)
-    n_pairs = ret_i.shape[0]
-    n_k = hist.shape[1] // 2
-    s0 = np.zeros(n_pairs)
-    s1 = np.zeros(n_pairs)
+    (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
+     a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])
     x = x0.copy()
     v = v0.copy()
-    # pose rate -> yaw-frame velocity (horizontal velocity only: roll/pitch rates are already
-    # about the yaw-following axes)
+    start_state(x0, v0, x, v, hist)
+    status[0] = 0
+    status[1] = 0
+    status[2] = 0
+    td_steps(0, n_steps + 1, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
+             dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
+             wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
+             has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp,
+             has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+             active, fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity,
+             t_fair, t_anchor, parts_out, status, False, mcorr, x, v, s0, s1, parts, work, rot,
+             line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q, a)
+
+
+@njit(cache=True)
+def start_state(x0, v0, x, v, hist):
+    """Start state from pose ``x0`` and pose rate ``v0``: ``x`` the pose, ``v`` the yaw-frame
+    velocity (horizontal velocity turned; roll/pitch rates are already about the yaw-following
+    axes); the history ring buffer ``hist`` starts with it."""
+    for k in range(6):
+        x[k] = x0[k]
+        v[k] = v0[k]
     cy0 = math.cos(x[5])
     sy0 = math.sin(x[5])
     v[0] = cy0 * v0[0] + sy0 * v0[1]
     v[1] = -sy0 * v0[0] + cy0 * v0[1]
-    xs = np.zeros(6)
-    vs = np.zeros(6)
-    f = np.zeros(6)
-    mom = np.zeros(6)
-    g = np.zeros(6)
-    # RK4 stage slopes: pose rates q[stage] and accelerations a[stage]
-    q = np.zeros((4, 6))
-    a = np.zeros((4, 6))
+    n_k = hist.shape[1] // 2
     for k in range(6):
         hist[k, 0] = v[k]
         hist[k, n_k] = v[k]
-    status[0] = 0
-    status[1] = 0
-    status[2] = 0
-    for n in range(n_steps + 1):
+
+
+@njit(cache=True)
+def td_scratch(n_parts, n_lines, n_pairs):
+    """Work arrays of :func:`td_steps` (allocated once per run, outside the step loop):
+    ``(mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
+    a)`` in the order of its arguments."""
+    return (np.zeros(6), np.zeros(n_pairs), np.zeros(n_pairs), np.zeros((n_parts, 6)),
+            np.zeros(64), np.zeros((3, 3)), np.zeros((n_lines, 10)), np.zeros(6),
+            np.zeros((6, 6)), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6),
+            np.zeros(6), np.zeros(6), np.zeros((4, 6)), np.zeros((4, 6)))
+
+
+@njit(cache=True)
+def td_steps(n_first, n_last, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
+             dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
+             wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
+             has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp,
+             has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
+             active, fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity,
+             t_fair, t_anchor, parts_out, status, has_mcorr, mcorr, x, v, s0, s1, parts, work,
+             rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q, a):
+    """Steps ``n_first .. n_last - 1`` of the loop of :func:`td_kernel` (resumable: the state
+    ``x, v, hist, s0`` and the line states ``active, warm`` are carried in the arrays).
+
+    Step ``n``: record the outputs at ``t_n = n dt`` (row ``n``), then (unless ``n ==
+    n_steps``) one RK4 step to ``t_{n+1}``.  ``mcorr`` (6,), when ``has_mcorr``, is added to the
+    mooring force at every stage of these steps (held constant).  Sets ``status`` and returns on
+    failure.  The remaining arguments are scratch arrays (:func:`td_scratch`).
+    """
+    n_parts = parts_out.shape[1]
+    n_lines = anchors.shape[0]
+    n_pairs = ret_i.shape[0]
+    n_k = hist.shape[1] // 2
+    for n in range(n_first, n_last):
         t = n * dt
         if has_moor:
             for i in range(n_lines):
@@ -259,7 +296,7 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
                    wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
                    v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
                    has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-                   active, warm, work, rot, line_out, fm, stiff, coef, parts, f)
+                   active, warm, work, rot, line_out, fm, stiff, coef, has_mcorr, mcorr, parts, f)
         if bad >= 0:
             status[0] = 4
             status[1] = n
@@ -301,7 +338,7 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
                        cur_heading, cur_th, cur_tab, has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta,
                        sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc, has_moor, anchors, fairleads,
                        seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work,
-                       rot, line_out, fm, stiff, coef, parts, f)
+                       rot, line_out, fm, stiff, coef, has_mcorr, mcorr, parts, f)
             if bad >= 0:
                 status[0] = 4
                 status[1] = n

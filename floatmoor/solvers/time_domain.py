@@ -76,6 +76,8 @@ class Assembly:
     omega_max: float = 0.0
     relative_velocity: str = "low_frequency"
     wave_yaw: float = 0.0
+    fe: object = None
+    """The finite-element lines (:class:`floatmoor.solvers.fe_coupling.FECoupling`) or None."""
 
     @property
     def wf_velocity(self):
@@ -105,6 +107,11 @@ class TimeDomainResult:
     wall_time: float = 0.0
     setup_time: float = 0.0
     info: dict = field(default_factory=dict)
+    fe_lines: list = field(default_factory=list)
+    """Names of the lines modelled with finite elements (coupled; empty: all quasi-static)."""
+    fe_records: dict | None = None
+    """FE channels (n, n_lines), NaN for quasi-static lines: ``max_tension_along_line``,
+    ``grounded_length``, ``touchdown_tension`` (N, m, N); None without FE lines."""
 
 
 def default_models(built, options=None) -> list[str]:
@@ -243,9 +250,21 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
             quadratic_damping=asm.damping_quadratic if asm.has_damping_quadratic else None,
             radiation="radiation" in active, a_inf=a_inf, yaw0=ctx.yaw0, file=v.file)
         asm.has_wf_velocity = True
+    # finite-element lines (coupled; only imported when the scene selects some)
+    fe = None
+    lm = getattr(built.mooring, "line_models", None)
+    if "mooring" in active and lm is not None and lm.any_finite_element:
+        from .fe_coupling import setup as fe_setup
+        fe = fe_setup(built, pose=x0, fail_time=active["mooring"].fail_time, options=options,
+                      dt=float(dt))
+        if fe is not None and start_pose is None:
+            from .fe_coupling import start_equilibrium
+            x0 = start_equilibrium(fe, built.mooring, x0=x0, hydrostatic_stiffness=C,
+                                   external_force=asm.const_force + mean_env)
+            built.mooring.warm[:] = 0.0
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
                     inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
-                    relative_velocity=mode, wave_yaw=ctx.yaw0)
+                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe)
 
 
 def _guard_limits(built) -> np.ndarray:
@@ -337,7 +356,21 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     # one compiled signature: C-contiguous, writeable arrays (frozen model arrays are read-only)
     args = tuple(np.require(x, requirements=("C", "W")) if isinstance(x, np.ndarray) else x
                  for x in args)
-    td_kernel(*args)
+    fe_records = None
+    fe_info = {}
+    if a.fe is None:
+        td_kernel(*args)
+    else:
+        from .fe_coupling import FE_RECORDS, raise_fe_status, run as fe_run
+        fe_status, fe_out = fe_run(a.fe, args, x0=x0, n_lines=n_lines)
+        raise_fe_status(a.fe, fe_status)
+        status = args[-1]
+        status[:] = fe_status[:3]
+        fe_records = dict(zip(FE_RECORDS, fe_out))
+        fe_info = {"fe_substeps": int(a.fe.substeps),
+                   "fe_newton_iterations": int(a.fe.mooring.counters[:, 0].sum()),
+                   "fe_step_halvings": int(a.fe.mooring.counters[:, 1].sum()),
+                   "fe_elements": [int(ln.n_nodes - 1) for ln in a.fe.mooring.lines]}
     (motion, velocity, t_fair, t_anchor, parts, status) = args[-6:]
     wall = _time.perf_counter() - t0
     _raise_on_status(status, dt, line_names, mbs, tension_guard, guard)
@@ -364,7 +397,9 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
                             info={"omega_max": a.omega_max,
                                   "relative_velocity": a.relative_velocity,
                                   "wf_velocity_removed": bool(asm.has_wf_velocity),
-                                  "wave_heading_yaw": a.wave_yaw})
+                                  "wave_heading_yaw": a.wave_yaw, **fe_info},
+                            fe_lines=[] if a.fe is None else list(a.fe.names),
+                            fe_records=fe_records)
 
 
 def _raise_on_status(status, dt, line_names, mbs, tension_guard, guard):

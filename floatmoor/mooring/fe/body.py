@@ -46,7 +46,8 @@ class FEMooring:
         self._line_forces = np.zeros((len(self.lines), 3))
 
     @classmethod
-    def from_system(cls, system, line_models=None, *, pose=None, fast: bool = True):
+    def from_system(cls, system, line_models=None, *, pose=None, fast: bool = True,
+                    current=None, line_types=None):
         """The FE lines of a :class:`~floatmoor.mooring.MooringSystem` as chosen by the scene.
 
         Parameters
@@ -58,6 +59,13 @@ class FEMooring:
             active line with default options).
         pose : (6,), optional
             Body pose of the initial fairlead positions (default zero), m and rad.
+        current : dict, optional
+            ``current_z``, ``current_speed``, ``current_heading`` of every line
+            (:class:`FELineSpec`; default no current).
+        line_types : mapping name -> LineType, optional
+            The scene's line types, for the hydrodynamic coefficients (``cdn, cdt, can, cat``)
+            of the segments (default ``LineType`` defaults, see
+            :func:`~floatmoor.mooring.fe.from_system.spec_from_linedef`).
 
         Returns
         -------
@@ -80,7 +88,9 @@ class FEMooring:
         lines = [system.lines[system.names.index(n)] for n in names]
         specs = [spec_from_linedef(ld, water_depth=system.water_depth, pose=pose,
                                    water_density=system.water_density, gravity=system.gravity,
-                                   **opts.spec_kw(system.water_depth)) for ld in lines]
+                                   line_types=line_types, **opts.spec_kw(system.water_depth),
+                                   **(current or {}))
+                 for ld in lines]
         fm = cls(specs, [ld.fairlead for ld in lines], pose0=pose, fast=fast, **opts.line_kw())
         fm.options = opts
         return fm, names

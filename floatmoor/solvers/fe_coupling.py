@@ -1,0 +1,395 @@
+"""Finite-element mooring lines coupled to the 6-DOF time-domain solver (issue 9, coupling a).
+
+A scene selects FE lines with ``mooring: {model: finite-element}`` (all lines) or per line
+``lines[i].model`` (:mod:`floatmoor.mooring.fe.options`).  :func:`setup` builds them
+(:class:`floatmoor.mooring.fe.body.FEMooring`, all lines of the body advanced in one numba call
+per body step, :mod:`floatmoor.mooring.fe.multi`); :func:`run` integrates body and lines in
+one numba kernel (:func:`td_fe_kernel`) that calls the resumable RK4 step of the quasi-static
+solver (:func:`floatmoor.solvers.td_kernel.td_steps`) once per body step.  Runs without FE lines
+never import this module: the quasi-static kernel is unchanged (bit-identical results) and its
+compilation does not include the FE kernels.
+
+Coupling scheme (staggered, one FE advance per body step)
+---------------------------------------------------------
+Over the body step t_n -> t_{n+1} the mooring force at every RK4 stage (pose x_s) is
+
+    F = F_QS,others(x_s) + F_QS,FE(x_s) + [F_FE(t_n) - F_QS,FE(x_n)]
+
+where F_QS,FE is the elastic catenary of the FE lines themselves (the quasi-static kernel
+evaluates it anyway) and F_FE(t_n) the generalised force of the FE lines in their accepted
+state at t_n.  The catenary carries the stage-to-stage change of the quasi-static part exactly
+(4th order, as for quasi-static lines); only the dynamic part D = F_FE - F_QS,FE (line drag
+and inertia, dynamic stiffness, seabed friction, the small FE-vs-catenary static difference) is
+held constant over the step, a first-order lag of dt/2 in D alone.  After the body step the FE
+lines are advanced to t_{n+1} (generalised-alpha, ``finite_element.dt`` / ``substeps`` line
+steps per body step) with the fairleads at the new pose and moving with the new velocity (the
+Euler-angle rates turned into the angular velocity in earth axes,
+omega = [phi' cos(psi) cos(theta) - theta' sin(psi), phi' sin(psi) cos(theta) + theta' cos(psi),
+psi' - phi' sin(theta)], so the fairlead velocity is the exact rate of its position) and the
+state is accepted.  Nothing is iterated: one FE advance per body step, as many as a decoupled
+run.  Mooring damping is not added anywhere; it comes out of the line drag in D.  The lag
+gives an error of first order in dt in the dynamic part only (measured: tests and
+benchmarks/RESULTS.md); a predictor-corrector (a second FE advance per step) was not used
+because the FE lines are >90 % of the run time.
+
+Start: the body at the static equilibrium of the quasi-static model (as for quasi-static
+lines), the FE lines in their own static equilibrium with friction at that pose
+(:meth:`FEMooring.solve_static`), at rest.  The small static difference FE vs catenary (0.02 %
+of the tension with 50 elements) enters D and the body settles at the FE equilibrium.
+
+Scope and limits
+----------------
+* Lines not selected as finite-element stay quasi-static inside the kernel, failures included.
+  A FE line with a failure time (``forces.line_failure``) is refused (SceneError): releasing a
+  FE line end is not implemented.  Lines removed from the start (``failed_lines``) are simply
+  absent.
+* The FE lines see the scene's current (profile and heading, relative-velocity drag); wave
+  kinematics on the lines are not modelled in coupled runs.
+* Outputs for FE lines: ``line_tension`` / ``anchor_tension`` are the FE fairlead and anchor
+  tensions (magnitude of the end forces); ``max_tension_along_line``, ``grounded_length`` and
+  ``touchdown_tension`` (NaN for quasi-static lines) come from
+  :func:`floatmoor.mooring.fe.kernels.record_into` at every step.
+* A failing FE step raises NumericalError naming the time, the line and node and a remedy; the
+  tension guard (``tension_guard`` x MBS) also applies to the FE tensions.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ..core.errors import NumericalError, SceneError
+from ..metocean.current import current_speed
+from ..mooring.fe import kernels as K
+from ..mooring.fe.body import FEMooring
+from ..mooring.fe.line import FELine
+from ..mooring.fe.multi import body_accept, body_advance, typed_lists
+from ..mooring.system import system_force_kernel
+from .td_kernel import _pose_rate, start_state, td_scratch, td_steps
+
+__all__ = ["FECoupling", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
+
+STATUS_FE = 5
+"""Status code of :func:`td_fe_kernel` when a FE line step failed (status[2] the FE line,
+status[3] the code of :func:`floatmoor.mooring.fe.kernels.ga_advance`)."""
+
+FE_RECORDS = ("max_tension_along_line", "grounded_length", "touchdown_tension")
+
+
+@dataclass(kw_only=True)
+class FECoupling:
+    """The FE lines of a run: ``mooring`` the :class:`FEMooring`, ``names`` its lines,
+    ``index`` their positions in the mooring system (int64), ``substeps`` line steps per body
+    step."""
+
+    mooring: FEMooring
+    names: list
+    index: np.ndarray
+    substeps: int
+    options: object
+
+
+def _current_kw(env, water_depth: float) -> dict:
+    cur = getattr(env, "current", None)
+    if cur is None:
+        return {}
+    z = np.linspace(-water_depth, 0.0, 61)
+    if cur.profile == "piecewise_linear":
+        z = np.union1d(z, np.clip(np.asarray(cur.z, float), -water_depth, 0.0))
+    u = current_speed(cur, z, water_depth)
+    return {"current_z": tuple(float(v) for v in z), "current_speed": tuple(float(v) for v in u),
+            "current_heading": float(cur.heading)}
+
+
+def _line_types(built, system) -> dict:
+    """The scene's line types by name (for the drag and added-mass coefficients of the FE
+    segments; the quasi-static system keeps only their names): the default library extended
+    with the mooring section's ``line_type_library`` and ``line_types``, as the section parser
+    builds it."""
+    from ..mooring.line_types import default_library
+
+    node = built.scene.mooring_node()
+    if node is None:
+        return {}
+    lib = default_library()
+    if "line_type_library" in node:
+        lib = lib.extended_from_file(node.path_value("line_type_library"))
+    if "line_types" in node:
+        lib = lib.extended(node.child("line_types"))
+    out = {}
+    for ld in system.lines:
+        for s in ld.segments:
+            if s.line_type and s.line_type in lib and s.line_type not in out:
+                out[s.line_type] = lib.get(s.line_type, diameter=s.diameter or None,
+                                           water_density=system.water_density,
+                                           gravity=system.gravity)[0]
+    return out
+
+
+def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling | None:
+    """The FE lines a scene selects, built at the start ``pose`` (None when it has none).
+
+    Parameters
+    ----------
+    built : BuiltScene
+    pose : (6,) start pose, m and rad.
+    fail_time : (n_lines,) failure times of the mooring model (s; inf: none).
+    options : the scene's ``forces`` settings (for the file name in messages).
+    dt : body time step, s.
+
+    Raises
+    ------
+    SceneError
+        A FE line with a failure time (release of FE lines is not implemented).
+    """
+    system = built.mooring
+    lm = getattr(system, "line_models", None)
+    if system is None or lm is None or not lm.any_finite_element:
+        return None
+    env = built.scene.environment
+    fm, names = FEMooring.from_system(system, pose=pose,
+                                      current=_current_kw(env, system.water_depth),
+                                      line_types=_line_types(built, system))
+    if fm is None:
+        return None
+    index = np.array([system.names.index(n) for n in names], np.int64)
+    if fail_time is not None:
+        for n, i in zip(names, index):
+            if math.isfinite(fail_time[i]):
+                raise SceneError(getattr(options, "file", None) or built.scene.file,
+                                 "forces.line_failure",
+                                 "failures of quasi-static lines only (releasing a "
+                                 "finite-element line is not implemented)", n,
+                                 hint=f"give line {n!r} model: quasi-static for the ALS run")
+    return FECoupling(mooring=fm, names=list(names), index=index,
+                      substeps=fm.options.substeps_for(dt), options=fm.options)
+
+
+def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, external_force,
+                      tol: float = 1e-3, max_iter: int = 10):
+    """Static equilibrium with the FE lines: the quasi-static equilibrium corrected by the
+    static difference of the FE lines, D(x) = F_FE,static(x) - F_QS,FE(x) (line current drag,
+    the FE-vs-catenary difference), by the fixed-point iteration x_{k+1} = equilibrium(external
+    + D(x_k)) from ``x0`` (D varies slowly with x: a few iterations).  Returns the pose (6,).
+
+    Raises
+    ------
+    NumericalError
+        No convergence in ``max_iter`` iterations (``tol`` in m, ``tol`` / 100 in rad), or FE
+        statics that fail.
+    """
+    from ..core.errors import ConvergenceError
+    from .statics import equilibrium
+
+    qs_fe = system.without_lines([n for n, a in zip(system.names, system.active)
+                                  if a and n not in c.names])
+    fm = c.mooring
+    x = np.asarray(x0, float).copy()
+    step = np.inf
+    for _ in range(max_iter):
+        try:
+            D = fm.solve_static(x) - qs_fe.force(x)
+        except ConvergenceError as exc:
+            raise NumericalError(f"FE statics at the start pose: {exc.what}", time=0.0,
+                                 where=exc.where, remedy=exc.remedy) from None
+        system.warm[:] = 0.0
+        xn = equilibrium(system, hydrostatic_stiffness=hydrostatic_stiffness,
+                         external_force=external_force + D, x0=x).pose
+        dx = np.abs(xn - x)
+        step = max(dx[:3].max() / tol, dx[3:].max() / (tol / 100.0))
+        x = xn
+        if step <= 1.0:
+            return x
+    raise NumericalError(f"no static equilibrium with the finite-element lines in {max_iter} "
+                         f"iterations (last pose change {step * tol:.3g} m)", time=0.0,
+                         where="mooring (finite-element lines)",
+                         remedy="check the FE line options (elements, seabed) and the current "
+                                "on the lines; a line far from its catenary shape")
+
+
+@njit(cache=True)
+def _record_fe(n, fe_index, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out):
+    for i in range(fe_index.shape[0]):
+        K.record_into(l_r[i], l_fn[i], w_tens[i], zc[i], s_nodes[i], rec)
+        j = fe_index[i]
+        t_fair[n, j] = math.sqrt(rec[0] ** 2 + rec[1] ** 2 + rec[2] ** 2)
+        t_anchor[n, j] = math.sqrt(rec[3] ** 2 + rec[4] ** 2 + rec[5] ** 2)
+        fe_out[0, n, j] = rec[6]
+        fe_out[1, n, j] = rec[11]
+        fe_out[2, n, j] = rec[8]
+
+
+@njit(cache=True)
+def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
+                 has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
+                 wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
+                 has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur,
+                 sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
+                 cb, seabed, active, fail_time, mbs, warm, guard, tension_guard, record_parts,
+                 motion, velocity, t_fair, t_anchor, parts_out, status,
+                 fe_index, active_fe, warm_fe, Q, nsub, max_split, fair_b, R, rf_all, vf_all,
+                 arm, forces, fail, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA,
+                 l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk, l_vfk, l_P, l_E, l_S, l_cur_z,
+                 l_cur_u, l_wk, fric, coef_ga, tol, maxit, w_q, w_tens, w_Mb, w_Dg, w_Of, w_BX,
+                 w_Rk, w_W, w_Yk, w_T1, w_da, w_info, w_stats, zc, s_nodes, fe_out):
+    """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring).
+
+    Arguments up to ``status`` as for ``td_kernel`` (``status`` (4,) here; the catenary data
+    hold every line, FE lines included, ``active`` their state).  FE part: ``fe_index`` (n_fe,)
+    positions of the FE lines among all lines, ``active_fe`` (n_lines,) True for them,
+    ``warm_fe`` (n_lines, 2) catenary warm starts, ``Q`` (6,) the generalised force of the FE
+    lines in the started state (updated every step), ``nsub`` line steps per body step, then the
+    arguments of :func:`floatmoor.mooring.fe.multi.body_advance` from ``max_split`` on, ``zc``
+    (n_fe,) seabed contact levels, ``s_nodes`` node arc lengths (typed list), ``fe_out`` (3,
+    n_steps+1, n_lines) max tension along the line, grounded length, touchdown tension of the
+    FE lines.  Status 5 (:data:`STATUS_FE`): FE step failed, ``status[2]`` the FE line,
+    ``status[3]`` the kernel code, the line's ``info`` the time and node.
+    """
+    (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
+     a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])
+    x = x0.copy()
+    v = v0.copy()
+    start_state(x0, v0, x, v, hist)
+    for k in range(status.shape[0]):
+        status[k] = 0
+    n_fe = fe_index.shape[0]
+    rec = np.zeros(13)
+    prate = np.zeros(6)
+    vel = np.zeros(6)
+    fq = np.zeros(6)
+    _record_fe(0, fe_index, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out)
+    for n in range(n_steps + 1):
+        # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
+        bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
+                                  line_start, cb, seabed, active_fe, warm_fe, False, work, rot,
+                                  line_out, fq, stiff)
+        if bad >= 0:
+            status[0] = 4
+            status[1] = n
+            status[2] = bad
+            return
+        for k in range(6):
+            mcorr[k] = Q[k] - fq[k]
+        td_steps(n, n + 1, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
+                 dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
+                 wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th,
+                 cur_tab, has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par,
+                 sl_cur, sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
+                 line_start, cb, seabed, active, fail_time, mbs, warm, guard, tension_guard,
+                 record_parts, motion, velocity, t_fair, t_anchor, parts_out, status, True, mcorr,
+                 x, v, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom,
+                 g, q, a)
+        if status[0] != 0:
+            return
+        # row n: the FE tensions at t_n replace the catenary's for the FE lines
+        _record_fe(n, fe_index, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out)
+        for i in range(n_fe):
+            j = fe_index[i]
+            if t_fair[n, j] > tension_guard * mbs[j]:
+                status[0] = 3
+                status[1] = n
+                status[2] = j
+                return
+        if n == n_steps:
+            return
+        # FE lines to t_{n+1}: fairleads at the new pose, angular velocity in earth axes
+        _pose_rate(x, v, prate)
+        cph = math.cos(x[4])
+        sph = math.sin(x[4])
+        cps = math.cos(x[5])
+        sps = math.sin(x[5])
+        vel[0] = prate[0]
+        vel[1] = prate[1]
+        vel[2] = prate[2]
+        vel[3] = prate[3] * cps * cph - prate[4] * sps
+        vel[4] = prate[3] * sps * cph + prate[4] * cps
+        vel[5] = prate[5] - prate[3] * sph
+        st = body_advance((n + 1) * dt, dt, nsub, max_split, x, vel, fair_b, R, rf_all, vf_all,
+                          arm, Q, forces, fail, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA,
+                          l_aA, l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk, l_vfk, l_P, l_E,
+                          l_S, l_cur_z, l_cur_u, l_wk, fric, coef_ga, tol, maxit, w_q, w_tens,
+                          w_Mb, w_Dg, w_Of, w_BX, w_Rk, w_W, w_Yk, w_T1, w_da, w_info, w_stats)
+        if st < 0:
+            status[0] = STATUS_FE
+            status[1] = n + 1
+            status[2] = fail[0]
+            status[3] = st
+            return
+        body_accept(l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA, l_fnA, l_fs1)
+
+
+def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
+    """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the arguments of
+    ``td_kernel`` (``td_args``, status last).  Returns ``(status (4,), fe_out (3, n+1,
+    n_lines))``; the FE channels are NaN for quasi-static lines.
+
+    Raises
+    ------
+    NumericalError
+        FE statics that do not converge at the start pose.
+    """
+    from ..core.errors import ConvergenceError
+    from ..mooring.fe.multi import LINE_ARGS, WORK_ARGS
+
+    fm = c.mooring
+    try:
+        fm.solve_static(x0)
+    except ConvergenceError as exc:
+        raise NumericalError(f"FE statics at the start pose: {exc.what}", time=0.0,
+                             where=exc.where, remedy=exc.remedy) from None
+    fm.start(**c.options.start_kw())
+    fm.fast = True
+    if fm._packed is None:  # pragma: no cover - FEMooring.start packs generalised-alpha lines
+        raise SceneError(None, "mooring.finite_element.integrator",
+                         "generalized_alpha for lines coupled to the body", c.options.integrator)
+    lines = fm.lines
+    # generalised force of the started lines (dynamic EA), as body_advance will report it
+    ends = np.array([ln.fn[-1] for ln in lines])
+    Q = np.ascontiguousarray(fm._sum(np.asarray(x0, float), ends))
+    n_steps = td_args[0]
+    status = np.zeros(4, np.int64)
+    active_fe = np.zeros(n_lines, np.bool_)
+    active_fe[c.index] = True
+    per_line = typed_lists(lines, LINE_ARGS)
+    work = typed_lists(lines, WORK_ARGS)
+    s_nodes = typed_lists(lines, ("s_nodes",))[0]
+    fric = np.array([ln.fric_code for ln in lines], dtype=np.int64)
+    coef = np.array([ln.coef for ln in lines], dtype=np.float64)
+    tol = np.array([ln.tol for ln in lines], dtype=np.float64)
+    maxit = np.array([ln.maxit for ln in lines], dtype=np.int64)
+    zc = np.array([ln.S[K.S_ZC] for ln in lines])
+    nf = len(lines)
+    fe_out = np.full((3, n_steps + 1, n_lines), np.nan)
+    fm.counters = np.zeros((nf, 2))
+    args = td_args[:-1] + (
+        status, np.ascontiguousarray(c.index), active_fe, np.zeros((n_lines, 2)), Q,
+        int(c.substeps), int(FELine.MAX_SPLIT),
+        np.ascontiguousarray(fm.fairleads_body), np.zeros((3, 3)), np.zeros((nf, 3)),
+        np.zeros((nf, 3)), np.zeros((nf, 3)), np.zeros((nf, 3)), np.zeros(1, np.int64),
+        fm.counters, *per_line, fric, coef, tol, maxit, *work, zc, s_nodes, fe_out)
+    td_fe_kernel(*args)
+    t_end = int(status[1]) * td_args[1]
+    for ln in lines:
+        ln.time = t_end
+        ln._trial = False
+    return status, fe_out
+
+
+def raise_fe_status(c: FECoupling, status) -> None:
+    """NumericalError for a failed FE step (status 5), naming time, line, node and remedy."""
+    if int(status[0]) != STATUS_FE:
+        return
+    ln = c.mooring.lines[int(status[2])]
+    code = int(status[3])
+    msg = {-1: f"no Newton convergence in {ln.maxit} iterations",
+           -2: "singular iteration matrix", -3: "NaN in the line state"}.get(
+        code, f"line step failed (code {code})")
+    raise NumericalError(
+        f"FE line coupled to the body: {msg}", time=float(ln._info[0]),
+        where=f"line {ln.spec.name!r}, node {int(ln._info[1])} of {ln.n_nodes - 1}",
+        remedy=f"reduce dt or set mooring.finite_element.dt (line steps per body step; the "
+               f"step was already halved {FELine.MAX_SPLIT} times), add elements, or check "
+               "for a slack line hit by a snap load")
