@@ -39,6 +39,16 @@ What is computed (seed 002, Wang 2016, section 2.2.2 eq. 2.34-2.49 and section 2
    offset X_max - X_WF,max, from which the WF maximum is added).  ``tension_max_total_catenary``
    re-evaluates the catenary at the most likely pose giving that excursion (the conditional
    mean pose of the Gaussian responses), which shows the effect of the line's nonlinearity.
+6. **Viscous drift** (seed 002 chapter 6; the scene key ``forces: viscous_drift``):
+   ``model: correction_formula`` replaces the potential mean drift coefficients by eq. 6.6
+   (:func:`floatmoor.forces.slender.corrected_drift_database`, the same coefficients as the
+   time domain's Newman drift, evaluated at the mean yaw) in both the mean drift of item 1 and
+   the slow-drift spectrum of item 3 (which then uses Newman's approximation: ``drift: qtf`` is
+   refused, ``auto`` picks ``newman``); its ``extra_damping`` raises the surge and sway linear
+   damping (:func:`floatmoor.forces.slender.viscous_linear_damping`, section 6.6).
+   ``model: slender_elements`` (Morison strips in the time loop) has no frequency-domain
+   counterpart: a :class:`FloatmoorWarning` says that the FD runs without viscous drift and with
+   the hull current coefficients.  Attribute ``viscous_drift_model``.
 """
 
 from __future__ import annotations
@@ -57,6 +67,7 @@ import xarray as xr
 from . import __version__
 from .core.dofs import DOF_NAMES
 from .core.errors import FloatmoorWarning, SceneError
+from .forces.slender import corrected_drift_database, viscous_linear_damping
 from .hydro.database import interpolate_heading
 from .io.build import BuiltScene, build
 from .io.scene import Scene
@@ -241,6 +252,16 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     env = sc.environment
     g = sc.site.gravity
     notes: list[str] = []
+    viscous = getattr(getattr(sc, "forces", None), "viscous_drift", None)
+    viscous_model = getattr(viscous, "model", "none") if viscous is not None else "none"
+    if viscous_model == "slender_elements":
+        msg = ("forces: viscous_drift: {model: slender_elements} is a time-domain model: the "
+               "frequency domain uses no viscous drift for it (potential-flow drift only, and the "
+               "vessel's hull current coefficients in every DOF, without the time domain's "
+               "double-counting rule); model: correction_formula gives an FD viscous drift")
+        warnings.warn(msg, FloatmoorWarning, stacklevel=2)
+        notes.append(msg)
+    correction = viscous_model == "correction_formula" and env.waves is not None
 
     # -- grids and wave spectrum --------------------------------------------------------------
     w_db = np.asarray(db["omega"].values, float)
@@ -268,7 +289,10 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     def drift_coefficients(yaw):
         if "mean_drift_force" not in db or waves is None:
             return np.zeros((w.size, 6))
-        c = interpolate_heading(db, "mean_drift_force", beta - yaw)  # (n_db, 6)
+        # eq. 6.6 (viscous correction formula) when the scene selects it: the same corrected
+        # coefficients as the time domain's Newman drift, here at the body heading yaw
+        db_d = corrected_drift_database(built, viscous, db, yaw=yaw) if correction else db
+        c = interpolate_heading(db_d, "mean_drift_force", beta - yaw)  # (n_db, 6)
         if np.any(np.isnan(c)):
             bad = np.isnan(c).any(axis=1)
             frac = float(np.trapezoid(np.where(_interp0(w, w_db, bad.astype(float)) > 0, S, 0), w)
@@ -352,8 +376,15 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     mu = np.linspace(0.0, 2.0 * math.pi / opt.lf_cutoff_period, opt.n_lf)
     has_qtf = "difference_frequency_qtf" in db
     drift_method = opt.drift
+    if correction and drift_method == "qtf":
+        raise SceneError(sc.file, "frequency_domain.drift", "newman or auto with forces: "
+                         "viscous_drift: {model: correction_formula} (eq. 6.6 corrects the mean "
+                         "drift coefficients, which Newman's approximation uses)", "qtf")
     if drift_method == "auto":
-        drift_method = "qtf" if has_qtf else "newman"
+        drift_method = "qtf" if has_qtf and not correction else "newman"
+        if has_qtf and correction:
+            notes.append("the correction formula (eq. 6.6) corrects the mean drift "
+                         "coefficients: slow drift by Newman's approximation, not the QTF")
     if drift_method == "qtf" and not has_qtf:
         raise SceneError(sc.file, "frequency_domain.drift", "newman or auto (the database has no "
                          "difference_frequency_qtf)", "qtf")
@@ -377,8 +408,11 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     if opt.wave_drift_damping and waves is not None:
         e = np.array([math.cos(beta), math.sin(beta)])
         B_drift = aranha_drift_damping(w, S, C_drift[:, :2] @ e, g, beta)
+    # the vessel's linear damping, raised in surge/sway by forces: viscous_drift: extra_damping
+    # with the correction formula (seed 002 section 6.6; as the time domain)
+    D_lin = viscous_linear_damping(viscous, np.asarray(vessel.linear_damping, float))
     model = FDModel(omega=w, wave_spectrum=S, mass=M, added_mass=A_w, radiation_damping=B_w,
-                    excitation=X, stiffness=K, linear_damping=T6 @ vessel.linear_damping @ T6.T,
+                    excitation=X, stiffness=K, linear_damping=T6 @ D_lin @ T6.T,
                     quadratic_damping=vessel.quadratic_damping, lf_added_mass=A0,
                     lf_extra_damping=B_wind + B_cur + B_drift, mu=mu,
                     lf_force_spectrum=S_drift + S_gust)
@@ -581,6 +615,8 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
         "duration": opt.duration,
         "tension_model": opt.tension_model,
         "drift_method": drift_method if waves is not None else "none (no waves)",
+        "viscous_drift_model": viscous_model if viscous_model != "slender_elements"
+        else "slender_elements (not in the frequency domain: none)",
         "lf_added_mass_source": a0_source,
         "lf_cutoff_frequency": float(mu[-1]),
         "wave_heading": beta,
