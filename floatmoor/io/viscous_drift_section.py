@@ -25,6 +25,14 @@ forces:
     current_speed: 0.94            # m/s, default: the scene's current at z = 0
     extra_damping: 1.0             # fraction added to the surge/sway linear damping (sec. 6.6)
 ```
+
+Where each model acts: ``slender_elements`` only in the time domain (``floatmoor.simulate``;
+``floatmoor.frequency_domain`` warns with a FloatmoorWarning that it runs without viscous drift
+and with the hull current coefficients); ``correction_formula`` in both, through the same
+corrected mean drift coefficients (the time domain's Newman drift; the FD mean drift and
+slow-drift spectrum) and the same extra damping.  Both need Newman's approximation for the
+slow drift: ``forces: {drift: qtf}`` / ``frequency_domain: {drift: qtf}`` are refused with the
+correction formula.
 """
 
 from __future__ import annotations
