@@ -261,3 +261,61 @@ def test_relative_velocity_option_from_the_scene_file(tmp_path):
     p2 = _scene(tmp_path, extra="forces: {relative_velocity: lowfrequency}\n")
     with pytest.raises(SceneError, match="forces.relative_velocity"):
         simulate(p2, seed=1, duration=60.0)
+
+
+# -- finite-element lines coupled (issue 9): floatmoor run and report on their results --------
+def _fe_scene(tmp_path) -> Path:
+    """The FE flagship scene (scenes/floatel_100yr_fe.yaml) with 8 elements per line, a
+    moderate sea and short runs."""
+    import yaml
+
+    d = yaml.safe_load((ROOT / "scenes" / "floatel_100yr_fe.yaml").read_text())
+    d["name"] = "fe-small"
+    d["vessel"] = str(ROOT / "vessels" / "floatel_like" / "vessel.yaml")
+    d["environment"] = {"name": "sea", "waves": {"spectrum": "jonswap", "hs": 8.0, "tp": 13.0}}
+    d["mooring"]["finite_element"] = {"n_elements": 8}
+    d["analysis"] = {"duration": 80.0, "dt": 0.2, "transient": 20.0, "ramp": 20.0,
+                     "seeds": "1-4"}
+    p = tmp_path / "fe_small.yaml"
+    p.write_text(yaml.safe_dump(d))
+    return p
+
+
+def test_run_and_report_with_fe_lines(tmp_path, monkeypatch):
+    """``floatmoor run`` of a scene with FE lines on two workers writes the FE channels per
+    seed; a seed whose FE line fails is recorded with the line's NumericalError (time, line,
+    remedy) while the others finish; ``floatmoor report`` reads the results."""
+    from floatmoor.runner import run_seeds, seed_file
+    from floatmoor.solvers import fe_coupling
+
+    scene = _fe_scene(tmp_path)
+    out = tmp_path / "out"
+    lines = []
+    batch = run_seeds(scene, [1, 2, 3], out, workers=2, echo=lines.append, progress=False)
+    assert not batch.failed, lines
+    with xr.open_dataset(seed_file(out, "fe-small", 2)) as ds:
+        assert list(ds.attrs["fe_lines"]) == [f"line{i}" for i in range(1, 13)]
+        assert "max_tension_along_line" in ds and "grounded_length" in ds
+        assert (ds["line_model"].values == "finite-element").all()
+        assert ds["line_tension"].values.max() > 5e5
+    # seed 4 in-process with every Newton iteration refused: a real FE failure
+    orig = fe_coupling.FEMooring.start
+
+    def failing_start(self, **kw):
+        orig(self, **kw)
+        for ln in self.lines:
+            ln.maxit = 0
+    monkeypatch.setattr(fe_coupling.FEMooring, "start", failing_start)
+    batch = run_seeds(scene, [1, 2, 3, 4], out, workers=1, echo=lines.append, progress=False)
+    assert [o.status for o in batch.outcomes] == ["skipped", "skipped", "skipped", "failed"]
+    err = batch.outcomes[3].error
+    assert err.startswith("NumericalError") and "line 'line1'" in err and "reduce dt" in err
+    assert (out / "fe-small_seed0004.error.txt").is_file()
+    monkeypatch.undo()
+    # the report of the three good seeds (the failed one is listed, not used)
+    from floatmoor.cli import main
+
+    code = main(["report", str(out), "--out", str(tmp_path / "rep")])
+    assert code == 0
+    rep = list((tmp_path / "rep").iterdir())
+    assert rep

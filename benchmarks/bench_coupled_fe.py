@@ -1,0 +1,88 @@
+"""Coupled FE mooring benchmark (issue 9): the 3-hour storm of the Floatel-like semi with 12 FE
+lines (scenes/floatel_100yr_fe.yaml, 50 elements per line) coupled to the body.
+
+Prints, per body time step (default 0.1 and 0.2 s): setup time (scene build, FE statics and
+start equilibrium included), the time loop (wall and CPU of this process), simulated seconds
+per wall second, the Newton iterations per line step, and the maximum fairlead tension after
+the transient against the quasi-static run of the same seed (scenes/floatel_100yr.yaml).  The
+load average is printed with the timings (the machine is shared).
+
+Run: ``.venv/bin/python benchmarks/bench_coupled_fe.py [--duration 12000] [--dt 0.1 0.2]
+[--seed 1]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+FE = ROOT / "scenes" / "floatel_100yr_fe.yaml"
+QS = ROOT / "scenes" / "floatel_100yr.yaml"
+
+
+def _load():
+    return " / ".join(f"{v:.2f}" for v in os.getloadavg())
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--duration", type=float, default=12000.0)
+    ap.add_argument("--dt", type=float, nargs="+", default=[0.1, 0.2])
+    ap.add_argument("--seed", type=int, default=1)
+    args = ap.parse_args()
+    warnings.simplefilter("ignore")
+    import numba
+
+    from floatmoor.simulate import simulate
+
+    print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
+          f"{numba.__version__}; seed {args.seed}, {args.duration:g} s simulated "
+          f"(transient 1200 s left out of the maxima)")
+    # warm-up (numba cache load / compile) on a short run
+    t0 = time.perf_counter()
+    simulate(FE, seed=args.seed, duration=20.0, dt=args.dt[0])
+    print(f"first short FE run (cache load or compile): {time.perf_counter() - t0:.1f} s")
+    qs = {}
+    for dt in args.dt:
+        w0 = time.perf_counter()
+        ds = simulate(QS, seed=args.seed, duration=args.duration, dt=dt)
+        sel = ds.time.values >= 1200.0
+        qs[dt] = ds.line_tension.values[sel].max(axis=0)
+        print(f"QS  dt {dt:g}: loop {ds.attrs['run_time_s']:.1f} s, total "
+              f"{time.perf_counter() - w0:.1f} s, max tension {qs[dt].max() / 1e3:.0f} kN "
+              f"(line {ds.line.values[int(np.argmax(qs[dt]))]}); load {_load()}")
+    for dt in args.dt:
+        w0 = time.perf_counter()
+        c0 = time.process_time()
+        ds = simulate(FE, seed=args.seed, duration=args.duration, dt=dt)
+        wall = time.perf_counter() - w0
+        cpu = time.process_time() - c0
+        loop = ds.attrs["run_time_s"]
+        sel = ds.time.values >= 1200.0
+        tfe = ds.line_tension.values[sel].max(axis=0)
+        tmax_line = ds.max_tension_along_line.values[sel].max()
+        n_steps = ds.time.size - 1
+        newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
+        i = int(np.argmax(tfe))
+        print(f"FE  dt {dt:g}: loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
+              f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
+              f"per wall s; {newton:.2f} Newton iterations per line step, "
+              f"{ds.attrs['fe_step_halvings']} halvings; load {_load()}")
+        print(f"    max fairlead tension FE {tfe.max() / 1e3:.0f} kN (line "
+              f"{ds.line.values[i]}) vs QS {qs[dt].max() / 1e3:.0f} kN: "
+              f"{(tfe.max() / qs[dt].max() - 1) * 100:+.1f} %; max along the line "
+              f"{tmax_line / 1e3:.0f} kN; mean surge FE "
+              f"{ds.motion.values[sel, 0].mean():.2f} m; max offset FE "
+              f"{np.hypot(*ds.motion.values[sel, :2].T).max():.2f} m")
+        print("    per line max FE/QS: " + " ".join(f"{a / b:.3f}" for a, b in zip(tfe, qs[dt])))
+
+
+if __name__ == "__main__":
+    main()
