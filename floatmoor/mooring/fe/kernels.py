@@ -15,6 +15,10 @@ dependence of ``q`` and of the seabed axes on the positions is left out: a quasi
 iteration that still converges quadratically for the dominant axial stiffness).
 
 Every kernel writes into preallocated arrays; none allocates.
+
+Very stiff elements (strain under their weight below ``E0_STIFF``) get a tension estimate in the
+generalised-alpha Newton iteration (see :func:`gen_alpha_step`); scratch for it: ``BX[6, :, 0,
+0]`` (tridiagonal solver) or ``W[:, 0, 0]`` (band solver with bending), so no signature changed.
 """
 
 from __future__ import annotations
@@ -44,6 +48,14 @@ FS_UPREV, FS_FPREV = 0, 1
 V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
 D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
 V_SB = 0.01             # seabed damping switches off between -V_SB and +V_SB (m/s)
+EPS_MACH = 2.220446049250313e-16
+# An element is "stiff" when its strain under its own weight (in air plus submerged) is below
+# E0_STIFF (OC3 chain: 1.4e-4 at EA = 3.84e8 N, 1.4e-7 at 3.84e11, 1.4e-10 at 3.84e14): its
+# slack transition (strain e0 = net weight / c1) is then far narrower than the length errors of
+# a Newton iterate (second-order transverse terms |dx|^2 / 2 l: 1e-6 m for dx = 6 mm on 18 m),
+# and gen_alpha_step manages it by a tension estimate (see there).  Other elements keep the
+# plain law and tangent, unchanged.
+E0_STIFF = 1e-6
 
 
 @njit(cache=True)
@@ -77,6 +89,36 @@ def _tension(eps, c1, c2, c3, e0):
     B = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
     A = (T0 - B * e0 * e0 * e0) / (e0 * e0)
     return A * eps * eps + B * eps * eps * eps, 2.0 * A * eps + 3.0 * B * eps * eps
+
+
+@njit(cache=True)
+def _stiff(P, E, j):
+    """Element ``j`` is stiff: the strain under its weight in air is below :data:`E0_STIFF`
+    (the slack transition e0 uses the net weight; the weight in air keeps weightless test
+    elements out)."""
+    w = 9.80665 * (P[j, NP_MASS] + P[j + 1, NP_MASS]) + abs(P[j, NP_W]) + abs(P[j + 1, NP_W])
+    return w < E0_STIFF * E[j, EL_C1]
+
+
+@njit(cache=True)
+def _elem_tension(r, v, P, E, j):
+    """Tension of element ``j`` (N) as :func:`line_forces` computes it (elastic law with the
+    slack transition plus the faded-in internal damping)."""
+    dx = r[j + 1, 0] - r[j, 0]
+    dy = r[j + 1, 1] - r[j, 1]
+    dz = r[j + 1, 2] - r[j, 2]
+    ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+    L0 = E[j, EL_L0]
+    eps = ll / L0 - 1.0
+    e0 = max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / E[j, EL_C1]
+    T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3], e0)
+    if eps > 0.0:
+        ldot = (dx * (v[j + 1, 0] - v[j, 0]) + dy * (v[j + 1, 1] - v[j, 1])
+                + dz * (v[j + 1, 2] - v[j, 2])) / ll
+        xs = eps / e0
+        sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
+        T += E[j, EL_B] * sm * ldot / L0
+    return T
 
 
 @njit(cache=True)
@@ -218,6 +260,17 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
         ``BX[0]`` lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]``
         the upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
     """
+    _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
+                 BX, tens, False)
+
+
+@njit(cache=True)
+def _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
+                 BX, act, use_act):
+    """:func:`line_forces`; with ``use_act``, ``act`` (n-1,) holds a tension estimate of every
+    element (N, see :func:`gen_alpha_step`): an element in compression with a positive estimate
+    acts as a bar, ``T = c1 eps`` (negative) with its axial tangent, instead of ``T = 0``, and
+    the geometric stiffness of every element is ``max(act, 0) / l``."""
     n = r.shape[0]
     node_tangents(r, q)
     for i in range(n):
@@ -242,12 +295,26 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
         # slack transition strain: the element's weight over its axial stiffness
         e0 = max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / E[j, EL_C1]
         T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3], e0)
+        # stiff element (slack transition narrower than E0_STIFF): managed by the tension
+        # estimate of the iteration when one is given
+        managed = use_act and _stiff(P, E, j)
+        held = managed and act[j] > 0.0
+        if held and eps < 0.0:
+            # held taut by the iteration's tension estimate: bar in compression
+            T = E[j, EL_C1] * eps
+            dTde = E[j, EL_C1]
         B = 0.0
         dvx = v[j + 1, 0] - v[j, 0]
         dvy = v[j + 1, 1] - v[j, 1]
         dvz = v[j + 1, 2] - v[j, 2]
         ldot = ex * dvx + ey * dvy + ez * dvz
-        if eps > 0.0:
+        if held:
+            # a held element keeps its full internal damping: faded over the slack transition
+            # (strain e0 = weight / c1, 6e-11 for c1 = 3.84e14 N) the damping force B ldot / L0
+            # would switch on and off between two iterates
+            B = E[j, EL_B]
+            T += B * ldot / L0
+        elif eps > 0.0:
             # internal damping faded in over the slack transition (smooth step)
             xs = eps / e0
             sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
@@ -264,7 +331,10 @@ def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac,
         f[j + 1, 2] -= T * ez
         if want_jac:
             ka = cK * dTde / L0
-            kg = cK * max(T, 0.0) / ll
+            # geometric stiffness from the tension estimate of the iteration when given (the
+            # tension of a mixed displacement-tension Newton: not blown up by the second-order
+            # length error of the last correction on a very stiff element)
+            kg = cK * max(act[j] if managed else T, 0.0) / ll
             if eps <= 0.0 and cC == 0.0:
                 # statics: a slack element gets its linear axial stiffness in the tangent so that
                 # Newton pulls it taut (the residual keeps T = 0); dynamics keep the true tangent
@@ -947,18 +1017,54 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
     gamma)``.  Trial state at ``t1`` into ``r1, v1, a1, f1`` (the caller accepts it).
     Residual ``M ((1-am) a1 + am a) - (1-af) f(r1, v1) - af fn``; mass blocks from ``r``.
 
+    Stiff elements (:func:`_stiff`, e.g. the OC3 chain at EA = 3.84e14 N, EA / L0 = 2e13 N/m)
+    are handled as in a mixed displacement-tension Newton: every stiff element carries a
+    tension estimate (start: its tension at ``t1 - dt``; then the linearised tension
+    ``T + dT/dl dl`` of each correction) which gives its geometric stiffness and decides
+    whether it is held taut.  A held element in compression is a visco-elastic bar (``c1 eps +
+    B ldot / L0``) instead of slack; it is released when its estimate is negative by more than
+    the estimate's own second-order error.  Converged: residual below the round-off-aware force
+    tolerance and no held element pushing.  Without this, the predictor and every large
+    correction leave nanometre compressions (slack, zero tangent) in a taut stiff line and
+    Newton never converges.  The residual-increase backtracking is used only for lines without
+    stiff elements (for a stiff line the residual rises while Newton converges).  Lines without
+    stiff elements take exactly the previous iterations.
+
     Returns the number of Newton iterations (> 0), or -1 (no convergence: ``info[1]`` = node
     with the largest correction), -2 (singular iteration matrix at node ``info[1]``), -3 (NaN).
     """
     am = coef[0]
     af = coef[1]
-    # force scale: the largest node weight (in air if the net weight vanishes)
-    ftol = 0.0
-    for i in range(r.shape[0]):
-        ftol = max(ftol, 1e-5 * abs(P[i, NP_W]), 1e-5 * 9.80665 * P[i, NP_MASS])
     beta = coef[2]
     gamma = coef[3]
     n = r.shape[0]
+    bend = S[S_BEND] > 0.0
+    # element activity (> 0: taut by the tension estimate of the iteration) in solver scratch
+    # that this step does not otherwise use (the band solver uses BX[3:7], the tridiagonal W)
+    act = W[:, 0, 0] if bend else BX[6, :, 0, 0]
+    # force scale: the largest node weight (in air if the net weight vanishes), but not below
+    # the round-off of the axial forces: an element tension c1 (l / L0 - 1) carries the
+    # relative error of l / L0 (~ 1 ulp, plus the coordinates' round-off |r| eps / L0), which
+    # is several N for c1 = 3.84e14 N; summed over the 3 (n - 2) residual components
+    ftol = 0.0
+    rmax = 0.0
+    for i in range(n):
+        ftol = max(ftol, 1e-5 * abs(P[i, NP_W]), 1e-5 * 9.80665 * P[i, NP_MASS])
+        for k in range(3):
+            rmax = max(rmax, abs(r[i, k]))
+    fround = 0.0
+    nstiff = 0
+    for j in range(n - 1):
+        fround = max(fround, E[j, EL_C1] * EPS_MACH * (2.0 + 2.0 * rmax / E[j, EL_L0]))
+        # tension estimate: the tension at the start of the step
+        # (zero for the other elements: only stiff ones use it)
+        act[j] = 0.0
+        if _stiff(P, E, j):
+            act[j] = _elem_tension(r, v, P, E, j)
+            nstiff += 1
+    # weight-based bound of the residual when the position correction is below tol
+    fcap = max(1e3 * ftol, math.sqrt(3.0 * n) * fround)
+    ftol = max(ftol, math.sqrt(3.0 * n) * fround)
     node_mass(r, P, q, Mb)
     # predictor: constant acceleration, plus the fairlead's deviation from its own constant-
     # velocity prediction spread along the line in proportion to the node number (keeps the
@@ -995,8 +1101,15 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
                 r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
                                                                + beta * a1[i, k])
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-        line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg, Of,
-                    BX)
+        _line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg,
+                     Of, BX, act, True)
+        # largest push of an element held as a bar in compression (the converged state must
+        # not rely on it: the cable law has no compression)
+        fbar = 0.0
+        if nstiff > 0:
+            for j in range(n - 1):
+                if act[j] > 0.0 and tens[j] < 0.0:
+                    fbar = max(fbar, -tens[j])
         res = 0.0
         for i in range(1, n - 1):
             for k in range(3):
@@ -1009,7 +1122,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
         if not math.isfinite(res):
             info[1] = 1
             return -3
-        if res > res_prev and alpha > 1.0 / 1024.0:
+        if res > res_prev and alpha > 1.0 / 1024.0 and nstiff == 0:
             # the last correction raised the residual (a node jumping across the seabed
             # contact, a slack element): go back half of it
             alpha *= 0.5
@@ -1019,15 +1132,60 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
             continue
         alpha = 1.0
         res_prev = res
-        if it > 1 and math.sqrt(res) <= ftol:
+        if it > 1 and math.sqrt(res) <= ftol and fbar <= ftol:
             # residual below ftol (N): converged even if a contact or slack kink keeps the
             # position corrections from settling
             conv = True
             break
-        bad = solve_blocks(Dg, Of, BX, S[S_BEND] > 0.0, Rr, 1, n - 1, W, Y, T1, da)
+        bad = solve_blocks(Dg, Of, BX, bend, Rr, 1, n - 1, W, Y, T1, da)
         if bad >= 0:
             info[1] = bad
             return -2
+        # tension estimate of the next iterate: the linearised tension T + dT/dl dl (dl from
+        # the correction, dT/dl = e^T K_j e / cK from the element block, axial and damping
+        # parts).  An element that Newton's second-order length error (|dx_perp|^2 / 2 l)
+        # leaves slightly compressed stays a bar while its estimate is positive, and the
+        # geometric stiffness uses the estimate.  Without this a very stiff line (c1 / L0 ~
+        # 1e13 N/m, slack strain ~1e-10) has elements going slack at every iterate and Newton
+        # does not converge.
+        bs = beta * dt * dt
+        for j in range(n - 1):
+            if nstiff == 0 or not _stiff(P, E, j):
+                continue
+            dx = r1[j + 1, 0] - r1[j, 0]
+            dy = r1[j + 1, 1] - r1[j, 1]
+            dz = r1[j + 1, 2] - r1[j, 2]
+            ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+            # relative correction of the element ends (m)
+            cx = 0.0
+            cy = 0.0
+            cz = 0.0
+            if j + 1 < n - 1:
+                cx += da[j + 1, 0] * bs
+                cy += da[j + 1, 1] * bs
+                cz += da[j + 1, 2] * bs
+            if j > 0:
+                cx -= da[j, 0] * bs
+                cy -= da[j, 1] * bs
+                cz -= da[j, 2] * bs
+            dl = (dx * cx + dy * cy + dz * cz) / ll
+            ex = dx / ll
+            ey = dy / ll
+            ez = dz / ll
+            kab = -(ex * (Of[j, 0, 0] * ex + Of[j, 0, 1] * ey + Of[j, 0, 2] * ez)
+                    + ey * (Of[j, 1, 0] * ex + Of[j, 1, 1] * ey + Of[j, 1, 2] * ez)
+                    + ez * (Of[j, 2, 0] * ex + Of[j, 2, 1] * ey + Of[j, 2, 2] * ez))
+            kl = kab / cK
+            Tl = tens[j] + kl * dl
+            if act[j] > 0.0 and Tl <= 0.0 and -Tl < kl * (cx * cx + cy * cy + cz * cz - dl * dl) / (
+                    2.0 * ll):
+                # a held element is released only when its estimate is negative by more than
+                # the estimate's own error, the second-order length change |c_perp|^2 / 2 l of
+                # the correction times dT/dl: far from the solution a large correction must not
+                # release an element of a taut stiff line (its zero tangent then lets the next
+                # correction stretch it by centimetres)
+                Tl = 1e-6
+            act[j] = Tl
         dmax = 0.0
         imax = 1
         for i in range(1, n - 1):
@@ -1043,7 +1201,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
         # a displacement correction beta dt^2 da below tol (m) ends the iteration if the
         # residual is also below 1e-2 node weights (for very stiff lines a tiny correction can
         # still leave a large axial force imbalance)
-        if dmax * beta * dt * dt <= tol and math.sqrt(res) <= 1e3 * ftol:
+        if dmax * beta * dt * dt <= tol and math.sqrt(res) <= fcap and fbar <= fcap:
             conv = True
             break
     if not conv:
@@ -1052,7 +1210,13 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
         for k in range(3):
             r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k] + beta * a1[i, k])
             v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-    line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of, BX)
+    # forces of the accepted state with the law of the converged iteration (a held element
+    # keeps its damping; a bar push is below the tolerance): consistent with the residual
+    _line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of,
+                 BX, act, True)
+    for j in range(n - 1):
+        if act[j] > 0.0 and tens[j] < 0.0:
+            tens[j] = 0.0
     for i in range(n):
         for k in range(3):
             if not math.isfinite(f1[i, k]):

@@ -83,10 +83,14 @@ class FELine:
         Use the segments' ``ea_dynamic`` in dynamics (statics always use ``ea``).
     axial_stiffness_limit : float, optional
         Upper limit of the axial stiffness in dynamics, N (Aqwa limits the inline stiffness of
-        dynamic cables the same way).  Needed for practically inextensible lines (EA / tension
-        above about 1e6): the displacement-based Newton iteration of the implicit step does not
-        converge for EA = 3.84e14 N; 3.84e11 N already gives strains of 1e-6.  A
-        ``FloatmoorWarning`` says when the limit is active.
+        dynamic cables the same way).  Not needed for convergence: stiff elements (strain under
+        their own weight below ``kernels.E0_STIFF`` = 1e-6, e.g. the OC3 chain from EA ~ 5e10
+        N) are handled by the implicit step with a tension estimate (mixed displacement-tension
+        Newton, see :func:`kernels.gen_alpha_step`), and the OC3 line runs at its full
+        EA = 3.84e14 N at dt 0.2 s (rho_inf 0.7) and 0.1 s (rho_inf 0.5); see RESULTS.md,
+        "Stiff lines at full EA".  A limit such as 3.84e11 N (strain 4e-6 at 1.4 MN) gives
+        the same tensions with slightly fewer Newton iterations.  A ``FloatmoorWarning`` says
+        when the limit is active.
     waves : floatmoor.metocean.realisation.WaveRealisation, optional
         Wave kinematics in dynamics (option): the particle velocity enters the drag (relative
         velocity), the particle acceleration the fluid inertia ``(rho V l) a + m_a a`` of every
@@ -371,7 +375,11 @@ class FELine:
         """Prepare dynamics from the current (static) state: velocities and accelerations zero,
         friction references at the current positions.
 
-        ``tol`` (m): Newton stops when the position correction is below it.
+        ``tol`` (m): Newton stops when the position correction is below it and the residual
+        below 1e-2 node weights, or when the residual is below 1e-5 node weights; for very
+        stiff lines the residual bound is raised to the round-off of the axial forces
+        (``c1 * 2.2e-16 * (2 + 2 max|r| / L0)`` per element, ~100 N summed for the OC3 line
+        at EA = 3.84e14 N), which double precision cannot go below.
         """
         if integrator not in ("generalized_alpha", "explicit"):
             raise ValueError("integrator must be 'generalized_alpha' or 'explicit'")
@@ -436,8 +444,9 @@ class FELine:
                           "add elements, or check for a slack line hit by a snap load")
                 if self.E_dynamic[:, K.EL_C1].max() > self.STIFF_EA:
                     remedy += (f"; the dynamic EA reaches {self.E_dynamic[:, K.EL_C1].max():.3g}"
-                               " N: set axial_stiffness_limit (e.g. 3.84e11 N) for a "
-                               "practically inextensible line")
+                               " N: lower rho_inf (e.g. 0.5: more damping of the touchdown "
+                               "impacts of a practically inextensible line) or set "
+                               "axial_stiffness_limit (e.g. 3.84e11 N)")
                 self._fail(float(self._info[0]), int(self._info[1]), msg, remedy)
         else:
             rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
@@ -469,8 +478,9 @@ class FELine:
 
     MAX_SPLIT = 5
     STIFF_EA = 1e12
-    """Dynamic EA (N) above which a failing step suggests ``axial_stiffness_limit`` (the OC3
-    line with EA = 3.84e14 N does not converge in dynamics without it; see RESULTS.md)."""
+    """Dynamic EA (N) above which a failing step suggests a lower ``rho_inf`` or
+    ``axial_stiffness_limit`` (the OC3 line with EA = 3.84e14 N, surge 3 m at 15 s, fails at
+    dt 0.1 s with rho_inf 0.7 after 49 s and runs with rho_inf 0.5; see RESULTS.md)."""
 
     def accept(self):
         """Commit the state of the last :meth:`advance`."""

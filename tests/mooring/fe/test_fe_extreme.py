@@ -1,31 +1,73 @@
-"""Issue-9 audit, stiff and extreme cases: the inextensible line (EA = 3.84e14 N) in dynamics
-without a stiffness limit fails loudly (no NaN), and the largest dt that completes the extreme
-cases (recorded in benchmarks/RESULTS.md, "Double-quadratic friction (issue 9, third session)")
-is checked at that dt."""
+"""Issue-9 audit, stiff and extreme cases.
+
+The inextensible OC3 line (EA = 3.84e14 N, seed 000's limit) runs in dynamics at its full
+stiffness at body-sized steps (generalised-alpha, no ``axial_stiffness_limit``) and gives the same
+tensions as the same line with the stiffness limited to 3.84e11 N: at the largest tension
+(1.41e6 N) the limited line stretches by 3.7e-6, 3.3 mm over 902 m, which moves the fairlead
+tension of this catenary by a few hundred N (the OC3 line's horizontal stiffness is of order
+1e5 N/m), i.e. below 0.05 %.  Both runs are therefore physically the same line; what remains
+between them is discretisation noise (touchdown impacts of the lumped masses, the axial mode's
+numerical damping), hence the tolerances below.  The largest dt that completes the extreme cases
+(recorded in benchmarks/RESULTS.md, "Stiff lines at full EA (issue 9, third session)") is
+checked at that dt.
+"""
+
+import warnings
 
 import numpy as np
 import pytest
 
-from floatmoor.core.errors import NumericalError
+from floatmoor.core.errors import FloatmoorWarning
 from floatmoor.mooring.fe import FELine
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
 
 from .conftest import oc3_spec
 
+PERIOD = 15.0
 
-def test_inextensible_line_dynamics_without_limit_fails_loudly():
-    """EA = 3.84e14 N in dynamics with the full stiffness (no ``axial_stiffness_limit``): the
-    Newton iteration does not converge at any dt tried (0.05 to 0.5 s, measured 2026-11-21) and
-    the run stops with a NumericalError naming time, line, node and the stiffness limit as
-    remedy, never with NaN.  The limited case runs (test_dynamics)."""
-    line = FELine(oc3_spec(n=50, ea=3.84e14))
+
+def _surge_run(dt, rho_inf, limit=None, t_end=3 * PERIOD):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FloatmoorWarning)
+        line = FELine(oc3_spec(n=50, ea=3.84e14), axial_stiffness_limit=limit)
     line.solve_static()
-    line.start()
-    m = HarmonicMotion(amplitude=(-3.0, 0.0, 0.0), period=15.0, ramp=15.0)
-    with pytest.raises(NumericalError, match=r"(?s)t = .* s.*oc3_line1, node \d+.*"
-                                             r"axial_stiffness_limit"):
-        run_prescribed(line, m, 5.0, 0.1)
+    line.start(rho_inf=rho_inf)
+    m = HarmonicMotion(amplitude=(-3.0, 0.0, 0.0), period=PERIOD, ramp=PERIOD)
+    ds = run_prescribed(line, m, t_end, dt)
+    T = ds.fairlead_tension.values
+    sel = ds.time.values > t_end - PERIOD + 1e-9
+    return T, T[sel], line
+
+
+@pytest.mark.parametrize("dt,rho_inf", [(0.2, 0.7), (0.1, 0.5)], ids=["dt0.2", "dt0.1"])
+def test_inextensible_line_dynamics_at_full_ea(dt, rho_inf):
+    """EA = 3.84e14 N in dynamics without a stiffness limit (surge 3 m at 15 s, 50 elements):
+    no NaN, no warning, and the last period's fairlead tension against the same run with
+    ``axial_stiffness_limit`` = 3.84e11 N: mean and maximum within 0.5 % (the issue's mean
+    tension tolerance against MoorDyn), minimum within 10 %, every sample within 15 % of the
+    mean tension (measured 2026-11-21, dt 0.2 s: mean +0.05 %, max +0.06 %, min -2.5 %;
+    dt 0.1 s / rho_inf 0.5: max +0.01 %, min -1.3 %; see RESULTS.md)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FloatmoorWarning)
+        T_full, last_full, line = _surge_run(dt, rho_inf)
+    assert np.all(np.isfinite(T_full))
     assert np.all(np.isfinite(line.r))
+    _, last_lim, _ = _surge_run(dt, rho_inf, limit=3.84e11)
+    assert last_full.mean() == pytest.approx(last_lim.mean(), rel=5e-3)
+    assert last_full.max() == pytest.approx(last_lim.max(), rel=5e-3)
+    assert last_full.min() == pytest.approx(last_lim.min(), rel=0.10)
+    assert np.max(np.abs(last_full - last_lim)) < 0.15 * last_lim.mean()
+    # a body-sized step: a few Newton iterations per step on average
+    assert line.newton_iterations < 8 * T_full.size
+
+
+def test_full_ea_matches_small_dt_reference():
+    """The full-EA line at dt = 0.2 s against itself at dt = 0.05 s (rho_inf 0.7): maximum
+    tension of the last period within 0.5 % (measured +0.09 %)."""
+    _, a, _ = _surge_run(0.2, 0.7)
+    _, b, _ = _surge_run(0.05, 0.7)
+    assert a.max() == pytest.approx(b.max(), rel=5e-3)
+    assert a.mean() == pytest.approx(b.mean(), rel=5e-3)
 
 
 @pytest.mark.parametrize("amp,period,dt", [(5.0, 10.0, 1.0), (8.0, 6.0, 1.0)],
