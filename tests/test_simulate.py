@@ -273,6 +273,8 @@ def _fe_scene(tmp_path) -> Path:
     d["name"] = "fe-small"
     d["vessel"] = str(ROOT / "vessels" / "floatel_like" / "vessel.yaml")
     d["environment"] = {"name": "sea", "waves": {"spectrum": "jonswap", "hs": 8.0, "tp": 13.0}}
+    d["mooring"] = yaml.safe_load((ROOT / "vessels" / "floatel_like" / "mooring_fe.yaml")
+                                  .read_text())
     d["mooring"]["finite_element"] = {"n_elements": 8}
     d["analysis"] = {"duration": 80.0, "dt": 0.2, "transient": 20.0, "ramp": 20.0,
                      "seeds": "1-4"}

@@ -187,7 +187,6 @@ def _pose_rate(x, v, out):
         out[k] = v[k]
 
 
-@njit(cache=True)
 def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
               has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading,
               wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf,
@@ -206,6 +205,10 @@ def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, ha
     |x - x0| allowed per DOF.  ``v_wf`` (n_samples, 6) the linear wave-frequency velocity
     (earth axes) removed from the body velocity in the wind and current relative velocity when
     ``has_vwf`` (else a (1, 6) dummy).
+
+    A Python function: the allocation, the start state and the loop are three numba calls
+    (:func:`td_scratch`, :func:`start_state`, :func:`td_steps`), so the loop is compiled once
+    (a numba wrapper around it would compile the step code a second time).
     """
     (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
      a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])

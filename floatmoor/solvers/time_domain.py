@@ -1,4 +1,5 @@
-"""Coupled 6-DOF time-domain simulation of a moored floater (quasi-static mooring).
+"""Coupled 6-DOF time-domain simulation of a moored floater (quasi-static and finite-element
+mooring lines).
 
 :func:`assemble` builds the force models a scene names (and only those), the static start and
 the plain arrays of the time loop; :func:`integrate` runs the numba kernel
@@ -32,6 +33,11 @@ Assumptions (documented limits)
   and mean wave drift (:func:`floatmoor.solvers.statics.equilibrium`); the fluctuating loads
   (first-order waves, slow drift, gust) are ramped in over ``ramp`` seconds, so the run starts
   without a jump; statistics should skip ``transient`` seconds.
+* Finite-element lines (scene ``mooring: {model: finite-element}`` or per line): coupled by
+  :mod:`floatmoor.solvers.fe_coupling` (staggered, one FE advance per body step, the lines'
+  catenary carries the change within the step; its docstring gives the scheme and limits); the
+  start pose is then the static equilibrium with the FE lines' static forces.  Without FE lines
+  the quasi-static kernel runs alone, as before.
 * Output ``velocity`` is the pose rate; ``force`` is in earth axes (moments about the
   displaced reference point).
 """

@@ -43,6 +43,8 @@ def _scene(tmp_path, *, model="finite-element", n_elements=8, environment=None, 
     d["name"] = name
     d["vessel"] = str(ROOT / "vessels" / "floatel_like" / "vessel.yaml")
     d["environment"] = environment if environment is not None else {"name": "calm"}
+    d["mooring"] = yaml.safe_load((ROOT / "vessels" / "floatel_like" / "mooring_fe.yaml")
+                                  .read_text())
     d["mooring"]["model"] = model
     d["mooring"]["finite_element"] = {"n_elements": n_elements, **(fe_extra or {})}
     for name_, m in (per_line or {}).items():
