@@ -1,15 +1,30 @@
-"""OC4-DeepCwind: the Capytaine first-order model (vessels/oc4_semi/make_database.py) against
-WAMIT's marin_semi.1, both stored in the shipped database."""
+"""OC4-DeepCwind: the Capytaine first-order model of vessels/oc4_semi/make_database.py against
+WAMIT's marin_semi.1.
+
+Two stored results are checked, both produced by make_database.py (Capytaine itself is not
+needed to run these tests):
+
+* ``capytaine_mesh_convergence.nc`` (``--convergence``): radiation A, B (6x6) of the columns +
+  pontoons + cross braces panel model for column panel sizes 2.0 / 1.5 / 1.0 m at 0.3 .. 2.0
+  rad/s, the Richardson extrapolation and WAMIT's values on the same frequencies;
+* ``database.nc`` (``--slender --symmetric``, 2 m column panels): WAMIT A, B plus the
+  Capytaine excitation, A and B of the 2 m model.
+"""
+
+import math
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from floatmoor.hydro import load_database
+from floatmoor.hydro.wamit import read_wamit_1
 
 from .conftest import VESSELS
 
 DOFS = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
 BAND = (0.3, 2.0)  # rad/s: periods 3 .. 21 s, where the OC4 sea states carry their energy
+RHO, G, DEPTH = 1025.0, 9.80665, 200.0
 
 
 @pytest.fixture(scope="module")
@@ -20,35 +35,134 @@ def db():
     return load_database(path)
 
 
-DAMPING_GAP = (
-    "not met by the shipped columns-only 2 m model: max |Capytaine - WAMIT| / max|WAMIT| over "
-    "0.3-2 rad/s = 9.2 % surge/sway, 13.9 % heave, 7.3 % roll/pitch, 5.9 % yaw (3 m panels: "
-    "13.7, 16.9, 11.8, 10.1 %; 1.5 m panels barely move B).  Main cause found 2026-11-21: the WAMIT "
-    "model includes the pontoons and cross braces (HydroDyn PropPot = TRUE for all 25 members; "
-    "marin_semi.hst waterplane 380.06 m^2 = columns 372.47 + 3 braces 2.54 at the water line). "
-    "With them (make_database.py --slender, 2,919 panels) at 0.7 rad/s heave B 2.76e5 -> 3.49e5 "
-    "(WAMIT 3.66e5), pitch B 6.12e8 -> 6.55e8 (6.53e8); at 1.6 rad/s surge B 4.75e6 -> 4.22e6 "
-    "(4.11e6); over 0.3-1.5 rad/s (2 m columns) B errors become surge 5.2, heave 6.3, pitch 2.9, "
-    "yaw 7.5 % (A: surge 6.6, heave 0.9, yaw 6.0 %); 1.5 m column panels + Richardson bring surge "
-    "and yaw A, B within 4.2 % at 0.7 and 1.0 rad/s, but heave B stays 5-7 % low at 1.0-1.2 rad/s "
-    "(mesh- and lid-independent, unexplained).  Ruled out: water depth (WAMIT is at finite "
-    "depth), B units, irregular frequencies, column geometry.  database.nc not regenerated "
-    "(BEM cost, see make_database.py)")
+@pytest.fixture(scope="module")
+def conv():
+    path = VESSELS / "oc4_semi" / "capytaine_mesh_convergence.nc"
+    if not path.exists():
+        pytest.skip("oc4_semi/capytaine_mesh_convergence.nc not built")
+    return xr.load_dataset(path)
 
 
-@pytest.mark.parametrize("name", [
-    "added_mass",
-    pytest.param("radiation_damping", marks=pytest.mark.xfail(strict=True, reason=DAMPING_GAP)),
-])
-def test_capytaine_matches_wamit_within_5_percent(db, name):
-    w = db.omega.values
-    sel = (w >= BAND[0]) & (w <= BAND[1])
-    wam = db[name].values[sel]
-    cap = db["capytaine_" + name].values[sel]
-    for k, dof in enumerate(DOFS):
-        ref = np.max(np.abs(wam[:, k, k]))
-        err = np.max(np.abs(cap[:, k, k] - wam[:, k, k])) / ref
-        assert err < 0.05, f"{name}[{dof},{dof}]: {100 * err:.1f} % of max |WAMIT|"
+def _err(cap, wam, k):
+    """max |Capytaine - WAMIT| / max |WAMIT| of the diagonal term k over the frequencies."""
+    return np.max(np.abs(cap[:, k, k] - wam[:, k, k])) / np.max(np.abs(wam[:, k, k]))
+
+
+def test_stored_wamit_values_are_marin_semi_1(conv, oc4_root):
+    # The reference columns of the convergence record are WAMIT's .1 file itself (ULEN 1 m,
+    # rho 1025), read again here with floatmoor's reader on the same grid points.
+    omega, A, B, _, _ = read_wamit_1(str(oc4_root) + ".1", ulen=1.0, rho=RHO)
+    idx = [int(np.argmin(np.abs(omega - w))) for w in conv.omega.values]
+    assert np.allclose(omega[idx], conv.omega.values, atol=1e-9)
+    assert np.allclose(conv.wamit_added_mass.values, A[idx], rtol=1e-12, atol=0)
+    assert np.allclose(conv.wamit_radiation_damping.values, B[idx], rtol=1e-12, atol=0)
+
+
+def test_shipped_database_is_the_2m_model_of_the_convergence_record(db, conv):
+    # database.nc's Capytaine A and B come from the same 2 m D3-symmetric mesh as the 2 m row
+    # of the convergence record (separate runs: radiation-only vs radiation + diffraction and
+    # Kochin functions; measured difference 4e-7 of the largest term, tolerance 1e-5).
+    # (database.nc keeps WAMIT's frequencies 2 pi / PER, within 1e-6 rad/s of Capytaine's.)
+    h2 = conv.sel(panel_size=2.0)
+    idx = [int(np.argmin(np.abs(db.omega.values - w))) for w in conv.omega.values]
+    assert np.allclose(db.omega.values[idx], conv.omega.values, atol=1e-5)
+    for name in ("added_mass", "radiation_damping"):
+        cap = db["capytaine_" + name].values[idx]
+        ref = h2[name].values
+        assert np.max(np.abs(cap - ref)) <= 1e-5 * np.max(np.abs(ref))
+
+
+# Heave damping is the one diagonal term the converged model does not bring within 5 %:
+# see make_database.py ("Mesh convergence") and benchmarks/RESULTS.md for the table.
+HEAVE_B_GAP = (
+    "converged Capytaine heave B is 5.5-5.9 % of max|WAMIT| (6.14e5 N s/m) below WAMIT at "
+    "1.1-1.2 rad/s (1.2 rad/s: WAMIT 6.139e5, Capytaine 2 m / 1.5 m / 1.0 m / extrapolated = "
+    "see make_database.py); mesh-insensitive (2 m -> 1.5 m moves it 0.3 points), Capytaine's "
+    "own Haskind check agrees with its B (test_haskind_...), so the residual is between the "
+    "two panel models (WAMIT's mesh is not public), not a Capytaine convergence error")
+
+
+@pytest.mark.parametrize("dof", DOFS)
+@pytest.mark.parametrize("name", ["added_mass", "radiation_damping"])
+def test_converged_capytaine_matches_wamit_within_5_percent(conv, name, dof, request):
+    # Issue 4: Capytaine from the public member geometry (RAFT_OC4semi.yaml) within 5 % of
+    # WAMIT's .1 file over the wave band, per diagonal DOF, in % of the largest WAMIT value in
+    # the band.  Compared: the Richardson extrapolation (order 2) of the two finest column
+    # panel sizes of capytaine_mesh_convergence.nc.
+    if name == "radiation_damping" and dof == "heave":
+        request.applymarker(pytest.mark.xfail(strict=True, reason=HEAVE_B_GAP))
+    w = conv.omega.values
+    sel = (w >= BAND[0] - 1e-9) & (w <= BAND[1] + 1e-9)
+    k = DOFS.index(dof)
+    err = _err(conv[name + "_extrapolated"].values[sel], conv["wamit_" + name].values[sel], k)
+    assert err < 0.05, f"{name}[{dof},{dof}]: {100 * err:.2f} % of max |WAMIT|"
+
+
+def _wavenumber(w, h):
+    k = w * w / G
+    for _ in range(200):
+        k = w * w / (G * math.tanh(k * h))
+    return k
+
+
+@pytest.fixture(scope="module")
+def haskind():
+    path = VESSELS / "oc4_semi" / "capytaine_haskind_check.nc"
+    if not path.exists():
+        pytest.skip("oc4_semi/capytaine_haskind_check.nc not built")
+    return xr.load_dataset(path)
+
+
+def haskind_damping(omega, headings, X):
+    """Haskind-Newman relation (Newman 1962, J. Ship Res. 6), finite depth h:
+    B_jj = k / (8 pi rho g C_g) * integral_0^2pi |X_j(beta)|^2 dbeta,
+    C_g = (w / 2k) (1 + 2kh / sinh 2kh).  X: (n_omega, n_heading, 6) on equally spaced
+    headings 0 .. 180 deg; the OC4 semi is symmetric about y = 0, so |X_j(-beta)| = |X_j(beta)|
+    and the periodic trapezoid rule runs over the mirrored 0 .. 360 deg."""
+    hd = np.asarray(headings)
+    step = hd[1] - hd[0]
+    assert abs(hd[0]) < 1e-9 and abs(hd[-1] - np.pi) < 1e-9 and np.allclose(np.diff(hd), step)
+    X2 = np.abs(X) ** 2
+    X2 = np.concatenate([X2, X2[:, -2:0:-1]], axis=1)
+    out = []
+    for i, om in enumerate(omega):
+        k = _wavenumber(om, DEPTH)
+        cg = om / (2 * k) * (1 + 2 * k * DEPTH / math.sinh(2 * k * DEPTH))
+        out.append(k / (8 * math.pi * RHO * G * cg) * X2[i].sum(axis=0) * step)
+    return np.array(out)
+
+
+def test_haskind_formula_on_a_body_in_the_long_wave_limit():
+    # Check of the helper itself: a body whose heave excitation is the same from every
+    # heading, X3 = const, gives B33 = k |X3|^2 / (4 rho g C_g) (the integral is 2 pi |X3|^2);
+    # in deep water (kh >> 1, C_g = g / 2w) that is w^3 |X3|^2 / (2 rho g^3).
+    w = np.array([1.5])
+    X = np.zeros((1, 37, 6), complex)
+    X[0, :, 2] = 3.0e6 * np.exp(0.3j)
+    b = haskind_damping(w, np.radians(np.arange(0.0, 180.001, 5.0)), X)[0, 2]
+    assert _wavenumber(1.5, DEPTH) * DEPTH > 40
+    assert b == pytest.approx(1.5 ** 3 * 9e12 / (2 * RHO * G ** 3), rel=1e-9)
+
+
+@pytest.mark.parametrize("dof", ["surge", "heave", "pitch", "yaw"])
+def test_haskind_damping_from_capytaine_excitation(haskind, dof):
+    # Capytaine's excitation (diffraction solution, 37 headings 0 .. 180 deg step 5, 2 m
+    # column panels) through the Haskind-Newman relation against Capytaine's damping from the
+    # radiation solution of the same mesh, at 0.5 .. 1.3 rad/s (WAMIT's heave-B residual is
+    # at 1.0 .. 1.2).  An independent check of the excitation stored for the simulations
+    # (units, phase-free magnitude, Froude-Krylov + diffraction) and of the damping.  The
+    # relation is exact for the continuous problem but not for a constant-panel solution:
+    # for a Capytaine hemisphere (r = 5 m, deep water, 0.9 rad/s) the defect is 4.9 / 2.5 /
+    # 1.3 % with 100 / 400 / 1600 panels (first order in the panel size).  Tolerance fixed
+    # from that before this comparison: 10 % of max|B_jj| over the frequencies (2 m panels
+    # on 6 m columns are about as coarse as the 100-panel hemisphere, and the tube ends on
+    # the column walls are not a closed surface).
+    k = DOFS.index(dof)
+    X = haskind.excitation_force_re.values + 1j * haskind.excitation_force_im.values
+    b_h = haskind_damping(haskind.omega.values, haskind.wave_direction.values, X)[:, k]
+    b_c = haskind.radiation_damping.values[:, k, k]
+    err = np.max(np.abs(b_h - b_c)) / np.max(np.abs(b_c))
+    assert err < 0.10, f"Haskind {dof}: {100 * err:.2f} % of max |B|"
 
 
 def test_excitation_long_wave_heave_limit(db):

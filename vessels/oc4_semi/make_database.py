@@ -74,6 +74,7 @@ from capytaine.post_pro.mean_drift_force import far_field_mean_drift_force
 
 from floatmoor.hydro import from_capytaine_dataset, read_wamit, save_database
 from floatmoor.hydro.database import _set_attrs, matrix_units
+from floatmoor.hydro.wamit import read_wamit_1
 from floatmoor.hydro.vessel import gravity_stiffness, read_mass_properties, rigid_body_mass_matrix
 
 HERE = Path(__file__).resolve().parent
@@ -117,27 +118,35 @@ def _wall(z0, z1, radius, n_theta, n_z):
     return verts, np.array(faces)
 
 
-def column_parts(stations, diameters, h):
-    """Wetted panels of a vertical circular member with piecewise-constant diameters (z up)."""
+def _n_around(d, h, multiple=1):
+    """Panels around a circle of diameter d (at least 12), rounded up to a multiple."""
+    n = max(12, math.ceil(math.pi * d / h))
+    return multiple * math.ceil(n / multiple)
+
+
+def column_parts(stations, diameters, h, multiple=1):
+    """Wetted panels of a vertical circular member with piecewise-constant diameters (z up).
+    The number of panels around is rounded up to ``multiple`` (6 for the symmetric mesh, so
+    that panel edges lie on the planes of the D3 symmetry)."""
     parts = []
     segs = [(stations[k], stations[k + 1], diameters[k]) for k in range(len(stations) - 1)
             if stations[k + 1] > stations[k] and diameters[k] == diameters[k + 1]]
     segs = [(z0, min(z1, 0.0), d) for z0, z1, d in segs if z0 < 0.0]
     for z0, z1, d in segs:
-        n_t = max(12, math.ceil(math.pi * d / h))
+        n_t = _n_around(d, h, multiple)
         n_z = max(1, math.ceil((z1 - z0) / h))
         parts.append(_wall(z0, z1, d / 2, n_t, n_z))
     # bottom disk and steps between segments
     z0, _, d0 = segs[0]
-    n_t = max(12, math.ceil(math.pi * d0 / h))
+    n_t = _n_around(d0, h, multiple)
     parts.append(_ring(z0, 0.0, d0 / 2, n_t, max(1, math.ceil(d0 / 2 / h)), normal_up=False))
     for (a0, a1, da), (b0, b1, db) in zip(segs[:-1], segs[1:]):
         if db < da:  # step inwards going up: upward-facing annulus
-            n_t = max(12, math.ceil(math.pi * da / h))
+            n_t = _n_around(da, h, multiple)
             parts.append(_ring(a1, db / 2, da / 2, n_t, max(1, math.ceil((da - db) / 2 / h)),
                                normal_up=True))
         elif db > da:
-            n_t = max(12, math.ceil(math.pi * db / h))
+            n_t = _n_around(db, h, multiple)
             parts.append(_ring(a1, da / 2, db / 2, n_t, max(1, math.ceil((db - da) / 2 / h)),
                                normal_up=False))
     return parts
@@ -188,13 +197,17 @@ def _end_param(p, off, e, cols, z_clip=0.0):
     raise ValueError(f"member end {p} lies neither on a column wall nor on the water plane")
 
 
-def slender_parts(members, h_axial, n_theta, include=None):
+def slender_parts(members, h_axial, n_theta, include=None, cut_planes=()):
     """Wetted panels of the submerged pontoons and braces (``potMod: False`` in RAFT but part
     of the WAMIT panel model: HydroDyn's OC4 deck flags every member ``PropPot = TRUE``, and
     marin_semi.hst's waterplane area 380.06 m^2 = columns 372.47 + three braces cut at the
     water line 3 x 2.54).  Open tubes whose ends follow the column wall they meet (or the
     water plane for the cross braces), so there is no overlap with the column panels; the
-    column wall patch under each tube end is kept."""
+    column wall patch under each tube end is kept.
+
+    ``cut_planes``: unit normals (3,) of vertical planes through the z axis; a tube whose axis
+    crosses one of them is split there into two tubes whose end rings lie exactly on the
+    plane (used by the D3-symmetric mesh: the delta pontoons cross the symmetry planes)."""
     cols = _columns(members)
     parts = []
     for m in members:
@@ -220,28 +233,40 @@ def slender_parts(members, h_axial, n_theta, include=None):
             r = float(np.atleast_1d(m["d"])[0]) / 2 * _area_factor(n_theta)
             th = np.linspace(0, 2 * np.pi, n_theta + 1)[:-1]
             offs = [r * (math.cos(t) * u + math.sin(t) * v) for t in th]
-            s0 = [_end_param(a, o, e, cols) for o in offs]
-            s1 = [L + _end_param(b, o, e, cols) for o in offs]
-            n_s = max(1, math.ceil(L / h_axial))
-            verts = np.array([a + o + (s0[j] + (s1[j] - s0[j]) * i / n_s) * e
-                              for i in range(n_s + 1) for j, o in enumerate(offs)])
-            faces = []
-            for i in range(n_s):
-                for j in range(n_theta):
-                    p0, p1 = i * n_theta + j, i * n_theta + (j + 1) % n_theta
-                    faces.append([p0, p0 + n_theta, p1 + n_theta, p1])
-            f = np.array(faces)
-            # outward normals: flip if the first face points towards the axis
-            P = verts[f[0]]
-            nrm = np.cross(P[2] - P[0], P[3] - P[1])
-            if nrm @ offs[0] + nrm @ offs[1] < 0:
-                f = f[:, ::-1]
-            parts.append((verts, f))
+            s0 = np.array([_end_param(a, o, e, cols) for o in offs])
+            s1 = np.array([L + _end_param(b, o, e, cols) for o in offs])
+            pieces = [(s0, s1)]
+            for nrm in cut_planes:
+                nrm = np.asarray(nrm, float)
+                da, db = nrm @ a, nrm @ b
+                if da * db < 0 and min(abs(da), abs(db)) > 1e-6:
+                    sc = np.array([-(nrm @ (a + o)) / (nrm @ e) for o in offs])
+                    pieces = [(s0, sc), (sc, s1)]
+                    break
+            for p0, p1 in pieces:
+                span = L if len(pieces) == 1 else float(np.max(p1 - p0))
+                n_s = max(1, math.ceil(span / h_axial))
+                verts = np.array([a + o + (p0[j] + (p1[j] - p0[j]) * i / n_s) * e
+                                  for i in range(n_s + 1) for j, o in enumerate(offs)])
+                faces = []
+                for i in range(n_s):
+                    for j in range(n_theta):
+                        q0, q1 = i * n_theta + j, i * n_theta + (j + 1) % n_theta
+                        faces.append([q0, q0 + n_theta, q1 + n_theta, q1])
+                f = np.array(faces)
+                # outward normals: flip if the first face points towards the axis
+                P = verts[f[0]]
+                nv = np.cross(P[2] - P[0], P[3] - P[1])
+                if nv @ offs[0] + nv @ offs[1] < 0:
+                    f = f[:, ::-1]
+                parts.append((verts, f))
     return parts
 
 
 def build_mesh(raft_yaml: Path, h: float, slender: bool = True, h_slender: float = 1.0,
-               n_theta_slender: int = 8, include=None):
+               n_theta_slender: int = 8, include=None, multiple=1, cut_planes=()):
+    """Full panel mesh (hull, lid) of the columns (and with ``slender`` the pontoons and
+    braces); ``multiple`` and ``cut_planes`` as in column_parts and slender_parts."""
     data = yaml.safe_load(raft_yaml.read_text().replace("\r", ""))
     members = data["platform"]["members"]
     allv, allf, n = [], [], 0
@@ -260,24 +285,269 @@ def build_mesh(raft_yaml: Path, h: float, slender: bool = True, h_slender: float
         for hd in headings:
             c, s = math.cos(math.radians(hd)), math.sin(math.radians(hd))
             x, y = c * rA[0] - s * rA[1], s * rA[0] + c * rA[1]
-            for v, f in column_parts(list(st), list(d), h):
+            for v, f in column_parts(list(st), list(d), h, multiple):
                 allv.append(v + [x, y, 0.0])
                 allf.append(f + n)
                 n += v.shape[0]
             dw = d[-1]  # water-line diameter (top segment)
-            v, f = _ring(-0.01, 0.0, dw / 2 * 0.98, max(12, math.ceil(math.pi * dw / h)),
+            v, f = _ring(-0.01, 0.0, dw / 2 * 0.98, _n_around(dw, h, multiple),
                          max(1, math.ceil(dw / 2 / h)), normal_up=False)
             lid_v.append(v + [x, y, 0.0])
             lid_f.append(f + nl)
             nl += v.shape[0]
     if slender:
-        for v, f in slender_parts(members, h_slender, n_theta_slender, include):
+        for v, f in slender_parts(members, h_slender, n_theta_slender, include, cut_planes):
             allv.append(v)
             allf.append(f + n)
             n += v.shape[0]
     mesh = cpt.Mesh(np.concatenate(allv), np.concatenate(allf), name="oc4_semi")
     lid = cpt.Mesh(np.concatenate(lid_v), np.concatenate(lid_f), name="oc4_lid")
     return mesh, lid
+
+
+def _half_wedge(mesh, name):
+    """Faces of ``mesh`` in the sector 120 deg < polar angle < 180 deg (by face centre), checked
+    to lie entirely inside it (all vertices within 1e-6 m)."""
+    c = mesh.faces_centers
+    n120 = np.array([math.sin(math.radians(120.0)), -math.cos(math.radians(120.0)), 0.0])
+    inside = (c[:, 1] > 0.0) & (c @ n120 < 0.0)
+    half = mesh.extract_faces(np.nonzero(inside)[0], name=name)
+    v = half.vertices[np.unique(half.faces)]
+    if np.min(v[:, 1]) < -1e-6 or np.max(v @ n120) > 1e-6:
+        raise RuntimeError(f"{name}: a panel straddles a symmetry plane")
+    return half, int(inside.sum())
+
+
+def build_symmetric_mesh(raft_yaml: Path, h: float, slender: bool = True, **kw):
+    """The mesh of build_mesh with the D3 symmetry of the OC4 semi (offset columns at 60, 180
+    and 300 deg, members repeated at these headings; mirror plane y = 0): one twelfth... no,
+    one sixth of the panels (polar angle 120-180 deg) is meshed and Capytaine builds the
+    rest as ``RotationSymmetricMesh(ReflectionSymmetricMesh(half, 'xOz'), n=3)``, so its
+    influence matrices have 6 blocks (N x N/6 Green-function evaluations, block-circulant LU).
+
+    The panels are those of build_mesh(..., multiple=6, cut_planes=<planes at 0, 60, 120
+    deg>) in the reference sector; the other five sectors are its exact images (RAFT's member
+    coordinates are rounded to 0.01 m, so the full build_mesh differs from them by < 0.05 m).
+    Returns (hull, lid, full_hull_panel_count)."""
+    planes = [np.array([-math.sin(math.radians(p)), math.cos(math.radians(p)), 0.0])
+              for p in (0.0, 60.0, 120.0)]
+    mesh, lid = build_mesh(raft_yaml, h, slender=slender, multiple=6, cut_planes=planes, **kw)
+    out = []
+    for m, name in ((mesh, "oc4_semi"), (lid, "oc4_lid")):
+        half, n_half = _half_wedge(m, name + "_half")
+        wedge = cpt.ReflectionSymmetricMesh(half, plane="xOz", name=name + "_wedge")
+        out.append(cpt.RotationSymmetricMesh(wedge, n=3, name=name))
+    return out[0], out[1], mesh
+
+
+CHECKPOINTS = Path("/tmp/oc4bem")
+
+
+def _body(mesh, lid):
+    return cpt.FloatingBody(mesh=mesh, lid_mesh=lid,
+                            dofs=cpt.rigid_body_dofs(rotation_center=(0, 0, 0)),
+                            center_of_mass=(0, 0, 0), name="oc4_semi")
+
+
+def solve_checkpointed(body, omegas, tag, headings_rad=None, theta=None):
+    """Capytaine fill_dataset frequency by frequency (one BEMSolver, so the influence matrices
+    and their LU factors are shared by all problems of a frequency), each frequency written
+    to CHECKPOINTS/<tag>_w<omega>.nc and read back from there on a rerun.  Radiation only
+    when ``headings_rad`` is None.  Returns the dataset concatenated along omega and the
+    wall-clock seconds per computed frequency."""
+    from capytaine.io.xarray import merge_complex_values, save_dataset_as_netcdf
+    CHECKPOINTS.mkdir(exist_ok=True)
+    solver = cpt.BEMSolver()
+    parts, times = [], {}
+    for w in omegas:
+        path = CHECKPOINTS / f"{tag}_w{w:.2f}.nc"
+        if path.exists():
+            parts.append(merge_complex_values(xr.load_dataset(path)))
+            continue
+        coords = {"omega": [w], "radiating_dof": list(body.dofs), "water_depth": [DEPTH],
+                  "rho": [RHO], "g": [G]}
+        if headings_rad is not None:
+            coords["wave_direction"] = headings_rad
+        if theta is not None:
+            coords["theta"] = theta
+        t0 = time.time()
+        ds = solver.fill_dataset(xr.Dataset(coords=coords), body, hydrostatics=False,
+                                 progress_bar=False)
+        times[float(w)] = time.time() - t0
+        ds.attrs = {k: str(v) for k, v in ds.attrs.items()}
+        save_dataset_as_netcdf(path, ds)
+        parts.append(merge_complex_values(xr.load_dataset(path)))
+        print(f"  {tag} omega {w:.2f}: {times[float(w)]:.1f} s", flush=True)
+    return xr.concat(parts, dim="omega"), times
+
+
+CONV_OMEGAS = np.round(np.arange(0.3, 2.0001, 0.1), 2)
+CONV_PANELS = (2.0, 1.5, 1.0)
+
+
+def mesh_convergence(ref: Path, sizes=CONV_PANELS, omegas=CONV_OMEGAS,
+                     out=HERE / "capytaine_mesh_convergence.nc"):
+    """Radiation (A, B, 6x6) of the D3-symmetric pontoon/brace model for several column panel
+    sizes, Richardson extrapolation, WAMIT on the same frequencies; written to ``out``."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        wam = read_wamit(ref / "marin_semi", ulen=1.0, rho=RHO, g=G, water_depth=DEPTH)
+    dofs = ["Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw"]
+    A, B, Ainf, npan, secs = [], [], [], [], []
+    for h in sizes:
+        mesh, lid, _ = build_symmetric_mesh(ref / "RAFT_OC4semi.yaml", h)
+        print(f"column panels {h} m: {mesh.nb_faces} panels + lid {lid.nb_faces}", flush=True)
+        cds, times = solve_checkpointed(_body(mesh, lid), omegas, f"rad_h{h:.2f}")
+        sel = dict(influenced_dof=dofs, radiating_dof=dofs)
+        A.append(cds.added_mass.sel(**sel).transpose("omega", "influenced_dof",
+                                                      "radiating_dof").values)
+        B.append(cds.radiation_damping.sel(**sel).transpose("omega", "influenced_dof",
+                                                             "radiating_dof").values)
+        npan.append(mesh.nb_faces)
+        secs.append(np.mean(list(times.values())) if times else np.nan)
+        cinf, _ = solve_checkpointed(_body(mesh, lid), [np.inf], f"rad_h{h:.2f}")
+        Ainf.append(cinf.added_mass.sel(**sel).transpose(..., "influenced_dof", "radiating_dof")
+                    .values.reshape(6, 6))
+    A, B, Ainf = np.array(A), np.array(B), np.array(Ainf)
+    _, _, _, _, wAinf = read_wamit_1(ref / "marin_semi.1", ulen=1.0, rho=RHO)
+    idx = [int(np.argmin(np.abs(wam.omega.values - w))) for w in omegas]
+    if not np.allclose(wam.omega.values[idx], omegas, atol=1e-6):
+        raise RuntimeError("convergence frequencies are not on the WAMIT grid")
+    wA = wam.added_mass.values[idx]
+    wB = wam.radiation_damping.values[idx]
+    h = np.array(sizes)
+    # Richardson extrapolation from the two finest meshes with order 2 (first-order panel
+    # method: the error of A, B falls as h^2 for smooth bodies); observed order from three.
+    r = h[-2] / h[-1]
+    extA = A[-1] + (A[-1] - A[-2]) / (r ** 2 - 1)
+    extB = B[-1] + (B[-1] - B[-2]) / (r ** 2 - 1)
+    extAinf = Ainf[-1] + (Ainf[-1] - Ainf[-2]) / (r ** 2 - 1)
+    names = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    cc = {"omega": omegas, "panel_size": h, "influenced_dof": names, "radiating_dof": names}
+    mat = ("omega", "influenced_dof", "radiating_dof")
+    ds = xr.Dataset(
+        {"added_mass": (("panel_size",) + mat, A), "radiation_damping": (("panel_size",) + mat, B),
+         "added_mass_extrapolated": (mat, extA), "radiation_damping_extrapolated": (mat, extB),
+         "wamit_added_mass": (mat, wA), "wamit_radiation_damping": (mat, wB),
+         "added_mass_inf": (("panel_size", "influenced_dof", "radiating_dof"), Ainf),
+         "added_mass_inf_extrapolated": (("influenced_dof", "radiating_dof"), extAinf),
+         "wamit_added_mass_inf": (("influenced_dof", "radiating_dof"), wAinf),
+         "nb_panels": (("panel_size",), np.array(npan)),
+         "seconds_per_frequency": (("panel_size",), np.array(secs))}, coords=cc)
+    for v in ("added_mass", "added_mass_extrapolated", "wamit_added_mass", "added_mass_inf",
+              "added_mass_inf_extrapolated", "wamit_added_mass_inf"):
+        ds[v].attrs["units"] = "kg (translation), kg m (coupling), kg m^2 (rotation)"
+    for v in ("radiation_damping", "radiation_damping_extrapolated", "wamit_radiation_damping"):
+        ds[v].attrs["units"] = "N s/m (translation), N s (coupling), N m s (rotation)"
+    ds.omega.attrs["units"] = "rad/s"
+    ds.panel_size.attrs.update(units="m", long_name="target panel size on the columns "
+                               "(pontoons and braces: 8 panels round, 1 m long, all sizes)")
+    ds.nb_panels.attrs["long_name"] = "hull panels (without the interior lid)"
+    ds.seconds_per_frequency.attrs.update(
+        units="s", long_name="wall clock per frequency, 6 radiation problems, one core, "
+        "D3-symmetric solve (NaN: read from checkpoints)")
+    ds.added_mass_extrapolated.attrs["long_name"] = (
+        "Richardson extrapolation (order 2) from the two finest panel sizes")
+    for v in ("radiation_damping_extrapolated", "added_mass_inf_extrapolated"):
+        ds[v].attrs["long_name"] = ds.added_mass_extrapolated.attrs["long_name"]
+    ds.added_mass_inf.attrs["long_name"] = "infinite-frequency added mass (Capytaine omega=inf)"
+    ds.wamit_added_mass_inf.attrs["long_name"] = "WAMIT PER = 0 rows of marin_semi.1"
+    ds.attrs.update({
+        "title": "OC4-DeepCwind semi: Capytaine radiation vs column panel size, and WAMIT",
+        "description": "Capytaine %s, columns + pontoons + cross braces (make_database.py "
+                       "build_symmetric_mesh, D3 symmetry, interior lid), water depth 200 m, "
+                       "rho 1025, about (0, 0, 0); WAMIT: marin_semi.1 redimensionalised "
+                       "(ULEN 1 m)" % cpt.__version__,
+        "created_by": "vessels/oc4_semi/make_database.py --convergence"})
+    if len(h) >= 3:
+        for q, X in (("added_mass", A), ("radiation_damping", B)):
+            ds["observed_order_" + q] = (mat, observed_order(h[-3:], X[-3:]))
+            ds["observed_order_" + q].attrs["long_name"] = (
+                "p solving (f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p) for the "
+                "three panel sizes (NaN: not monotonic or outside 0.25 .. 6)")
+    ds.to_netcdf(out)
+    print(f"wrote {out}", flush=True)
+    report_convergence(ds)
+    return ds
+
+
+HASKIND_OMEGAS = (0.5, 0.7, 0.9, 1.0, 1.1, 1.2, 1.3)
+
+
+def haskind_record(ref: Path, h: float = 2.0, omegas=HASKIND_OMEGAS,
+                   out=HERE / "capytaine_haskind_check.nc"):
+    """Radiation damping and excitation of the D3-symmetric model on 37 headings (0 .. 180
+    deg step 5), for the Haskind-Newman check of tests/hydro/test_oc4_capytaine.py (the 30 deg
+    headings of database.nc do not resolve the heading dependence of the excitation at
+    0.9 .. 1.3 rad/s, where the columns' waves interfere)."""
+    mesh, lid, _ = build_symmetric_mesh(ref / "RAFT_OC4semi.yaml", h)
+    headings = np.radians(np.arange(0.0, 180.0001, 5.0))
+    cds, times = solve_checkpointed(_body(mesh, lid), np.array(omegas), f"hk_h{h:.2f}",
+                                    headings_rad=headings)
+    dofs = ["Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw"]
+    names = [d.lower() for d in dofs]
+    X = (cds.Froude_Krylov_force + cds.diffraction_force).sel(influenced_dof=dofs).transpose(
+        "omega", "wave_direction", "influenced_dof").values
+    B = cds.radiation_damping.sel(influenced_dof=dofs, radiating_dof=dofs).transpose(
+        "omega", "influenced_dof", "radiating_dof").values
+    ds = xr.Dataset(
+        {"excitation_force_re": (("omega", "wave_direction", "influenced_dof"), X.real),
+         "excitation_force_im": (("omega", "wave_direction", "influenced_dof"), X.imag),
+         "radiation_damping": (("omega", "influenced_dof", "radiating_dof"), B)},
+        coords={"omega": np.array(omegas), "wave_direction": headings,
+                "influenced_dof": names, "radiating_dof": names})
+    ds.omega.attrs["units"] = "rad/s"
+    ds.wave_direction.attrs.update(units="rad", long_name="direction of travel from +x")
+    for v in ("excitation_force_re", "excitation_force_im"):
+        ds[v].attrs.update(units="N/m (force), N m/m (moment), per unit wave amplitude",
+                           long_name="Capytaine Froude-Krylov + diffraction, exp(-i w t)")
+    ds.radiation_damping.attrs["units"] = "N s/m (translation), N m s (rotation)"
+    ds.attrs.update({
+        "description": f"Capytaine {cpt.__version__}, columns + pontoons + cross braces, D3-"
+                       f"symmetric mesh, {h} m column panels ({mesh.nb_faces} panels + lid), "
+                       "water depth 200 m, rho 1025, g 9.80665, about (0, 0, 0)",
+        "created_by": "vessels/oc4_semi/make_database.py --haskind",
+        "seconds_per_frequency": float(np.mean(list(times.values()))) if times else -1.0})
+    ds.to_netcdf(out)
+    print(f"wrote {out}", flush=True)
+    return ds
+
+
+def observed_order(h, f):
+    """Observed order p of f(h) = f0 + c h^p from three sizes h (decreasing) and values
+    f (3, ...): bisection on (f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p), which is
+    monotonic in p; NaN where the differences change sign or p is outside 0.25 .. 6."""
+    h1, h2, h3 = h
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = (f[0] - f[1]) / (f[1] - f[2])
+    g = lambda p: (h1 ** p - h2 ** p) / (h2 ** p - h3 ** p)
+    lo, hi = np.full(ratio.shape, 0.25), np.full(ratio.shape, 6.0)
+    ok = (ratio > g(0.25)) & (ratio < g(6.0))
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        up = g(mid) < ratio
+        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+    return np.where(ok, 0.5 * (lo + hi), np.nan)
+
+
+def report_convergence(ds):
+    """Print, per diagonal DOF, max |Capytaine - WAMIT| / max|WAMIT| over the frequencies of
+    ``ds`` for every panel size and the extrapolation, and the values at 1.0-1.2 rad/s."""
+    for q in ("added_mass", "radiation_damping"):
+        for k, dof in enumerate(ds.influenced_dof.values):
+            w = ds["wamit_" + q].values[:, k, k]
+            ref = np.max(np.abs(w))
+            row = [f"{100 * np.max(np.abs(ds[q].values[j, :, k, k] - w)) / ref:5.1f}"
+                   for j in range(ds.panel_size.size)]
+            ext = 100 * np.max(np.abs(ds[q + "_extrapolated"].values[:, k, k] - w)) / ref
+            print(f"{q:18s} {dof:6s} " + " ".join(row) + f" | extrap {ext:5.1f} %")
+    if "added_mass_inf" in ds:
+        for k, dof in enumerate(ds.influenced_dof.values):
+            w = ds.wamit_added_mass_inf.values[k, k]
+            row = [f"{100 * (ds.added_mass_inf.values[j, k, k] / w - 1):+5.2f}"
+                   for j in range(ds.panel_size.size)]
+            ext = 100 * (ds.added_mass_inf_extrapolated.values[k, k] / w - 1)
+            print(f"A_inf {dof:6s} WAMIT {w:.4g}: " + " ".join(row) + f" | extrap {ext:+5.2f} %")
 
 
 def far_field_drift(cds, C_hst):
@@ -308,20 +578,34 @@ def far_field_drift(cds, C_hst):
     return md
 
 
-def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = False):
+def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = False,
+         symmetric: bool = False):
     t0 = time.time()
     omegas = np.round(np.arange(0.10, 3.0001, 0.05), 2)
     headings_deg = np.array([0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0])
-    mesh, lid = build_mesh(ref / "RAFT_OC4semi.yaml", h, slender=slender)
-    print(f"panels {mesh.nb_faces} + lid {lid.nb_faces}; volume {mesh.volume:.1f} m^3", flush=True)
-    body = cpt.FloatingBody(mesh=mesh, lid_mesh=lid,
-                            dofs=cpt.rigid_body_dofs(rotation_center=(0, 0, 0)),
-                            center_of_mass=(0, 0, 0), name="oc4_semi")
     theta = np.linspace(-2 * 2 * np.pi / 72, 2 * np.pi + 2 * 2 * np.pi / 72, 77)
-    test = xr.Dataset(coords={"omega": omegas, "wave_direction": np.radians(headings_deg),
-                              "radiating_dof": list(body.dofs), "water_depth": [DEPTH],
-                              "rho": [RHO], "g": [G], "theta": theta})
-    cds = cpt.BEMSolver().fill_dataset(test, body, hydrostatics=False).squeeze(drop=False)
+    if symmetric:
+        if not slender:
+            raise ValueError("--symmetric is implemented for the --slender model only")
+        mesh, lid, _ = build_symmetric_mesh(ref / "RAFT_OC4semi.yaml", h)
+        print(f"panels {mesh.nb_faces} + lid {lid.nb_faces} (D3-symmetric); volume "
+              f"{mesh.merged().volume:.1f} m^3", flush=True)
+        body = _body(mesh, lid)
+        cds, times = solve_checkpointed(body, omegas, f"db_h{h:.2f}",
+                                        headings_rad=np.radians(headings_deg), theta=theta)
+        cds = cds.squeeze(drop=False)
+        if times:
+            print(f"BEM {np.mean(list(times.values())):.1f} s per frequency "
+                  f"({len(times)} computed)", flush=True)
+    else:
+        mesh, lid = build_mesh(ref / "RAFT_OC4semi.yaml", h, slender=slender)
+        print(f"panels {mesh.nb_faces} + lid {lid.nb_faces}; volume {mesh.volume:.1f} m^3",
+              flush=True)
+        body = _body(mesh, lid)
+        test = xr.Dataset(coords={"omega": omegas, "wave_direction": np.radians(headings_deg),
+                                  "radiating_dof": list(body.dofs), "water_depth": [DEPTH],
+                                  "rho": [RHO], "g": [G], "theta": theta})
+        cds = cpt.BEMSolver().fill_dataset(test, body, hydrostatics=False).squeeze(drop=False)
     print(f"BEM done in {time.time() - t0:.0f} s", flush=True)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # "no excitation file": expected, replaced below
@@ -360,9 +644,10 @@ def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = Fa
     ds.attrs.update({
         "source": ("WAMIT marin_semi.1, .hst, .12d (OpenFAST r-test) + Capytaine "
                    f"{cpt.__version__} excitation ({mesh.nb_faces} panels + lid"
-                   f"{', columns, pontoons and braces' if slender else ', columns only'})"),
+                   f"{', columns, pontoons and braces' if slender else ', columns only'}"
+                   f"{', D3-symmetric mesh' if symmetric else ''}, {h} m column panels)"),
         "water_depth": DEPTH, "displaced_volume": 13917.0,
-        "capytaine_mesh_volume": float(mesh.volume),
+        "capytaine_mesh_volume": float(mesh.merged().volume if symmetric else mesh.volume),
         "mean_drift_method": "diagonal of the WAMIT difference-frequency QTF (marin_semi.12d)",
     })
     ds = _set_attrs(ds)
@@ -384,7 +669,14 @@ def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = Fa
 
 
 if __name__ == "__main__":
-    args = [a for a in sys.argv[1:] if a != "--slender"]
+    flags = {a for a in sys.argv[1:] if a.startswith("--")}
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
     ref = Path(args[0]) if len(args) > 0 else Path("/work/shared/reference/OC4_DeepCwind_semi")
-    h = float(args[1]) if len(args) > 1 else 2.0
-    main(ref, h, slender="--slender" in sys.argv[1:])
+    if "--haskind" in flags:
+        haskind_record(ref)
+    elif "--convergence" in flags:
+        sizes = tuple(float(x) for x in args[1].split(",")) if len(args) > 1 else CONV_PANELS
+        mesh_convergence(ref, sizes)
+    else:
+        h = float(args[1]) if len(args) > 1 else 2.0
+        main(ref, h, slender="--slender" in flags, symmetric="--symmetric" in flags)
