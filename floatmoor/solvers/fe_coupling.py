@@ -39,10 +39,18 @@ of the tension with 50 elements) enters D and the body settles at the FE equilib
 
 Scope and limits
 ----------------
-* Lines not selected as finite-element stay quasi-static inside the kernel, failures included.
-  A FE line with a failure time (``forces.line_failure``) is refused (SceneError): releasing a
-  FE line end is not implemented.  Lines removed from the start (``failed_lines``) are simply
-  absent.
+* Line failure (ALS), as for quasi-static lines.  Lines removed from the start (mooring
+  ``failed_lines``) are not built: absent from the start equilibrium and the run, zero
+  tension throughout.  A FE line with a failure time t_f (``forces.line_failure``) is part of
+  the start equilibrium (as a quasi-static line with a failure time: the run starts intact)
+  and is released at the first body step n with n dt >= t_f (the step at which the
+  quasi-static kernel deactivates a line): from t_n on it exerts no force on the body (its
+  generalised force leaves F_FE and its catenary leaves F_QS,FE, so D loses it too), it is no
+  longer advanced (its last state is frozen, the free end is not simulated: the line falling
+  to the seabed has no effect on the body) and its outputs are zero (``line_tension``,
+  ``anchor_tension``, ``max_tension_along_line``, ``touchdown_tension``; ``grounded_length``
+  NaN: not modelled).  Inside the kernel: a mask ``on`` per FE line, no allocation; an intact
+  run does the same operations as before.
 * The FE lines see the scene's current (profile and heading, relative-velocity drag); wave
   kinematics on the lines are not modelled in coupled runs.
 * Outputs for FE lines: ``line_tension`` / ``anchor_tension`` are the FE fairlead and anchor
@@ -62,6 +70,7 @@ import numpy as np
 from numba import njit
 
 from ..core.errors import NumericalError, SceneError
+from ..core.frames import rotation_matrix_into
 from ..metocean.current import current_speed
 from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring
@@ -83,13 +92,14 @@ FE_RECORDS = ("max_tension_along_line", "grounded_length", "touchdown_tension")
 class FECoupling:
     """The FE lines of a run: ``mooring`` the :class:`FEMooring`, ``names`` its lines,
     ``index`` their positions in the mooring system (int64), ``substeps`` line steps per body
-    step."""
+    step, ``fail_time`` (n_fe,) failure time of each FE line (s; inf: intact)."""
 
     mooring: FEMooring
     names: list
     index: np.ndarray
     substeps: int
     options: object
+    fail_time: np.ndarray = None
 
 
 def _current_kw(env, water_depth: float) -> dict:
@@ -136,14 +146,10 @@ def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling
     ----------
     built : BuiltScene
     pose : (6,) start pose, m and rad.
-    fail_time : (n_lines,) failure times of the mooring model (s; inf: none).
-    options : the scene's ``forces`` settings (for the file name in messages).
+    fail_time : (n_lines,) failure times of the mooring model (s; inf: none); a FE line with
+        a finite time is released in the run at that time (module docstring).
+    options : the scene's ``forces`` settings (unused; kept for the messages of callers).
     dt : body time step, s.
-
-    Raises
-    ------
-    SceneError
-        A FE line with a failure time (release of FE lines is not implemented).
     """
     system = built.mooring
     lm = getattr(system, "line_models", None)
@@ -156,16 +162,11 @@ def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling
     if fm is None:
         return None
     index = np.array([system.names.index(n) for n in names], np.int64)
+    fail = np.full(len(names), math.inf)
     if fail_time is not None:
-        for n, i in zip(names, index):
-            if math.isfinite(fail_time[i]):
-                raise SceneError(getattr(options, "file", None) or built.scene.file,
-                                 "forces.line_failure",
-                                 "failures of quasi-static lines only (releasing a "
-                                 "finite-element line is not implemented)", n,
-                                 hint=f"give line {n!r} model: quasi-static for the ALS run")
+        fail[:] = np.asarray(fail_time, float)[index]
     return FECoupling(mooring=fm, names=list(names), index=index,
-                      substeps=fm.options.substeps_for(dt), options=fm.options)
+                      substeps=fm.options.substeps_for(dt), options=fm.options, fail_time=fail)
 
 
 def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, external_force,
@@ -211,15 +212,51 @@ def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, exter
 
 
 @njit(cache=True)
-def _record_fe(n, fe_index, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out):
+def _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out):
     for i in range(fe_index.shape[0]):
-        K.record_into(l_r[i], l_fn[i], w_tens[i], zc[i], s_nodes[i], rec)
         j = fe_index[i]
+        if not on[i]:  # released line: zero tensions, grounded length not modelled
+            t_fair[n, j] = 0.0
+            t_anchor[n, j] = 0.0
+            fe_out[0, n, j] = 0.0
+            fe_out[1, n, j] = np.nan
+            fe_out[2, n, j] = 0.0
+            continue
+        K.record_into(l_r[i], l_fn[i], w_tens[i], zc[i], s_nodes[i], rec)
         t_fair[n, j] = math.sqrt(rec[0] ** 2 + rec[1] ** 2 + rec[2] ** 2)
         t_anchor[n, j] = math.sqrt(rec[3] ** 2 + rec[4] ** 2 + rec[5] ** 2)
         fe_out[0, n, j] = rec[6]
         fe_out[1, n, j] = rec[11]
         fe_out[2, n, j] = rec[8]
+
+
+@njit(cache=True)
+def _release_failed(t, fe_index, fail_time, on, active_fe, arm, forces, Q):
+    """Release the FE lines whose failure time is reached at ``t`` (``t >= fail_time``, the
+    test of the quasi-static kernel): ``on`` and ``active_fe`` False, and ``Q`` summed again
+    over the remaining lines from their end ``forces`` and lever ``arm`` s (as
+    :func:`body_advance` sums it).  Returns True when a line was released."""
+    changed = False
+    for i in range(fe_index.shape[0]):
+        j = fe_index[i]
+        if on[i] and t >= fail_time[j]:
+            on[i] = False
+            active_fe[j] = False
+            for c in range(3):
+                forces[i, c] = 0.0
+            changed = True
+    if changed:
+        for k in range(6):
+            Q[k] = 0.0
+        for i in range(fe_index.shape[0]):
+            if not on[i]:
+                continue
+            for c in range(3):
+                Q[c] += forces[i, c]
+            Q[3] += arm[i, 1] * forces[i, 2] - arm[i, 2] * forces[i, 1]
+            Q[4] += arm[i, 2] * forces[i, 0] - arm[i, 0] * forces[i, 2]
+            Q[5] += arm[i, 0] * forces[i, 1] - arm[i, 1] * forces[i, 0]
+    return changed
 
 
 @njit(cache=True)
@@ -231,7 +268,7 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
                  cb, seabed, active, fail_time, mbs, warm, guard, tension_guard, record_parts,
                  motion, velocity, t_fair, t_anchor, parts_out, status,
                  fe_index, active_fe, warm_fe, Q, nsub, max_split, fair_b, R, rf_all, vf_all,
-                 arm, forces, fail, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA,
+                 arm, forces, fail, on, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA,
                  l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk, l_vfk, l_P, l_E, l_S, l_cur_z,
                  l_cur_u, l_wk, fric, coef_ga, tol, maxit, w_q, w_tens, w_Mb, w_Dg, w_Of, w_BX,
                  w_Rk, w_W, w_Yk, w_T1, w_da, w_info, w_stats, zc, s_nodes, fe_out):
@@ -242,7 +279,9 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
     positions of the FE lines among all lines, ``active_fe`` (n_lines,) True for them,
     ``warm_fe`` (n_lines, 2) catenary warm starts, ``Q`` (6,) the generalised force of the FE
     lines in the started state (updated every step), ``nsub`` line steps per body step, then the
-    arguments of :func:`floatmoor.mooring.fe.multi.body_advance` from ``max_split`` on, ``zc``
+    arguments of :func:`floatmoor.mooring.fe.multi.body_advance` from ``max_split`` on
+    (``arm`` and ``forces`` hold the lever arms and end forces of the started state; ``on``
+    (n_fe,) True for the intact FE lines, set False at their ``fail_time``), ``zc``
     (n_fe,) seabed contact levels, ``s_nodes`` node arc lengths (typed list), ``fe_out`` (3,
     n_steps+1, n_lines) max tension along the line, grounded length, touchdown tension of the
     FE lines.  Status 5 (:data:`STATUS_FE`): FE step failed, ``status[2]`` the FE line,
@@ -260,8 +299,9 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
     prate = np.zeros(6)
     vel = np.zeros(6)
     fq = np.zeros(6)
-    _record_fe(0, fe_index, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out)
     for n in range(n_steps + 1):
+        # line failures (ALS): released from t_n on, as the quasi-static kernel does
+        _release_failed(n * dt, fe_index, fail_time, on, active_fe, arm, forces, Q)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
         bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
                                   line_start, cb, seabed, active_fe, warm_fe, False, work, rot,
@@ -285,7 +325,8 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         if status[0] != 0:
             return
         # row n: the FE tensions at t_n replace the catenary's for the FE lines
-        _record_fe(n, fe_index, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out)
+        _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor,
+                   fe_out)
         for i in range(n_fe):
             j = fe_index[i]
             if t_fair[n, j] > tension_guard * mbs[j]:
@@ -308,17 +349,18 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         vel[4] = prate[3] * sps * cph + prate[4] * cps
         vel[5] = prate[5] - prate[3] * sph
         st = body_advance((n + 1) * dt, dt, nsub, max_split, x, vel, fair_b, R, rf_all, vf_all,
-                          arm, Q, forces, fail, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA,
-                          l_aA, l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk, l_vfk, l_P, l_E,
-                          l_S, l_cur_z, l_cur_u, l_wk, fric, coef_ga, tol, maxit, w_q, w_tens,
-                          w_Mb, w_Dg, w_Of, w_BX, w_Rk, w_W, w_Yk, w_T1, w_da, w_info, w_stats)
+                          arm, Q, forces, fail, on, counters, l_r, l_v, l_a, l_fn, l_fs,
+                          l_rA, l_vA, l_aA, l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk,
+                          l_vfk, l_P, l_E, l_S, l_cur_z, l_cur_u, l_wk, fric, coef_ga, tol,
+                          maxit, w_q, w_tens, w_Mb, w_Dg, w_Of, w_BX, w_Rk, w_W, w_Yk, w_T1,
+                          w_da, w_info, w_stats)
         if st < 0:
             status[0] = STATUS_FE
             status[1] = n + 1
             status[2] = fail[0]
             status[3] = st
             return
-        body_accept(l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA, l_fnA, l_fs1)
+        body_accept(on, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA, l_fnA, l_fs1)
 
 
 def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
@@ -353,6 +395,13 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     status = np.zeros(4, np.int64)
     active_fe = np.zeros(n_lines, np.bool_)
     active_fe[c.index] = True
+    # lever arms and end forces of the started state (for a release of a line at t = 0)
+    R = np.zeros((3, 3))
+    x0 = np.asarray(x0, float)
+    rotation_matrix_into(x0[3], x0[4], x0[5], R)
+    arm = np.ascontiguousarray(fm.fairleads_body @ R.T)
+    forces = np.ascontiguousarray(ends, dtype=float)
+    on = np.ones(len(lines), np.bool_)
     per_line = typed_lists(lines, LINE_ARGS)
     work = typed_lists(lines, WORK_ARGS)
     s_nodes = typed_lists(lines, ("s_nodes",))[0]
@@ -368,9 +417,10 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
         status, np.ascontiguousarray(c.index), active_fe, np.zeros((n_lines, 2)), Q,
         int(c.substeps), int(FELine.MAX_SPLIT),
         np.ascontiguousarray(fm.fairleads_body), np.zeros((3, 3)), np.zeros((nf, 3)),
-        np.zeros((nf, 3)), np.zeros((nf, 3)), np.zeros((nf, 3)), np.zeros(1, np.int64),
-        fm.counters, *per_line, fric, coef, tol, maxit, *work, zc, s_nodes, fe_out)
+        np.zeros((nf, 3)), arm, forces, np.zeros(1, np.int64), on, fm.counters, *per_line,
+        fric, coef, tol, maxit, *work, zc, s_nodes, fe_out)
     td_fe_kernel(*args)
+    fm.on[:] = on
     t_end = int(status[1]) * td_args[1]
     for ln in lines:
         ln.time = t_end

@@ -289,11 +289,149 @@ def test_qs_scene_unchanged_by_fe_support(tmp_path):
     assert r.fe_lines == [] and r.fe_records is None
 
 
-def test_fe_line_with_failure_time_is_refused(tmp_path):
-    p = _scene(tmp_path, forces={"line_failure": {"line6": 30.0}})
-    with pytest.raises(SceneError) as e:
-        simulate(p, seed=1, duration=60.0, dt=0.2)
-    assert "line_failure" in str(e.value) and "line6" in str(e.value)
+# -- line failure (ALS) with FE lines --------------------------------------------------------
+def _mooring_failed(path: Path, names) -> Path:
+    d = yaml.safe_load(path.read_text())
+    d["mooring"]["failed_lines"] = list(names)
+    path.write_text(yaml.safe_dump(d))
+    return path
+
+
+def test_fe_line_failed_from_the_start_matches_quasi_static_statics(tmp_path):
+    """``failed_lines: [line6]`` with FE lines: line6 is not built; the start equilibrium is
+    the quasi-static equilibrium of the 11-line mooring (floatmoor.solvers.statics on the
+    failed MooringSystem) within the offset the FE-vs-catenary static tension error of the
+    mesh explains (the bound of test_static_limit_settles_at_quasi_static_equilibrium), in
+    surge and sway; the body stays there at rest and line6 has zero tension."""
+    p = _mooring_failed(_scene(tmp_path, n_elements=20, name="als0"), ["line6"])
+    b = _built(p)
+    a = assemble(b, seed=1, dt=0.2, duration=20.0, ramp=0.0)
+    assert "line6" not in a.fe.names and len(a.fe.names) == 11
+    sys_ = b.mooring
+    sys_.warm[:] = 0.0
+    eq = equilibrium(sys_, hydrostatic_stiffness=a.asm.restoring,
+                     external_force=a.asm.const_force)
+    # the intact mooring's equilibrium, to see that the failure moves the body
+    b_int = _built(_scene(tmp_path, n_elements=20, name="int0"))
+    b_int.mooring.warm[:] = 0.0
+    eq_int = equilibrium(b_int.mooring, hydrostatic_stiffness=a.asm.restoring,
+                         external_force=a.asm.const_force)
+    shift = np.hypot(*(eq.pose[:2] - eq_int.pose[:2]))
+    assert shift > 1.0, shift   # line6 (anchor at -x, +y) gone: the body moves to +x, -y
+    fm = a.fe.mooring
+    fm.solve_static(eq.pose)
+    T_fe = np.linalg.norm(fm.line_forces, axis=1)
+    T_qs = sys_.tensions(eq.pose).fairlead_tension.values[a.fe.index]
+    eps = np.abs(T_fe / T_qs - 1.0)
+    for k in (0, 1):
+        tol = (eps * T_qs).sum() / (eq.mooring_stiffness[k, k] + a.asm.restoring[k, k])
+        assert abs(a.x0[k] - eq.pose[k]) < tol, (k, a.x0[k], eq.pose[k], tol)
+    r = integrate(a, built=b)
+    j = r.line_names.index("line6")
+    assert (r.line_tension[:, j] == 0.0).all() and (r.anchor_tension[:, j] == 0.0).all()
+    assert np.abs(r.motion[:, :3] - a.x0[:3]).max() < 1e-3
+    pytest.als_start = (a.x0[:2], eq.pose[:2], shift)
+
+
+@pytest.fixture(scope="module")
+def release(tmp_path_factory):
+    """Calm water, 8 elements: the intact FE mooring and the same with line6 released at
+    t_f = 30 s (``forces.line_failure``), both recording the force parts."""
+    tmp = tmp_path_factory.mktemp("release")
+    out = {}
+    for name, forces in (("intact", None), ("failed", {"line_failure": {"line6": 30.0}})):
+        b = _built(_scene(tmp, n_elements=8, name=name, forces=forces))
+        a = assemble(b, seed=1, dt=0.2, duration=150.0, ramp=0.0, options=b.scene.forces)
+        out[name] = (b, a, integrate(a, built=b, record_forces=True))
+    return out
+
+
+def test_fe_line_released_at_failure_time(release):
+    """Release of a FE line at t_f: identical to the intact run before; from the first step
+    with t >= t_f the mooring force on the body loses exactly that line's end force (the
+    intact run's line6 tension at that step, to round-off), line6's outputs are zero, the
+    other lines and the body go on without NaN and the body moves off towards the
+    equilibrium of the failed mooring (quasi-static statics of the 11 lines)."""
+    b, a, ri = release["intact"]
+    bf, af, rf = release["failed"]
+    j = rf.line_names.index("line6")
+    nf = int(np.nonzero(rf.time >= 30.0)[0][0])
+    # before the failure: bit-identical runs
+    np.testing.assert_array_equal(rf.motion[:nf + 1], ri.motion[:nf + 1])
+    np.testing.assert_array_equal(rf.line_tension[:nf], ri.line_tension[:nf])
+    assert (ri.line_tension[:, j] > 1e5).all()
+    # at t_nf: the mooring force (record of the step start) loses line6's force
+    im = rf.force_models.index("mooring")
+    dF = np.linalg.norm(ri.forces[nf, im, :3] - rf.forces[nf, im, :3])
+    assert dF == pytest.approx(ri.line_tension[nf, j], rel=1e-6), (dF, ri.line_tension[nf, j])
+    # ... and one step before, nothing
+    assert np.abs(ri.forces[nf - 1, im] - rf.forces[nf - 1, im]).max() == 0.0
+    # outputs of line6 from the failure on
+    assert (rf.line_tension[nf:, j] == 0.0).all() and (rf.anchor_tension[nf:, j] == 0.0).all()
+    assert (rf.fe_records["max_tension_along_line"][nf:, j] == 0.0).all()
+    assert (rf.fe_records["touchdown_tension"][nf:, j] == 0.0).all()
+    assert np.isnan(rf.fe_records["grounded_length"][nf:, j]).all()
+    assert np.isfinite(rf.fe_records["grounded_length"][:nf, j]).all()
+    others = [k for k in range(len(rf.line_names)) if k != j]
+    assert np.isfinite(rf.motion).all() and np.isfinite(rf.line_tension).all()
+    assert (rf.line_tension[:, others] > 1e5).all()
+    # transient: the body leaves the intact position towards the failed-mooring equilibrium
+    sys_f = bf.mooring.without_lines(["line6"])
+    sys_f.warm[:] = 0.0
+    eq_f = equilibrium(sys_f, hydrostatic_stiffness=af.asm.restoring,
+                       external_force=af.asm.const_force)
+    d_eq = eq_f.pose[:2] - af.x0[:2]
+    d_run = rf.motion[:, :2] - af.x0[:2]
+    proj = d_run @ d_eq / (d_eq @ d_eq)
+    assert np.abs(ri.motion[:, :2] - a.x0[:2]).max() < 1e-3   # intact: at rest
+    assert proj.max() > 0.5, proj.max()   # moved at least half way within 120 s
+    pytest.release_numbers = (float(proj.max()), float(np.hypot(*d_eq)))
+
+
+def test_fe_line_failure_at_t0_as_quasi_static(tmp_path):
+    """``line_failure`` at 0 s: as for a quasi-static line, the run starts at the intact
+    equilibrium and the line is released at t = 0 (zero tension from the first record)."""
+    b = _built(_scene(tmp_path, n_elements=8, forces={"line_failure": {"line6": 0.0}}))
+    a = assemble(b, seed=1, dt=0.2, duration=20.0, ramp=0.0, options=b.scene.forces)
+    assert "line6" in a.fe.names
+    r = integrate(a, built=b)
+    j = r.line_names.index("line6")
+    assert (r.line_tension[:, j] == 0.0).all()
+    assert np.abs(r.motion[-1, :2] - a.x0[:2]).max() > 1e-3 and np.isfinite(r.motion).all()
+
+
+def test_run_and_report_als_with_fe_lines(tmp_path):
+    """``floatmoor run`` of an intact and a line-failed FE scene, ``floatmoor report
+    --als-dir``: the report finds the failed line (zero tension at the end) and writes the ALS
+    check with line6 left out."""
+    import xarray as xr
+
+    from floatmoor.cli import main
+
+    runs = {}
+    for name, forces in (("fe-intact", None), ("fe-als", {"line_failure": {"line6": 30.0}})):
+        p = _scene(tmp_path, n_elements=8, name=name, forces=forces,
+                   environment={"name": "sea", "waves": {"spectrum": "jonswap", "hs": 6.0,
+                                                         "tp": 12.0}},
+                   analysis={"duration": 60.0, "dt": 0.2, "transient": 20.0, "ramp": 20.0,
+                             "seeds": "1-3"})
+        out = tmp_path / name
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            assert main(["run", str(p), "--out", str(out), "--workers", "1"]) == 0
+        runs[name] = out
+    with xr.open_dataset(next(runs["fe-als"].glob("*.nc"))) as ds:
+        T6 = ds["line_tension"].sel(line="line6").values
+        assert T6[0] > 1e5 and T6[-1] == 0.0
+    rep = tmp_path / "rep"
+    assert main(["report", str(runs["fe-intact"]), "--als-dir", str(runs["fe-als"]),
+                 "--out", str(rep)]) == 0
+    with xr.open_dataset(rep / "summary.nc") as c:
+        assert "ALS" in [str(v) for v in c["limit_state"].values]
+        assert c.attrs["failed_lines"] == "line6"
+        als = c.sel(limit_state="ALS")
+        assert not bool(als["checked"].sel(line="line6"))
+        assert bool(als["checked"].sel(line="line5"))
 
 
 def test_qs_line_failure_with_fe_lines_runs(tmp_path):

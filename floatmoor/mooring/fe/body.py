@@ -44,6 +44,8 @@ class FEMooring:
         self._pose0 = np.zeros(6) if pose0 is None else np.asarray(pose0, float)
         self._Q = np.zeros(6)
         self._line_forces = np.zeros((len(self.lines), 3))
+        self.on = np.ones(len(self.lines), dtype=np.bool_)
+        """(n,) bool: False for a released (failed) line (:meth:`release`)."""
 
     @classmethod
     def from_system(cls, system, line_models=None, *, pose=None, fast: bool = True,
@@ -121,8 +123,24 @@ class FEMooring:
         pose = self._pose0 if pose is None else np.asarray(pose, float)
         pos, _ = self.fairlead_kinematics(pose)
         for i, ln in enumerate(self.lines):
-            self._line_forces[i] = ln.solve_static(fairlead=pos[i]).fairlead_force
+            if self.on[i]:
+                self._line_forces[i] = ln.solve_static(fairlead=pos[i]).fairlead_force
+            else:
+                self._line_forces[i] = 0.0
         return self._sum(pose, self._line_forces)
+
+    def release(self, line) -> None:
+        """Release the fairlead end of ``line`` (index or name; line failure, ALS): from now on
+        the line is not advanced any more, exerts no force on the body (zero in
+        :attr:`line_forces` and the generalised force) and keeps its last state.  The coupled
+        kernel (:mod:`floatmoor.solvers.fe_coupling`) does the same inside numba."""
+        if isinstance(line, str):
+            names = [ln.spec.name for ln in self.lines]
+            if line not in names:
+                raise KeyError(f"unknown FE line {line!r}; lines: {', '.join(names)}")
+            line = names.index(line)
+        self.on[int(line)] = False
+        self._line_forces[int(line)] = 0.0
 
     def start(self, **kw):
         """Start the dynamics of every line (see :meth:`FELine.start`)."""
@@ -153,7 +171,10 @@ class FEMooring:
             return self._advance_packed(float(t1), float(dt), pose1, velocity1, int(substeps))
         pos, vel = self.fairlead_kinematics(pose1, velocity1)
         for i, ln in enumerate(self.lines):
-            self._line_forces[i] = ln.advance(t1, dt, pos[i], vel[i], substeps=substeps)
+            if self.on[i]:
+                self._line_forces[i] = ln.advance(t1, dt, pos[i], vel[i], substeps=substeps)
+            else:
+                self._line_forces[i] = 0.0
         return self._sum(pose1, self._line_forces)
 
     def _advance_packed(self, t1, dt, pose1, velocity1, substeps):
@@ -167,8 +188,8 @@ class FEMooring:
             vel[:] = velocity1
         st = body_advance(t1, dt, substeps, FELine.MAX_SPLIT, pose1, vel,
                           self.fairleads_body, self._R, self._rf, self._vf, self._arm, self._Q,
-                          self._line_forces, self._fail, self.counters, *per_line, fric, coef,
-                          tol, maxit, *work)
+                          self._line_forces, self._fail, self.on, self.counters, *per_line,
+                          fric, coef, tol, maxit, *work)
         if st < 0:
             ln = self.lines[int(self._fail[0])]
             msg = {-1: f"no Newton convergence in {ln.maxit} iterations",
@@ -184,8 +205,9 @@ class FEMooring:
     def accept(self):
         """Commit the trial state of every line."""
         if self._packed is None:
-            for ln in self.lines:
-                ln.accept()
+            for ln, on in zip(self.lines, self.on):
+                if on:
+                    ln.accept()
             return
         from .multi import body_accept
 
@@ -193,9 +215,10 @@ class FEMooring:
         if not ln0._trial:
             raise RuntimeError("accept() without a preceding advance()")
         p = self._packed[0]
-        body_accept(*p[:10])
-        for ln in self.lines:
-            ln.time = ln._t1
+        body_accept(self.on, *p[:10])
+        for ln, on in zip(self.lines, self.on):
+            if on:
+                ln.time = ln._t1
             ln._trial = False
 
     @property

@@ -22,18 +22,20 @@ __all__ = ["body_advance", "body_accept"]
 
 @njit(cache=True)
 def body_advance(t1, dt, nsub, max_split, pose, vel, fair_b, R, rf_all, vf_all, arm, Q, forces,
-                 fail, counters, r, v, a, fn, fs, rA, vA, aA, fnA, fs1, rB, vB, aB, fA, rfk, vfk,
-                 P, E, S, cur_z, cur_u, wk, fric, coef, tol, maxit, q, tens, Mb, Dg, Of, BX, Rk,
-                 W, Yk, T1, da, info, stats):
+                 fail, on, counters, r, v, a, fn, fs, rA, vA, aA, fnA, fs1, rB, vB, aB, fA, rfk,
+                 vfk, P, E, S, cur_z, cur_u, wk, fric, coef, tol, maxit, q, tens, Mb, Dg, Of, BX,
+                 Rk, W, Yk, T1, da, info, stats):
     """Trial advance of every line of a body to ``t1`` with the body at ``pose`` moving with
     ``vel`` (angular velocity in earth axes, rad/s).
 
     Writes the fairlead positions / velocities ``rf_all, vf_all`` (n, 3), the lever arms
     ``arm`` (n, 3), the force of each line on its fairlead ``forces`` (n, 3) N and the
     generalised force ``Q`` (6,) (N, N m about the displaced reference point, earth axes);
-    ``counters`` (n, 2) += Newton iterations and step halvings.  Returns 0, or the failing
-    status of :func:`kernels.ga_advance` with ``fail[0]`` the line index (its ``info`` holds the
-    time and the node).
+    ``counters`` (n, 2) += Newton iterations and step halvings.  ``on`` (n,) bool: lines with
+    ``on[i]`` False are released (failed, ALS): not advanced (their state stays as it was),
+    zero force, no contribution to ``Q``.  Returns 0, or the failing status of
+    :func:`kernels.ga_advance` with ``fail[0]`` the line index (its ``info`` holds the time and
+    the node).
     """
     rotation_matrix_into(pose[3], pose[4], pose[5], R)
     for k in range(6):
@@ -48,6 +50,10 @@ def body_advance(t1, dt, nsub, max_split, pose, vel, fair_b, R, rf_all, vf_all, 
         vf_all[i, 0] = vel[0] + vel[4] * arm[i, 2] - vel[5] * arm[i, 1]
         vf_all[i, 1] = vel[1] + vel[5] * arm[i, 0] - vel[3] * arm[i, 2]
         vf_all[i, 2] = vel[2] + vel[3] * arm[i, 1] - vel[4] * arm[i, 0]
+        if not on[i]:
+            for c in range(3):
+                forces[i, c] = 0.0
+            continue
         st_i = stats[i]
         st_i[0] = 0.0
         st_i[1] = 0.0
@@ -73,9 +79,12 @@ def body_advance(t1, dt, nsub, max_split, pose, vel, fair_b, R, rf_all, vf_all, 
 
 
 @njit(cache=True)
-def body_accept(r, v, a, fn, fs, rA, vA, aA, fnA, fs1):
-    """Commit the trial state of every line (the copies of :meth:`FELine.accept`)."""
+def body_accept(on, r, v, a, fn, fs, rA, vA, aA, fnA, fs1):
+    """Commit the trial state of every line with ``on[i]`` (the copies of
+    :meth:`FELine.accept`); released lines keep their state."""
     for i in range(len(r)):
+        if not on[i]:
+            continue
         r[i][:, :] = rA[i]
         v[i][:, :] = vA[i]
         a[i][:, :] = aA[i]
@@ -96,7 +105,7 @@ def typed_lists(lines, names):
     return out
 
 
-# the per-line arguments of body_advance after ``fail, counters``, as FELine attribute names
+# the per-line arguments of body_advance after ``fail, on, counters``, as FELine attribute names
 LINE_ARGS = ("r", "v", "a", "fn", "fs", "_r1", "_v1", "_a1", "_Rr", "_fs1", "_rB", "_vB",
              "_aB", "_f1", "_rfk", "_vfk", "P", "E_dynamic", "S", "cur_z", "cur_u", "wk")
 SCALAR_ARGS = ("fric", "coef", "tol", "maxit")
