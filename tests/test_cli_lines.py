@@ -160,3 +160,85 @@ def test_scene_finite_element_options_reach_the_lines(tmp_path, capsys):
     res = xr.load_dataset(out)
     assert int(res.n_elements.values[0]) == 30 and res.attrs["substeps"] == 2
     assert "velocity_ramp" in res.attrs["friction"]
+
+
+# -- the decoupled lines are the coupled run's FE lines: current and line types of the scene --
+FE_SCENE = ROOT / "scenes" / "floatel_100yr_fe.yaml"
+
+
+def _fe_current_scene(tmp_path, current=True):
+    """The Floatel-like FE scene (scenes/floatel_100yr_fe.yaml), 8 elements per line, a
+    moderate sea and a sheared current at 30 deg (or none)."""
+    d = yaml.safe_load(FE_SCENE.read_text())
+    d["name"] = "fe-current"
+    d["vessel"] = str(ROOT / "vessels" / "floatel_like" / "vessel.yaml")
+    env = {"name": "sea-current",
+           "waves": {"spectrum": "jonswap", "hs": 5.0, "tp": 11.0, "heading_deg": 0.0}}
+    if current:
+        env["current"] = {"profile": "piecewise_linear", "levels": [[0.0, 1.2], [-150.0, 0.4]],
+                          "heading_deg": 30.0}
+    d["environment"] = env
+    d["mooring"] = yaml.safe_load((ROOT / "vessels" / "floatel_like" / "mooring_fe.yaml")
+                                  .read_text())
+    d["mooring"]["finite_element"] = {"n_elements": 8}
+    d["analysis"] = {"duration": 60.0, "dt": 0.2, "transient": 10.0, "ramp": 10.0, "seeds": 1}
+    p = tmp_path / "fe_current.yaml"
+    p.write_text(yaml.safe_dump(d))
+    return p
+
+
+def test_lines_reproduce_the_coupled_fe_tension_with_current(tmp_path, capsys):
+    """A coupled run with FE lines (floatmoor.simulate) in a sheared current; ``floatmoor lines``
+    driven by that run's motion, with the same elements and step, reproduces the coupled FE
+    fairlead tension: the decoupled lines see the scene's current and line-type coefficients
+    (cdn 2.6 / 1.8 etc. of mooring_fe.yaml).  Reference: the coupled run itself (its FE lines
+    see the same fairlead motion; the decoupled track is linear between samples, the coupled
+    lines move with the body velocity at the step end: a difference of order dt^2).  The same
+    decoupled run without current and with default coefficients (what ``floatmoor lines`` did
+    before) is far off.  Direction of the current alone (same line types, same motion, mean
+    tension): the current (towards 30 deg) runs along line1 towards its anchor (tangential drag
+    pulls the fairlead: higher tension), along line7 towards its fairlead (lower tension) and
+    across line6 (lateral drag bows the suspended line: higher tension)."""
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.io.scene import load_scene
+    from floatmoor.mooring.fe import run_decoupled
+    from floatmoor.mooring.fe.body import scene_line_inputs
+    from floatmoor.simulate import simulate
+
+    p = _fe_current_scene(tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ds = simulate(p, seed=1)
+    run = tmp_path / "seed0001.nc"
+    ds.to_netcdf(run)
+    out = tmp_path / "l.nc"
+    names = ["line1", "line6", "line7"]
+    assert main(["lines", str(p), "--motion", str(run), "--lines", ",".join(names),
+                 "--discard", "0", "--out", str(out)]) == 0
+    assert "current on the lines: max 1.2 m/s, heading 30.0 deg" in capsys.readouterr().out
+    res = xr.load_dataset(out)
+    Tc = ds.line_tension.sel(line=names).values.T          # coupled FE tension (line, time)
+    Td = res.fe_tension.values
+    err = np.abs(Td - Tc).max(axis=1) / Tc.mean(axis=1)
+    # without the scene's current and line types (the decoupled model before)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")   # short run: the statistics-window warnings
+        sc = load_scene(p)
+    node = sc.mooring_node()
+    system = parse_mooring(node, water_depth=sc.site.water_depth,
+                           water_density=sc.site.water_density, gravity=sc.site.gravity)
+    bare = run_decoupled(system, ds.time.values, ds.motion.values,
+                         options=system.line_models.options, lines=names, discard=0.0)
+    err_bare = np.abs(bare.fe_tension.values - Tc).max(axis=1) / Tc.mean(axis=1)
+    pytest.lines_current = (err, err_bare)
+    assert np.all(err < 2e-3), err
+    assert np.all(err_bare > 10.0 * err), (err, err_bare)
+    # the current alone: the same decoupled lines (scene line types) without current
+    types = scene_line_inputs(sc, system)["line_types"]
+    assert types["floatel_chain_84"].cdn == 2.6      # mooring_fe.yaml, not the default
+    calm = run_decoupled(system, ds.time.values, ds.motion.values,
+                         options=system.line_models.options, lines=names, discard=0.0,
+                         line_types=types)
+    dm = res.fe_mean.values - calm.fe_mean.values
+    pytest.lines_current_mean = dm
+    assert dm[0] > 0.0 and dm[1] > 0.0 and dm[2] < 0.0, dm

@@ -4,11 +4,14 @@ scene's mooring lines (seed 002 chapter 8: SIMO motions into RIFLEX).
 The recorded body motion of a previous ``floatmoor run`` seed (``motion(time, dof)``), or a
 harmonic motion given with ``--harmonic``, drives finite-element models of the lines (options
 from the scene's ``mooring.finite_element`` mapping, whatever model the lines use in the
-coupled run).  Printed per line over the statistics window: mean, standard deviation and
-maximum of the fairlead tension FE and quasi-static (elastic catenary along the same fairlead
-track), the dynamic amplification factor DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS
-(seed 002 eq. 8.1), the maximum tension along the line and the range of the grounded length.
-All series and statistics are written to a netCDF file with units.
+coupled run; the current of the scene's environment and the drag and added-mass coefficients
+of its line types, as a coupled run with FE lines uses them:
+:func:`floatmoor.mooring.fe.body.scene_line_inputs`).  Printed per line over the statistics
+window: mean, standard deviation and maximum of the fairlead tension FE and quasi-static
+(elastic catenary along the same fairlead track), the dynamic amplification factor
+DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS (seed 002 eq. 8.1), the maximum tension along
+the line and the range of the grounded length.  All series and statistics are written to a
+netCDF file with units.
 
 Examples::
 
@@ -162,6 +165,7 @@ def run(args: argparse.Namespace) -> int:
     from ..core.errors import FloatmoorWarning, SceneError
     from ..io.mooring_section import parse_mooring
     from ..io.scene import load_scene
+    from ..mooring.fe.body import scene_line_inputs
     from ..mooring.fe.decoupled import harmonic_poses, run_decoupled
 
     scene = load_scene(args.scene)
@@ -218,16 +222,18 @@ def run(args: argparse.Namespace) -> int:
     if discard >= span:
         raise UsageError(f"the discarded start-up time {discard:g} s is not shorter than the "
                          f"motion ({span:g} s): give --discard or a longer --duration")
+    inputs = scene_line_inputs(scene, system)
     print(f"scene: {scene.name}  [{scene.file}]")
     print(f"driving: {source}; {span:g} s at {t[1] - t[0]:g} s, statistics after {discard:g} s")
     try:
         res = run_decoupled(system, t, poses, options=options, lines=names, discard=discard,
-                            substeps=args.substeps, reference_tension=ref)
+                            substeps=args.substeps, reference_tension=ref, **inputs)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     print(f"FE lines: {options.integrator}, {res.attrs['substeps']} step(s) per sample, "
           f"elements {', '.join(str(int(v)) for v in res['n_elements'].values)}, wall time "
-          f"{float(res['wall_time'].sum()):.1f} s")
+          f"{float(res['wall_time'].sum()):.1f} s; current on the lines: "
+          f"{res.attrs['current_on_lines']}")
     print(format_table(res))
     if "run_tension" in res:
         sel = res["time"].values - t[0] >= discard

@@ -71,9 +71,8 @@ from numba import njit
 
 from ..core.errors import NumericalError, SceneError
 from ..core.frames import rotation_matrix_into
-from ..metocean.current import current_speed
 from ..mooring.fe import kernels as K
-from ..mooring.fe.body import FEMooring
+from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import body_accept, body_advance, typed_lists
 from ..mooring.system import system_force_kernel
@@ -102,43 +101,6 @@ class FECoupling:
     fail_time: np.ndarray = None
 
 
-def _current_kw(env, water_depth: float) -> dict:
-    cur = getattr(env, "current", None)
-    if cur is None:
-        return {}
-    z = np.linspace(-water_depth, 0.0, 61)
-    if cur.profile == "piecewise_linear":
-        z = np.union1d(z, np.clip(np.asarray(cur.z, float), -water_depth, 0.0))
-    u = current_speed(cur, z, water_depth)
-    return {"current_z": tuple(float(v) for v in z), "current_speed": tuple(float(v) for v in u),
-            "current_heading": float(cur.heading)}
-
-
-def _line_types(built, system) -> dict:
-    """The scene's line types by name (for the drag and added-mass coefficients of the FE
-    segments; the quasi-static system keeps only their names): the default library extended
-    with the mooring section's ``line_type_library`` and ``line_types``, as the section parser
-    builds it."""
-    from ..mooring.line_types import default_library
-
-    node = built.scene.mooring_node()
-    if node is None:
-        return {}
-    lib = default_library()
-    if "line_type_library" in node:
-        lib = lib.extended_from_file(node.path_value("line_type_library"))
-    if "line_types" in node:
-        lib = lib.extended(node.child("line_types"))
-    out = {}
-    for ld in system.lines:
-        for s in ld.segments:
-            if s.line_type and s.line_type in lib and s.line_type not in out:
-                out[s.line_type] = lib.get(s.line_type, diameter=s.diameter or None,
-                                           water_density=system.water_density,
-                                           gravity=system.gravity)[0]
-    return out
-
-
 def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling | None:
     """The FE lines a scene selects, built at the start ``pose`` (None when it has none).
 
@@ -155,10 +117,7 @@ def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling
     lm = getattr(system, "line_models", None)
     if system is None or lm is None or not lm.any_finite_element:
         return None
-    env = built.scene.environment
-    fm, names = FEMooring.from_system(system, pose=pose,
-                                      current=_current_kw(env, system.water_depth),
-                                      line_types=_line_types(built, system))
+    fm, names = FEMooring.from_system(system, pose=pose, **scene_line_inputs(built.scene, system))
     if fm is None:
         return None
     index = np.array([system.names.index(n) for n in names], np.int64)

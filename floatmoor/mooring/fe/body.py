@@ -13,7 +13,67 @@ import numpy as np
 from ...core.frames import rotation_matrix_into
 from .line import FELine
 
-__all__ = ["FEMooring"]
+__all__ = ["FEMooring", "scene_line_inputs"]
+
+
+def _current_kw(env, water_depth: float) -> dict | None:
+    cur = getattr(env, "current", None)
+    if cur is None:
+        return None
+    from ...metocean.current import current_speed
+
+    z = np.linspace(-water_depth, 0.0, 61)
+    if cur.profile == "piecewise_linear":
+        z = np.union1d(z, np.clip(np.asarray(cur.z, float), -water_depth, 0.0))
+    u = current_speed(cur, z, water_depth)
+    return {"current_z": tuple(float(v) for v in z), "current_speed": tuple(float(v) for v in u),
+            "current_heading": float(cur.heading)}
+
+
+def _line_types(scene, system) -> dict:
+    from ..line_types import default_library
+
+    node = scene.mooring_node()
+    if node is None:
+        return {}
+    lib = default_library()
+    if "line_type_library" in node:
+        lib = lib.extended_from_file(node.path_value("line_type_library"))
+    if "line_types" in node:
+        lib = lib.extended(node.child("line_types"))
+    out = {}
+    for ld in system.lines:
+        for s in ld.segments:
+            if s.line_type and s.line_type in lib and s.line_type not in out:
+                out[s.line_type] = lib.get(s.line_type, diameter=s.diameter or None,
+                                           water_density=system.water_density,
+                                           gravity=system.gravity)[0]
+    return out
+
+
+def scene_line_inputs(scene, system) -> dict:
+    """What the FE lines take from a scene beyond the quasi-static ``system``: the keywords
+    ``current`` and ``line_types`` of :meth:`FEMooring.from_system` (and of
+    :func:`floatmoor.mooring.fe.decoupled.run_decoupled`), so that coupled runs and the
+    decoupled ``floatmoor lines`` model the same lines.
+
+    Parameters
+    ----------
+    scene : floatmoor.io.scene.Scene
+        Its ``environment.current`` (profile sampled at 61 levels from the seabed to the
+        surface, plus the levels of a piecewise-linear profile; speed m/s, heading rad) and its
+        mooring section (line types: the default library extended with
+        ``line_type_library`` and ``line_types``, as the section parser builds it).
+    system : MooringSystem
+        The lines (segment type names and diameters, water depth, density, gravity).
+
+    Returns
+    -------
+    dict
+        ``{"current": dict or None, "line_types": {name: LineType}}``.
+    """
+    return {"current": _current_kw(getattr(scene, "environment", None), system.water_depth),
+            "line_types": _line_types(scene, system)}
 
 
 class FEMooring:

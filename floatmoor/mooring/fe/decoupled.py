@@ -53,7 +53,8 @@ def harmonic_poses(t, components, *, ramp: float = 0.0) -> np.ndarray:
 
 def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=None,
                   discard: float = 0.0, substeps: int | None = None,
-                  reference_tension=None, progress=None) -> xr.Dataset:
+                  reference_tension=None, progress=None, current=None,
+                  line_types=None) -> xr.Dataset:
     """Drive FE models of the lines of ``system`` with the body poses ``poses`` at ``t``.
 
     Each line starts from its FE static equilibrium at ``poses[0]`` with zero velocity; the
@@ -79,6 +80,13 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
         compare with the quasi-static tension recomputed here along the fairlead track.
     progress : callable, optional
         Called with the line name before each line.
+    current : dict, optional
+        ``current_z``, ``current_speed``, ``current_heading`` of every line (m, m/s, rad;
+        :class:`FELineSpec`; default no current), as :meth:`FEMooring.from_system` takes them.
+    line_types : mapping name -> LineType, optional
+        Line types for the hydrodynamic coefficients of the segments (``cdn, cdt, can, cat``;
+        default the ``LineType`` defaults).  :func:`floatmoor.mooring.fe.body.scene_line_inputs`
+        gives both from a scene, as the coupled run uses them.
 
     Returns
     -------
@@ -122,7 +130,8 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
         ld = system.lines[system.names.index(name)]
         spec = spec_from_linedef(ld, water_depth=system.water_depth, pose=poses[0],
                                  water_density=system.water_density, gravity=system.gravity,
-                                 **options.spec_kw(system.water_depth))
+                                 line_types=line_types, **options.spec_kw(system.water_depth),
+                                 **(current or {}))
         line = FELine(spec, **options.line_kw())
         try:
             line.solve_static()
@@ -227,4 +236,9 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
                "n_elements_option": -1 if options.n_elements is None else options.n_elements,
                "friction": "scene default (seabed_friction)" if options.friction is None
                else repr(options.friction),
-               "fe_start": "static equilibrium at the first pose, zero velocity"})
+               "fe_start": "static equilibrium at the first pose, zero velocity",
+               "current_on_lines": "none" if not current else
+               f"max {max(current['current_speed']):.3g} m/s, heading "
+               f"{np.degrees(current['current_heading']):.1f} deg (direction of travel)",
+               "line_types": ", ".join(sorted(line_types)) if line_types
+               else "LineType defaults"})
