@@ -462,3 +462,43 @@ def test_failing_fe_line_names_time_and_line(tmp_path):
         integrate(a, built=b)
     msg = str(e.value)
     assert "line 'line1'" in msg and "reduce dt" in msg and "at t = " in msg
+
+
+def test_femooring_release_packed_and_line_by_line(tmp_path):
+    """FEMooring.release: the packed numba path (body_advance with the mask) and the
+    line-by-line path give the same generalised force after a release, which equals the
+    intact force minus the released line's end force and moment at the release."""
+    from floatmoor.mooring.fe.body import FEMooring, scene_line_inputs
+
+    b = _built(_scene(tmp_path, n_elements=8, name="rel"))
+    inp = scene_line_inputs(b.scene, b.mooring)
+    x0 = np.zeros(6)
+    ms = []
+    for fast in (True, False):
+        fm, names = FEMooring.from_system(b.mooring, pose=x0, fast=fast, **inp)
+        fm.solve_static(x0)
+        fm.start(**fm.options.start_kw())
+        ms.append(fm)
+    vel = np.array([0.5, 0.2, 0.0, 0.0, 0.0, 0.01])
+    for k in range(1, 6):
+        x = vel * 0.2 * k
+        Q = [fm.advance(0.2 * k, 0.2, x, vel) for fm in ms]
+        if k == 3:
+            F5 = [fm.line_forces[5].copy() for fm in ms]
+            arm = ms[0].fairlead_kinematics(x)[0][5] - x[:3]
+            intact = Q
+            for fm in ms:
+                fm.release("line6")
+            Q = [fm._sum(x, fm.line_forces) for fm in ms]
+            for q, qi, f5 in zip(Q, intact, F5):
+                np.testing.assert_allclose(q[:3], qi[:3] - f5, rtol=1e-12, atol=1e-6)
+                np.testing.assert_allclose(q[3:], qi[3:] - np.cross(arm, f5), rtol=1e-12,
+                                           atol=1e-4)
+        for fm in ms:
+            fm.accept()
+        np.testing.assert_allclose(Q[0], Q[1], rtol=1e-9, atol=1e-3)
+        if k >= 3:
+            assert (ms[0].line_forces[5] == 0.0).all() and (ms[1].line_forces[5] == 0.0).all()
+    assert ms[0].on.tolist() == [n != "line6" for n in names]
+    with pytest.raises(KeyError):
+        ms[0].release("line99")
