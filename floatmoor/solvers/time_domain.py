@@ -137,8 +137,16 @@ def default_models(built, options=None) -> list[str]:
     if env.waves is not None:
         names.append("wave1")
         drift = getattr(options, "drift", None)
+        correction = getattr(getattr(options, "viscous_drift", None), "model",
+                             "none") == "correction_formula"
+        if correction and drift == "qtf":
+            # eq. 6.6 corrects the mean drift coefficients, which only Newman's
+            # approximation uses (the same rule as the frequency domain)
+            raise SceneError(getattr(options, "file", None), "forces.drift",
+                             "newman (or no drift key) with forces: viscous_drift: "
+                             "{model: correction_formula}", "qtf")
         if drift is None:  # the full QTF when the database has one, else Newman
-            if "difference_frequency_qtf" in v.database:
+            if "difference_frequency_qtf" in v.database and not correction:
                 drift = "qtf"
             elif "mean_drift_force" in v.database:
                 drift = "newman"

@@ -370,3 +370,26 @@ def test_large_yaw_kirchhoff_invariants(tmp_path):
         + 0.5 * np.einsum("ti,ij,tj->t", dx, a.asm.restoring, dx)
     assert np.max(np.abs(E / E[0] - 1.0)) < 1e-8
     assert np.abs(qd[:, 1]).max() > 0.01  # the earth velocity turns with the anisotropic body
+
+
+def test_correction_formula_picks_newman_drift_even_with_a_qtf():
+    # eq. 6.6 (seed 002) corrects the mean drift coefficients, which only Newman's
+    # approximation uses: with a QTF in the database the default must switch to Newman (as in
+    # the frequency domain) and an explicit qtf must be refused instead of silently dropping
+    # the correction.
+    from types import SimpleNamespace as NS
+
+    from floatmoor.core.errors import SceneError
+    from floatmoor.solvers.time_domain import default_models
+
+    db = {"difference_frequency_qtf": 0, "mean_drift_force": 0}
+    vessel = NS(database=db, linear_damping=np.zeros((6, 6)),
+                quadratic_damping=np.zeros((6, 6)))
+    env = NS(waves=object(), wind=None, current=None)
+    built = NS(vessel=vessel, mooring=None, scene=NS(environment=env))
+    corr = NS(model="correction_formula")
+    assert "drift_qtf" in default_models(built, NS(drift=None, exclude=(), file=None))
+    names = default_models(built, NS(drift=None, exclude=(), viscous_drift=corr, file=None))
+    assert "drift_newman" in names and "drift_qtf" not in names
+    with pytest.raises(SceneError, match="correction_formula"):
+        default_models(built, NS(drift="qtf", exclude=(), viscous_drift=corr, file="s.yaml"))
