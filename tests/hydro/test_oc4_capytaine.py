@@ -1,12 +1,15 @@
 """OC4-DeepCwind: the Capytaine first-order model of vessels/oc4_semi/make_database.py against
 WAMIT's marin_semi.1.
 
-Two stored results are checked, both produced by make_database.py (Capytaine itself is not
+The stored results checked here are all produced by make_database.py (Capytaine itself is not
 needed to run these tests):
 
 * ``capytaine_mesh_convergence.nc`` (``--convergence``): radiation A, B (6x6) of the columns +
   pontoons + cross braces panel model for column panel sizes 2.0 / 1.5 / 1.0 m at 0.3 .. 2.0
   rad/s, the Richardson extrapolation and WAMIT's values on the same frequencies;
+* ``capytaine_mesh_convergence_graded.nc`` (``--convergence --graded``): the same with the
+  column panels graded towards the edges and the water line (build_mesh ``grade_edges``);
+* ``capytaine_tube_study.nc`` and the Haskind records (diagnostics of the heave damping);
 * ``database.nc`` (``--slender --symmetric``, 2 m column panels): WAMIT A, B plus the
   Capytaine excitation, A and B of the 2 m model.
 """
@@ -73,27 +76,15 @@ def test_shipped_database_is_the_2m_model_of_the_convergence_record(db, conv):
         assert np.max(np.abs(cap - ref)) <= 1e-4 * np.max(np.abs(ref))
 
 
-# Heave damping is the one diagonal term the converged model does not bring within 5 %:
-# see make_database.py ("Mesh convergence") and benchmarks/RESULTS.md for the table.
-HEAVE_B_GAP = (
-    "heave B: the extrapolated Capytaine value is 6.2 % of max|WAMIT| (6.463e5 N s/m at 1.25 "
-    "rad/s) below WAMIT at 1.25 rad/s (WAMIT 6.463e5; Capytaine 2.0 / 1.5 / 1.0 m / "
-    "extrapolated 6.044 / 6.072 / 6.068 / 6.066e5) and 5.2-5.7 % at 1.10-1.20 rad/s (1.10: "
-    "WAMIT 6.043e5, 1.0 m 5.687e5); column refinement moves it < 0.5 % (observed order "
-    "erratic).  B33 from Capytaine's own excitation (Haskind, 37 headings) is 3-5 % higher "
-    "(1.0 m, 1.1 / 1.2 rad/s: 5.884 / 5.944e5) and the gap closes with column refinement, but "
-    "stays 2.5-3.0 % of max below WAMIT.  Not the pontoon/brace tubes or their junctions "
-    "(capytaine_tube_study.nc): 16 x 0.5 m tubes instead of 8 x 1 m, with or without the "
-    "junction trimming, give 5.70e5 at 1.1 rad/s (1.0 m columns; 5.3 % of max below WAMIT) "
-    "and 6.11e5 at 1.25 (5.5 %), Haskind gap unchanged (3.4 % at 1.1).  Column panels "
-    "clustered towards the column edges (same counts, 1.0 m) do move it: 5.788e5 at 1.1 "
-    "(3.9 %), 6.202e5 at 1.25 (4.0 %), Haskind gap 2.4 %, but only three frequencies were "
-    "computed with that mesh, not the band; see make_database.py")
+# Heave damping is the one diagonal term the uniform-column model does not bring within 5 %
+# (6.2 % of max|WAMIT| at 1.25 rad/s, extrapolated); the graded-column record below does
+# (test_graded_capytaine_matches_wamit_within_5_percent).  See make_database.py ("Mesh
+# convergence") and benchmarks/RESULTS.md for the tables.
 
 
 @pytest.mark.parametrize("dof", DOFS)
 @pytest.mark.parametrize("name", ["added_mass", "radiation_damping"])
-def test_converged_capytaine_matches_wamit_within_5_percent(conv, name, dof, request):
+def test_converged_capytaine_matches_wamit_within_5_percent(conv, name, dof):
     # Issue 4: Capytaine from the public member geometry (RAFT_OC4semi.yaml) within 5 % of
     # WAMIT's .1 file over the wave band, per diagonal DOF, in % of the largest WAMIT value in
     # the band.  Compared: the Richardson extrapolation (order 2) of the two finest column
@@ -101,12 +92,16 @@ def test_converged_capytaine_matches_wamit_within_5_percent(conv, name, dof, req
     # 0.05.  Measured (% of max|WAMIT|): A surge 2.2, heave 0.6, pitch 0.6, yaw 1.5; B surge
     # 1.4, heave 6.2 (xfail), pitch 2.6, yaw 1.8 (sway, roll = surge, pitch by symmetry).
     # The 1.0 m values alone give 3.1, 0.3, 0.2, 2.5; 2.5, 6.1, 2.1, 2.9.
-    if name == "radiation_damping" and dof == "heave":
-        request.applymarker(pytest.mark.xfail(strict=True, reason=HEAVE_B_GAP))
+    # Heave B with uniform column panels is the documented miss (6.2 %, at 1.25 rad/s; column
+    # refinement moves it < 0.5 %): asserted as such, the 5 % check of heave B is made on the
+    # graded-column record (test_graded_capytaine_matches_wamit_within_5_percent).
     w = conv.omega.values
     sel = (w >= BAND[0] - 1e-9) & (w <= BAND[1] + 1e-9)
     k = DOFS.index(dof)
     err = _err(conv[name + "_extrapolated"].values[sel], conv["wamit_" + name].values[sel], k)
+    if name == "radiation_damping" and dof == "heave":
+        assert 0.05 < err < 0.07, f"uniform-column heave B: {100 * err:.2f} % (recorded 6.2 %)"
+        return
     assert err < 0.05, f"{name}[{dof},{dof}]: {100 * err:.2f} % of max |WAMIT|"
 
 
@@ -334,3 +329,90 @@ def test_graded_column_edges_move_heave_damping_towards_wamit(tube_study, conv):
         gap_u = (tube_study.heave_damping_haskind.isel(config=ung).sel(omega=1.1)
                  / b.isel(config=ung).sel(omega=1.1) - 1)
         assert float(gap_g) < float(gap_u.min())
+
+
+# capytaine_mesh_convergence_graded.nc (make_database.py 2.0,1.5,1.0 --convergence --graded):
+# the convergence study again with the column panels graded towards the sharp edges (heave
+# plates of the base columns, column bottoms) and the water line (build_mesh grade_edges:
+# cosine spacing, the same panel counts as the uniform mesh of each size; a standard BEM
+# practice for singular edges, no parameter chosen by comparison with WAMIT).
+
+
+@pytest.fixture(scope="module")
+def conv_graded():
+    path = VESSELS / "oc4_semi" / "capytaine_mesh_convergence_graded.nc"
+    if not path.exists():
+        pytest.skip("oc4_semi/capytaine_mesh_convergence_graded.nc not built")
+    return xr.load_dataset(path)
+
+
+def test_graded_record_has_the_panels_and_wamit_values_of_the_uniform_record(conv_graded, conv):
+    # Grading moves panels, it does not add any: same hull panel count per column panel size
+    # as the uniform record (2.0 / 1.5 / 1.0 m: 3,672 / 5,310 / 9,468), same frequencies and
+    # the same WAMIT reference values (marin_semi.1, checked above against the raw file).
+    assert "grade_edges" in conv_graded.attrs["column_grading"]
+    assert np.array_equal(conv_graded.omega.values, conv.omega.values)
+    for h in conv_graded.panel_size.values:
+        assert int(conv_graded.nb_panels.sel(panel_size=h)) == int(conv.nb_panels.sel(panel_size=h))
+    for v in ("wamit_added_mass", "wamit_radiation_damping", "wamit_added_mass_inf"):
+        assert np.array_equal(conv_graded[v].values, conv[v].values)
+
+
+def test_graded_record_reproduces_the_graded_rows_of_the_tube_study(conv_graded, tube_study):
+    # The graded 1.5 m and 1.0 m meshes (8 x 1 m tubes, untrimmed) were solved before in the
+    # tube study at 0.7 / 1.1 / 1.25 rad/s (separate runs, there with 13 diffraction problems
+    # as well): the diagonal A and B must agree per DOF.  Measured: < 4e-8 of the DOF's
+    # largest value at the three frequencies except heave (A 1.3e-5, B 1.3e-4 at 1.0 m,
+    # 1.25 rad/s: 83 N s/m of 6.20e5; 3.4e-5 at 1.5 m), so the tolerance is 5e-4, 50x below
+    # the 2 % effect of the grading (the uniform 2 m runs of database.nc and of the
+    # convergence record agree within 1.7e-5).
+    for h in (1.5, 1.0):
+        g = np.nonzero((tube_study.graded_column_edges.values == 1)
+                       & (tube_study.column_panel_size.values == h)
+                       & (tube_study.tube_panels_round.values == 8)
+                       & (tube_study.trim_inside.values == 0))[0]
+        assert g.size == 1
+        ts = tube_study.isel(config=g[0])
+        assert int(ts.nb_panels) == int(conv_graded.nb_panels.sel(panel_size=h))
+        cg = conv_graded.sel(panel_size=h).sel(omega=ts.omega.values, method="nearest")
+        for name in ("added_mass", "radiation_damping"):
+            diag = np.diagonal(cg[name].values, axis1=1, axis2=2)
+            ref = ts[name].values
+            assert np.all(np.max(np.abs(diag - ref), axis=0)
+                          <= 5e-4 * np.max(np.abs(ref), axis=0)), (name, h)
+
+
+@pytest.mark.parametrize("dof", DOFS)
+@pytest.mark.parametrize("name", ["added_mass", "radiation_damping"])
+def test_graded_capytaine_matches_wamit_within_5_percent(conv_graded, name, dof):
+    # Issue 4 acceptance (replaces the heave-B strict xfail of the uniform record): Capytaine
+    # from the public member geometry (RAFT_OC4semi.yaml), graded column panels, within 5 %
+    # of WAMIT's marin_semi.1 over 0.30 .. 2.00 rad/s step 0.05, per diagonal DOF, in % of the
+    # largest WAMIT value in the band.  Compared, as for the uniform record: the Richardson
+    # extrapolation (order 2) from the two finest graded sizes (1.5, 1.0 m); and, because the
+    # observed orders are erratic (median 0.7-2.8 over the frequencies, heave A not monotonic)
+    # so the extrapolation is only an estimate, also the finest graded mesh (1.0 m) by itself.
+    # Measured in capytaine_mesh_convergence_graded.nc (% of max|WAMIT|), extrapolated / 1.0 m:
+    # A surge 2.3 / 3.1, heave 0.6 / 0.9, pitch 0.3 / 0.6, yaw 1.7 / 2.5; B surge 2.3 / 3.2,
+    # heave 3.7 / 4.1 (at 1.15 rad/s: WAMIT 6.074e5, 1.0 m 5.807e5, extrapolated 5.837e5 N s/m),
+    # pitch 1.4 / 1.4, yaw 2.4 / 3.3 (sway, roll = surge, pitch by symmetry).
+    w = conv_graded.omega.values
+    sel = (w >= BAND[0] - 1e-9) & (w <= BAND[1] + 1e-9)
+    k = DOFS.index(dof)
+    wam = conv_graded["wamit_" + name].values[sel]
+    err_ext = _err(conv_graded[name + "_extrapolated"].values[sel], wam, k)
+    err_fine = _err(conv_graded[name].sel(panel_size=1.0).values[sel], wam, k)
+    assert err_ext < 0.05, f"extrapolated {name}[{dof},{dof}]: {100 * err_ext:.2f} % of max|WAMIT|"
+    assert err_fine < 0.05, f"1.0 m graded {name}[{dof},{dof}]: {100 * err_fine:.2f} % of max|WAMIT|"
+
+
+def test_graded_columns_raise_heave_damping_at_its_peak(conv_graded, conv):
+    # The grading acts where the uniform study stalled: at 1.10-1.25 rad/s heave B of every
+    # graded size lies above the uniform one of the same size (closer to WAMIT, which is
+    # above both).  Measured at 1.25 rad/s (N s/m): uniform 6.044 / 6.072 / 6.068e5, graded
+    # 6.114 / 6.166 / 6.201e5 (2.0 / 1.5 / 1.0 m), WAMIT 6.463e5.
+    om = [1.1, 1.15, 1.2, 1.25]
+    g = conv_graded.radiation_damping.sel(omega=om, method="nearest").values[:, :, 2, 2]
+    u = conv.radiation_damping.sel(omega=om, method="nearest").values[:, :, 2, 2]
+    wam = conv.wamit_radiation_damping.sel(omega=om, method="nearest").values[:, 2, 2]
+    assert np.all(g > u) and np.all(g < wam)
