@@ -46,29 +46,11 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["rotation_into", "local_axes", "slender_force_into", "slender_packed_into",
+from ..core.frames import rotation_matrix_into
+
+__all__ = ["local_axes", "slender_force_into", "slender_packed_into",
            "kinematics_at",
            "stretched_level"]
-
-
-@njit(cache=True)
-def rotation_into(roll, pitch, yaw, R):
-    """Body-to-earth rotation R = Rz(yaw) Ry(pitch) Rx(roll) into ``R`` (3, 3)."""
-    cr = math.cos(roll)
-    sr = math.sin(roll)
-    cp = math.cos(pitch)
-    sp = math.sin(pitch)
-    cy = math.cos(yaw)
-    sy = math.sin(yaw)
-    R[0, 0] = cy * cp
-    R[0, 1] = cy * sp * sr - sy * cr
-    R[0, 2] = cy * sp * cr + sy * sr
-    R[1, 0] = sy * cp
-    R[1, 1] = sy * sp * sr + cy * cr
-    R[1, 2] = sy * sp * cr - cy * sr
-    R[2, 0] = -sp
-    R[2, 1] = cp * sr
-    R[2, 2] = cp * cr
 
 
 def local_axes(p1, p2):
@@ -154,6 +136,25 @@ def _current_at(cur_z, cur_speed, z):
 
 
 @njit(cache=True, inline="always")
+def _station(s, nst):
+    """Stations ``k0, k1`` (0 .. nst-1, at the centres of nst equal parts of the element) and
+    the weight ``ws`` of ``k1`` for the linear interpolation at the parameter ``s`` in [0, 1]
+    (held constant beyond the end stations)."""
+    x = s * nst - 0.5
+    if x <= 0.0:
+        k0 = 0
+        ws = 0.0
+    elif x >= nst - 1:
+        k0 = max(nst - 2, 0)
+        ws = 1.0 if nst > 1 else 0.0
+    else:
+        k0 = int(x)
+        ws = x - k0
+    k1 = k0 + 1 if nst > 1 else k0
+    return k0, k1, ws
+
+
+@njit(cache=True, inline="always")
 def _trilinear(tab, i0, sa, sb, l0, c, w000, w001, w010, w011, w100, w101, w110, w111):
     """Component ``c`` of a (time, station, level, 3) table, trilinear with the given weights."""
     return (w000 * tab[i0, sa, l0, c] + w001 * tab[i0, sa, l0 + 1, c]
@@ -194,7 +195,7 @@ def slender_force_into(tau, tau_e, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c
     cur_z, cur_speed : (nc,) current profile (m, increasing; m/s); cur_cos, cur_sin : heading.
     R : (3, 3) scratch.
     """
-    rotation_into(pose[3], pose[4], pose[5], R)
+    rotation_matrix_into(pose[3], pose[4], pose[5], R)
     nt = eta_tab.shape[0]
     if tau <= 0.0:
         i0 = 0
@@ -235,17 +236,7 @@ def slender_force_into(tau, tau_e, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c
             # elevation at the MWL crossing (clamped to the element), then the parameter
             # where the element meets that surface
             sc = min(max(-a2 / dz, 0.0), 1.0)
-            x = sc * nst - 0.5
-            if x <= 0.0:
-                k0 = 0
-                ws = 0.0
-            elif x >= nst - 1:
-                k0 = max(nst - 2, 0)
-                ws = 1.0 if nst > 1 else 0.0
-            else:
-                k0 = int(x)
-                ws = x - k0
-            k1 = k0 + 1 if nst > 1 else k0
+            k0, k1, ws = _station(sc, nst)
             eta = wave_factor * _eta_at(eta_tab, ie, we, sf + k0, sf + k1, ws)
             sw = (eta - a2) / dz
             if dz < 0.0:  # p1 above p2: wet for s >= sw
@@ -272,17 +263,7 @@ def slender_force_into(tau, tau_e, pose, vel, omega, p1, p2, ex_b, ey_b, ez_b, c
             px = a0 + s * (b0 - a0)
             py = a1 + s * (b1 - a1)
             pz = a2 + s * (b2 - a2)
-            x = s * nst - 0.5
-            if x <= 0.0:
-                k0 = 0
-                ws = 0.0
-            elif x >= nst - 1:
-                k0 = max(nst - 2, 0)
-                ws = 1.0 if nst > 1 else 0.0
-            else:
-                k0 = int(x)
-                ws = x - k0
-            k1 = k0 + 1 if nst > 1 else k0
+            k0, k1, ws = _station(s, nst)
             eta = wave_factor * _eta_at(eta_tab, ie, we, sf + k0, sf + k1, ws)
             if pz > eta:
                 continue  # dry strip
