@@ -112,6 +112,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
     lines_nodes = node.item_nodes("lines", min_len=1)
     lines = []
     names = []
+    used_types = {}
     for ln in lines_nodes:
         ln.reject_unknown(_LINE_KEYS)
         name = ln.str("name")
@@ -142,6 +143,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
             d = sn.float("diameter", None, gt=0.0, unit="m")
             lt, w_override = lib.get(tname, diameter=d, node=sn, key="type",
                                      water_density=water_density, gravity=gravity)
+            used_types.setdefault(lt.name, lt)
             length = sn.float("length", gt=0.0, unit="m")
             w = w_override if w_override is not None else lt.submerged_weight(water_density, gravity)
             clump = sn.float("clump_weight", 0.0, ge=0.0, unit="N")
@@ -164,7 +166,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                              "a line name, one of: " + ", ".join(names), f)
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
                        gravity=gravity, source=str(node.file) if node.file else "<scene>",
-                       failed=failed, line_models=line_models)
+                       failed=failed, line_models=line_models, line_types=used_types)
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
     return ms

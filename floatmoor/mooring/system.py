@@ -262,6 +262,10 @@ class MooringSystem:
     line_models : the line model chosen per line (quasi-static or finite-element, with the FE
         options), :class:`floatmoor.mooring.fe.options.LineModels`; None means quasi-static.
         Carried over by :meth:`without_lines` and :meth:`with_dynamic_ea`.
+    line_types : mapping name -> :class:`~floatmoor.mooring.line_types.LineType`, optional
+        The line types the segments name, as the mooring section resolved them (their
+        hydrodynamic coefficients are used by finite-element lines); carried over like
+        ``line_models``.
 
     Notes
     -----
@@ -270,11 +274,12 @@ class MooringSystem:
 
     def __init__(self, lines: Sequence[LineDef], *, water_depth: float, water_density: float = 1025.0,
                  gravity: float = 9.80665, source: str = "", failed: Iterable[str] = (),
-                 line_models=None):
+                 line_models=None, line_types=None):
         if not lines:
             raise ValueError("a mooring system needs at least one line")
         self.lines = tuple(lines)
         self.line_models = line_models
+        self.line_types = dict(line_types or {})
         names = [l.name for l in self.lines]
         if len(set(names)) != len(names):
             raise ValueError(f"line names must be unique: {names}")
@@ -319,7 +324,7 @@ class MooringSystem:
         return MooringSystem(self.lines, water_depth=self.water_depth,
                              water_density=self.water_density, gravity=self.gravity,
                              source=self.source, failed=tuple(self.failed) + tuple(names),
-                             line_models=self.line_models)
+                             line_models=self.line_models, line_types=self.line_types)
 
     remove_lines = without_lines
 
@@ -331,7 +336,7 @@ class MooringSystem:
                  for l in self.lines]
         return MooringSystem(lines, water_depth=self.water_depth, water_density=self.water_density,
                              gravity=self.gravity, source=self.source, failed=self.failed,
-                             line_models=self.line_models)
+                             line_models=self.line_models, line_types=self.line_types)
 
     @property
     def n_lines(self) -> int:

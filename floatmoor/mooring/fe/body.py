@@ -30,27 +30,6 @@ def _current_kw(env, water_depth: float) -> dict | None:
             "current_heading": float(cur.heading)}
 
 
-def _line_types(scene, system) -> dict:
-    from ..line_types import default_library
-
-    node = scene.mooring_node()
-    if node is None:
-        return {}
-    lib = default_library()
-    if "line_type_library" in node:
-        lib = lib.extended_from_file(node.path_value("line_type_library"))
-    if "line_types" in node:
-        lib = lib.extended(node.child("line_types"))
-    out = {}
-    for ld in system.lines:
-        for s in ld.segments:
-            if s.line_type and s.line_type in lib and s.line_type not in out:
-                out[s.line_type] = lib.get(s.line_type, diameter=s.diameter or None,
-                                           water_density=system.water_density,
-                                           gravity=system.gravity)[0]
-    return out
-
-
 def scene_line_inputs(scene, system) -> dict:
     """What the FE lines take from a scene beyond the quasi-static ``system``: the keywords
     ``current`` and ``line_types`` of :meth:`FEMooring.from_system` (and of
@@ -61,11 +40,11 @@ def scene_line_inputs(scene, system) -> dict:
     ----------
     scene : floatmoor.io.scene.Scene
         Its ``environment.current`` (profile sampled at 61 levels from the seabed to the
-        surface, plus the levels of a piecewise-linear profile; speed m/s, heading rad) and its
-        mooring section (line types: the default library extended with
-        ``line_type_library`` and ``line_types``, as the section parser builds it).
+        surface, plus the levels of a piecewise-linear profile; speed m/s, heading rad).
     system : MooringSystem
-        The lines (segment type names and diameters, water depth, density, gravity).
+        The lines, water depth and the line types its mooring section resolved
+        (``system.line_types``: the default library extended with ``line_type_library`` and
+        ``line_types``).
 
     Returns
     -------
@@ -73,7 +52,7 @@ def scene_line_inputs(scene, system) -> dict:
         ``{"current": dict or None, "line_types": {name: LineType}}``.
     """
     return {"current": _current_kw(getattr(scene, "environment", None), system.water_depth),
-            "line_types": _line_types(scene, system)}
+            "line_types": dict(system.line_types)}
 
 
 class FEMooring:
