@@ -74,7 +74,7 @@ from ..core.frames import rotation_matrix_into
 from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
-from ..mooring.fe.multi import body_accept, body_advance, typed_lists
+from ..mooring.fe.multi import add_line_wrench, body_accept, body_advance, typed_lists
 from ..mooring.system import system_force_kernel
 from .td_kernel import _pose_rate, start_state, td_scratch, td_steps
 
@@ -101,7 +101,7 @@ class FECoupling:
     fail_time: np.ndarray = None
 
 
-def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling | None:
+def setup(built, *, pose, fail_time=None, dt: float) -> FECoupling | None:
     """The FE lines a scene selects, built at the start ``pose`` (None when it has none).
 
     Parameters
@@ -110,13 +110,23 @@ def setup(built, *, pose, fail_time=None, options=None, dt: float) -> FECoupling
     pose : (6,) start pose, m and rad.
     fail_time : (n_lines,) failure times of the mooring model (s; inf: none); a FE line with
         a finite time is released in the run at that time (module docstring).
-    options : the scene's ``forces`` settings (unused; kept for the messages of callers).
     dt : body time step, s.
+
+    Raises
+    ------
+    SceneError
+        FE options that cannot be coupled (``finite_element.integrator: explicit``, kept for
+        decoupled comparison runs).
     """
     system = built.mooring
     lm = getattr(system, "line_models", None)
     if system is None or lm is None or not lm.any_finite_element:
         return None
+    if lm.options.integrator != "generalized_alpha":
+        raise SceneError(system.source, "mooring.finite_element.integrator",
+                         "generalized_alpha for lines coupled to the body (the explicit scheme "
+                         "is for decoupled comparison runs: floatmoor lines)",
+                         lm.options.integrator)
     fm, names = FEMooring.from_system(system, pose=pose, **scene_line_inputs(built.scene, system))
     if fm is None:
         return None
@@ -208,13 +218,8 @@ def _release_failed(t, fe_index, fail_time, on, active_fe, arm, forces, Q):
         for k in range(6):
             Q[k] = 0.0
         for i in range(fe_index.shape[0]):
-            if not on[i]:
-                continue
-            for c in range(3):
-                Q[c] += forces[i, c]
-            Q[3] += arm[i, 1] * forces[i, 2] - arm[i, 2] * forces[i, 1]
-            Q[4] += arm[i, 2] * forces[i, 0] - arm[i, 0] * forces[i, 2]
-            Q[5] += arm[i, 0] * forces[i, 1] - arm[i, 1] * forces[i, 0]
+            if on[i]:
+                add_line_wrench(i, arm, forces, Q)
     return changed
 
 
@@ -341,11 +346,7 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     except ConvergenceError as exc:
         raise NumericalError(f"FE statics at the start pose: {exc.what}", time=0.0,
                              where=exc.where, remedy=exc.remedy) from None
-    fm.start(**c.options.start_kw())
-    fm.fast = True
-    if fm._packed is None:  # pragma: no cover - FEMooring.start packs generalised-alpha lines
-        raise SceneError(None, "mooring.finite_element.integrator",
-                         "generalized_alpha for lines coupled to the body", c.options.integrator)
+    fm.start(**c.options.start_kw())  # generalised-alpha (checked in setup)
     lines = fm.lines
     # generalised force of the started lines (dynamic EA), as body_advance will report it
     ends = np.array([ln.fn[-1] for ln in lines])

@@ -269,8 +269,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     lm = getattr(built.mooring, "line_models", None)
     if "mooring" in active and lm is not None and lm.any_finite_element:
         from .fe_coupling import setup as fe_setup
-        fe = fe_setup(built, pose=x0, fail_time=active["mooring"].fail_time, options=options,
-                      dt=float(dt))
+        fe = fe_setup(built, pose=x0, fail_time=active["mooring"].fail_time, dt=float(dt))
         if fe is not None and start_pose is None:
             from .fe_coupling import start_equilibrium
             x0 = start_equilibrium(fe, built.mooring, x0=x0, hydrostatic_stiffness=C,

@@ -15,7 +15,6 @@ few elements per line so that the tests stay fast.  References:
 
 from __future__ import annotations
 
-import math
 import warnings
 from pathlib import Path
 
@@ -67,7 +66,7 @@ def _built(path):
 
 def _omega_earth(rate, pose):
     """Angular velocity (earth axes) from Euler-angle rates (R = Rz Ry Rx)."""
-    ph, th, ps = pose[..., 3], pose[..., 4], pose[..., 5]
+    th, ps = pose[..., 4], pose[..., 5]
     dph, dth, dps = rate[..., 3], rate[..., 4], rate[..., 5]
     return np.stack([dph * np.cos(ps) * np.cos(th) - dth * np.sin(ps),
                      dph * np.sin(ps) * np.cos(th) + dth * np.cos(ps),
@@ -502,3 +501,26 @@ def test_femooring_release_packed_and_line_by_line(tmp_path):
     assert ms[0].on.tolist() == [n != "line6" for n in names]
     with pytest.raises(KeyError):
         ms[0].release("line99")
+
+
+def test_explicit_integrator_is_refused_for_coupled_lines(tmp_path):
+    """The explicit line scheme is for decoupled comparison runs (axial-wave step limit of
+    milliseconds, seed 003): a coupled scene asking for it is a SceneError naming the mooring
+    source and the key, raised when the run is assembled (before any statics)."""
+    p = _scene(tmp_path, n_elements=8, fe_extra={"integrator": "explicit"})
+    b = _built(p)
+    with pytest.raises(SceneError, match="finite_element.integrator") as e:
+        assemble(b, seed=1, dt=0.2, duration=20.0)
+    assert "generalized_alpha" in str(e.value) and "explicit" in str(e.value)
+
+
+def test_fe_lines_take_the_line_types_the_mooring_section_resolved(tmp_path):
+    """The scene's line types reach the FE lines through the mooring system (parsed once):
+    every segment type of the Floatel-like lines is there with the diameter the segment uses."""
+    b = _built(_scene(tmp_path, n_elements=8))
+    ms = b.mooring
+    used = {s.line_type: s.diameter for ld in ms.lines for s in ld.segments}
+    assert set(ms.line_types) == set(used)
+    for name, d in used.items():
+        assert ms.line_types[name].diameter == pytest.approx(d)
+    assert ms.without_lines(["line1"]).line_types.keys() == ms.line_types.keys()

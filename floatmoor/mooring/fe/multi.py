@@ -17,7 +17,7 @@ from numba import njit
 from ...core.frames import rotation_matrix_into
 from .kernels import ga_advance
 
-__all__ = ["body_advance", "body_accept"]
+__all__ = ["body_advance", "body_accept", "add_line_wrench"]
 
 
 @njit(cache=True)
@@ -71,11 +71,19 @@ def body_advance(t1, dt, nsub, max_split, pose, vel, fair_b, R, rf_all, vf_all, 
         n = f.shape[0]
         for c in range(3):
             forces[i, c] = f[n - 1, c]
-            Q[c] += f[n - 1, c]
-        Q[3] += arm[i, 1] * forces[i, 2] - arm[i, 2] * forces[i, 1]
-        Q[4] += arm[i, 2] * forces[i, 0] - arm[i, 0] * forces[i, 2]
-        Q[5] += arm[i, 0] * forces[i, 1] - arm[i, 1] * forces[i, 0]
+        add_line_wrench(i, arm, forces, Q)
     return 0
+
+
+@njit(cache=True)
+def add_line_wrench(i, arm, forces, Q):
+    """``Q`` (6,) += the force of line ``i`` on its fairlead ``forces[i]`` (N, earth axes) and
+    its moment ``arm[i] x forces[i]`` about the displaced reference point (N m)."""
+    for c in range(3):
+        Q[c] += forces[i, c]
+    Q[3] += arm[i, 1] * forces[i, 2] - arm[i, 2] * forces[i, 1]
+    Q[4] += arm[i, 2] * forces[i, 0] - arm[i, 0] * forces[i, 2]
+    Q[5] += arm[i, 0] * forces[i, 1] - arm[i, 1] * forces[i, 0]
 
 
 @njit(cache=True)
