@@ -67,7 +67,8 @@ import xarray as xr
 from . import __version__
 from .core.dofs import DOF_NAMES
 from .core.errors import FloatmoorWarning, SceneError
-from .forces.slender import corrected_drift_database, viscous_linear_damping
+from .forces.slender import (corrected_drift_database, refuse_qtf_with_correction,
+                              viscous_linear_damping)
 from .hydro.database import interpolate_heading
 from .io.build import BuiltScene, build
 from .io.scene import Scene
@@ -376,10 +377,9 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     mu = np.linspace(0.0, 2.0 * math.pi / opt.lf_cutoff_period, opt.n_lf)
     has_qtf = "difference_frequency_qtf" in db
     drift_method = opt.drift
-    if correction and drift_method == "qtf":
-        raise SceneError(sc.file, "frequency_domain.drift", "newman or auto with forces: "
-                         "viscous_drift: {model: correction_formula} (eq. 6.6 corrects the mean "
-                         "drift coefficients, which Newman's approximation uses)", "qtf")
+    if correction:
+        refuse_qtf_with_correction(viscous, drift_method, file=sc.file,
+                                   key="frequency_domain.drift")
     if drift_method == "auto":
         drift_method = "qtf" if has_qtf and not correction else "newman"
         if has_qtf and correction:

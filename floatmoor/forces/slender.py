@@ -35,7 +35,6 @@ import numpy as np
 from ..core.errors import FloatmoorWarning, SceneError
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .series import FrequencyGrid
-from .slender_config import SlenderElementSpec
 from .slender_kernels import local_axes, slender_force_into
 
 __all__ = ["SlenderGeometry", "KinematicsTable", "slender_geometry", "build_kinematics_table",
@@ -498,6 +497,24 @@ def corrected_drift_database(built, spec, db=None, *, yaw: float = 0.0):
     return corrected_mean_drift(db, current_speed=float(U or 0.0), current_heading=head,
                                 hs=float(env.waves.hs), formula=spec.correction_formula(),
                                 yaw=yaw)
+
+
+def uses_correction_formula(spec) -> bool:
+    """True when ``spec`` (a ``ViscousDriftSpec`` or None) selects the correction formula."""
+    return getattr(spec, "model", "none") == "correction_formula"
+
+
+def refuse_qtf_with_correction(spec, drift, *, file, key: str) -> bool:
+    """The drift rule of the correction formula, shared by the time and frequency domains:
+    eq. 6.6 corrects the mean drift coefficients, which only Newman's approximation uses, so
+    an explicit ``drift`` of ``"qtf"`` is a SceneError (``file``, ``key``) and a default must
+    pick Newman.  Returns whether ``spec`` selects the correction formula."""
+    correction = uses_correction_formula(spec)
+    if correction and drift == "qtf":
+        raise SceneError(file, key, "newman (or the default) with forces: viscous_drift: "
+                         "{model: correction_formula} (eq. 6.6 corrects the mean drift "
+                         "coefficients, which Newman's approximation uses)", "qtf")
+    return correction
 
 
 def linear_damping_matrix(ctx, D: np.ndarray) -> np.ndarray:

@@ -55,6 +55,7 @@ from ..core.errors import NumericalError, SceneError
 from ..forces.base import (N_PARTS, PART_NAMES, PART_SERIES, KernelAssembly, SetupContext,
                            model_class)
 from ..forces.radiation import infinite_frequency_added_mass
+from ..forces.slender import refuse_qtf_with_correction
 from ..forces.waves import wave_components
 from .statics import equilibrium
 from .td_kernel import td_kernel
@@ -137,14 +138,9 @@ def default_models(built, options=None) -> list[str]:
     if env.waves is not None:
         names.append("wave1")
         drift = getattr(options, "drift", None)
-        correction = getattr(getattr(options, "viscous_drift", None), "model",
-                             "none") == "correction_formula"
-        if correction and drift == "qtf":
-            # eq. 6.6 corrects the mean drift coefficients, which only Newman's
-            # approximation uses (the same rule as the frequency domain)
-            raise SceneError(getattr(options, "file", None), "forces.drift",
-                             "newman (or no drift key) with forces: viscous_drift: "
-                             "{model: correction_formula}", "qtf")
+        correction = refuse_qtf_with_correction(getattr(options, "viscous_drift", None), drift,
+                                                file=getattr(options, "file", None),
+                                                key="forces.drift")
         if drift is None:  # the full QTF when the database has one, else Newman
             if "difference_frequency_qtf" in v.database and not correction:
                 drift = "qtf"
