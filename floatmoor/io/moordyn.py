@@ -770,6 +770,10 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
                 raise SceneError(system.source, f"{line.name}.segments[{k}]", "a submerged "
                                  "weight below the weight in air", s.w)
             dv = math.sqrt(4.0 * vol / math.pi)
+            if (lt is not None and abs(lt.submerged_weight(rho, g) - s.w) <= 1e-12 * abs(s.w)
+                    and abs(math.pi * lt.diameter ** 2 / 4 - lt.displaced_volume)
+                    <= 1e-12 * lt.displaced_volume):
+                dv = lt.diameter  # the volume-equivalent diameter, without round-off
             cdn = lt.cdn if lt else 1.2
             cdt = lt.cdt if lt else 0.4
             can = lt.can if lt else 1.0
@@ -836,14 +840,13 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
            "---------------------- OPTIONS -----------------------------------------------",
            f"{_f(dt)} dtM - time step of the mooring integration (s)",
            f"{_f(system.water_depth)} WtrDpth - water depth (m)",
-           f"{_f(rho)} rho - water density (kg/m^3)",
-           f"{_f(g)} g - gravity (m/s^2)",
+           f"{_f(rho)} WtrDnsty - water density (kg/m^3)",
+           f"{_f(g)} gravity - gravity (m/s^2)",
            f"{_f(kbot)} kBot - seabed stiffness (Pa/m)",
            f"{_f(cbot)} cBot - seabed damping (Pa-s/m)"]
     if cb > 0:
         out.append(f"{_f(cb)} FrictionCoefficient - seabed friction coefficient (-)")
     out += ["----------------------- OUTPUTS ----------------------------------------------",
-            "END",
             "------------------------- need this line ------------------------------------"]
     text = "\n".join(out) + "\n"
     if path is not None:
