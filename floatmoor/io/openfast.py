@@ -1,0 +1,297 @@
+"""OpenFAST floating models (``.fst``) -> floatmoor vessel, mooring and scene files.
+
+Reads the driver file, ElastoDyn (platform mass and inertia, nacelle and hub masses), HydroDyn
+(WAMIT root, ``WAMITULEN``, reference point, additional preload, linear and quadratic damping and
+stiffness), SeaState (the sea state) and the mooring file (MoorDyn via
+:mod:`floatmoor.io.moordyn` or MAP++ via :mod:`floatmoor.io.map`), and writes
+
+* ``DIR/database.nc``: the WAMIT ``.1``, ``.3`` and ``.hst`` files (:func:`floatmoor.hydro.read_wamit`);
+* ``DIR/vessel.yaml``, ``DIR/mooring.yaml`` and ``DIR/scene.yaml``.
+
+The OpenFAST files are read by keyword (``value Name - description`` lines, matrices of six
+rows after their name), not by position: the released ``openfast_io`` readers (4.2.1 and 5.0.0)
+read these inputs by position and fail on, or silently misread, the files of the OpenFAST
+regression tests of September 2024 (5.0.0 reads the SeaState ``WaveHs`` from the ``WaveTp``
+line; both stop on the ``.fst``, ElastoDyn and HydroDyn files), which is why they are not used.
+
+Not mapped, and listed in one warning: the tower and blade masses when their ElastoDyn files
+are not found, the hub's offset from the apex, aerodynamics, control, the Morison members of
+HydroDyn, second-order wave loads, currents and wave models other than JONSWAP or
+Pierson-Moskowitz.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..core.errors import FloatmoorWarning, SceneError
+
+__all__ = ["import_openfast", "OpenFASTImport", "read_keyed"]
+
+
+def read_keyed(path):
+    """``{Name: (value text, line number)}`` of an OpenFAST input file, and its lines."""
+    path = Path(path)
+    if not path.is_file():
+        raise SceneError(path, "", "an existing OpenFAST input file", "no such file")
+    lines = path.read_text(encoding="utf-8", errors="replace").replace("\r", "").split("\n")
+    out = {}
+    for n, text in enumerate(lines, start=1):
+        tok = text.split()
+        if len(tok) >= 2 and not text.lstrip().startswith("--") and tok[1][:1].isalpha():
+            out.setdefault(tok[1], (tok[0], n))
+    return out, lines
+
+
+class _File:
+    def __init__(self, path):
+        self.path = Path(path)
+        self.keys, self.lines = read_keyed(self.path)
+
+    def raw(self, name, default=None):
+        if name not in self.keys:
+            if default is not None:
+                return default
+            raise SceneError(self.path, name, f"a line 'value {name} - description'",
+                             SceneError.MISSING)
+        return self.keys[name][0].strip('"')
+
+    def float(self, name, default=None):
+        v = self.raw(name, None if default is None else str(default))
+        try:
+            return float(v)
+        except ValueError:
+            n = self.keys[name][1] if name in self.keys else 0
+            raise SceneError(self.path, f"line {n} ({name})", "a number", v) from None
+
+    def is_default(self, name):
+        return name in self.keys and self.raw(name).upper() == "DEFAULT"
+
+    def file(self, name):
+        v = self.raw(name)
+        return None if v.lower() in ("unused", "none", "") else (self.path.parent / v)
+
+    def matrix(self, name, nrow=6):
+        """The 6 x 6 (or 6 x 1) table whose first row ends with ``name``."""
+        n = self.keys[name][1] if name in self.keys else None
+        if n is None:  # the first row has six values before the name
+            for i, text in enumerate(self.lines, start=1):
+                tok = text.split()
+                if name in tok:
+                    n = i
+                    break
+        if n is None:
+            raise SceneError(self.path, name, f"the {name} table", SceneError.MISSING)
+        rows = []
+        for i in range(nrow):
+            text = self.lines[n - 1 + i].split()
+            vals = []
+            for t in text:
+                try:
+                    vals.append(float(t))
+                except ValueError:
+                    break
+            rows.append((vals, n + i))
+        width = len(rows[0][0])
+        for vals, ln in rows:
+            if len(vals) != width or width not in (1, 6):
+                raise SceneError(self.path, f"line {ln} ({name})", f"{width if width in (1, 6) else 6}"
+                                 " numbers in each row of the table", len(vals))
+        return np.array([r for r, _ in rows])
+
+
+@dataclass(frozen=True, kw_only=True)
+class OpenFASTImport:
+    """Files written by :func:`import_openfast` (``files``: what -> path) and the list of what
+    was not mapped."""
+
+    files: dict
+    unmapped: tuple
+    notes: tuple
+
+
+def _y(x):
+    from .moordyn import _f
+    return _f(x)
+
+
+def _matrix_yaml(name, M, comment):
+    rows = "\n".join("  - [" + ", ".join(_y(v) for v in r) + "]" for r in M)
+    return f"# {comment}\n{name}:\n{rows}\n"
+
+
+def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImport:
+    """Import an OpenFAST floating model into ``out_dir`` (created if needed)."""
+    from ..hydro import read_wamit, save_database
+
+    fst_f = _File(fst)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    unmapped, notes = [], []
+    g = fst_f.float("Gravity")
+    rho = fst_f.float("WtrDens")
+    depth = fst_f.float("WtrDpth")
+    for key, what in (("CompAero", "aerodynamics"), ("CompServo", "control"),
+                      ("CompInflow", "inflow wind")):
+        if key in fst_f.keys and fst_f.float(key) != 0:
+            unmapped.append(f"{what} ({key} = {fst_f.raw(key)}): a rigid body without rotor "
+                            f"loads in floatmoor")
+    # --- ElastoDyn -------------------------------------------------------------------------
+    ed = _File(fst_f.file("EDFile"))
+    mass = ed.float("PtfmMass")
+    cog = [ed.float("PtfmCMxt", 0.0), ed.float("PtfmCMyt", 0.0), ed.float("PtfmCMzt")]
+    I = np.diag([ed.float("PtfmRIner"), ed.float("PtfmPIner"), ed.float("PtfmYIner")])
+    I[0, 1] = I[1, 0] = ed.float("PtfmXYIner", 0.0)
+    I[1, 2] = I[2, 1] = ed.float("PtfmYZIner", 0.0)
+    I[0, 2] = I[2, 0] = ed.float("PtfmXZIner", 0.0)
+    zref = ed.float("PtfmRefzt", 0.0)
+    th, t2s = ed.float("TowerHt"), ed.float("Twr2Shft")
+    oh, tilt = ed.float("OverHang"), math.radians(ed.float("ShftTilt"))
+    apex = [oh * math.cos(tilt), 0.0, th + t2s + oh * math.sin(tilt)]
+    nac = [ed.float("NacCMxn"), ed.float("NacCMyn", 0.0), th + ed.float("NacCMzn")]
+    nm = ed.float("NacMass")
+    # NacYIner is about the yaw axis: about the nacelle CoG subtract m (x^2 + y^2)
+    nyi = ed.float("NacYIner") - nm * (nac[0] ** 2 + nac[1] ** 2)
+    a = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
+    hub_I = ed.float("HubIner") * np.outer(a, a)
+    pm = [("nacelle", nm, nac, np.diag([0.0, 0.0, nyi]),
+           "ElastoDyn NacMass at NacCMxn, NacCMyn, TowerHt + NacCMzn; NacYIner less m r^2 "
+           "(about the yaw axis in ElastoDyn)"),
+          ("hub", ed.float("HubMass"), apex, hub_I,
+           "ElastoDyn HubMass at the rotor apex (OverHang, ShftTilt, TowerHt + Twr2Shft), "
+           "HubIner about the shaft")]
+    if ed.float("HubCM", 0.0):
+        unmapped.append(f"HubCM = {ed.raw('HubCM')} m: the hub mass is put at the apex")
+    for key, what in (("TwrFile", "tower"), ("BldFile(1)", "blades")):
+        p = ed.file(key) if key in ed.keys else None
+        unmapped.append(f"{what} mass and inertia: ElastoDyn {key} "
+                        + (f"{p.name} not found" if p is not None and not p.is_file() else
+                           f"{p.name if p else 'absent'} (distributed properties are not read)")
+                        + " -- add them as point_masses in vessel.yaml")
+    # --- HydroDyn --------------------------------------------------------------------------
+    hd = _File(fst_f.file("HydroFile"))
+    if hd.float("NBody", 1.0) != 1:
+        raise SceneError(hd.path, "NBody", "one WAMIT body (floatmoor has one floating body)",
+                         hd.raw("NBody"))
+    pot = hd.raw("PotFile")
+    root = hd.path.parent / pot
+    if not root.with_suffix(".1").is_file():
+        alt = hd.path.parent / Path(pot).name
+        if alt.with_suffix(".1").is_file():
+            notes.append(f"WAMIT root {pot} not found; {alt.name}.* beside the HydroDyn file used")
+            root = alt
+        else:
+            raise SceneError(hd.path, f"line {hd.keys['PotFile'][1]} (PotFile)",
+                             "the root of WAMIT .1, .3 and .hst files", pot, "not found")
+    ulen = hd.float("WAMITULEN", 1.0)
+    ref = [hd.float("PtfmRefxt", 0.0), hd.float("PtfmRefyt", 0.0), hd.float("PtfmRefzt", 0.0)]
+    if hd.float("PtfmRefztRot", 0.0):
+        unmapped.append("PtfmRefztRot: a rotated WAMIT body frame")
+    ds = read_wamit(root, ulen=ulen, rho=rho, g=g, water_depth=depth)
+    keep = ds.wave_direction.values < np.pi - 1e-9
+    ds = ds.isel(wave_direction=np.nonzero(keep)[0])
+    ds.attrs["source"] = f"WAMIT {Path(root).name}.1/.3/.hst via {hd.path.name}"
+    ds.attrs["displaced_volume"] = hd.float("PtfmVol0")
+    ds.attrs["reference_point"] = ref
+    save_database(ds, out / "database.nc")
+    add_f0 = hd.matrix("AddF0", 6).ravel()
+    if np.any(add_f0):
+        unmapped.append(f"AddF0 preload {add_f0.tolist()}: give it as a constant force "
+                        f"(floatmoor statics --force)")
+    C = hd.matrix("AddCLin")
+    B = hd.matrix("AddBLin")
+    Bq = hd.matrix("AddBQuad")
+    for key in ("MnDrift", "NewmanApp", "DiffQTF", "SumQTF"):
+        if key in hd.keys and hd.float(key) != 0:
+            unmapped.append(f"HydroDyn {key} = {hd.raw(key)}: second-order loads (floatmoor "
+                            f"takes drift from the database; see its frequency-domain options)")
+    if "NMembers" in hd.keys and hd.float("NMembers") > 0:
+        unmapped.append(f"HydroDyn Morison members ({hd.raw('NMembers')}): strip-theory "
+                        f"viscous loads are not imported")
+    # --- vessel.yaml -----------------------------------------------------------------------
+    pm_yaml = "\n".join(
+        f"  # {c}\n  - {{name: {n}, mass: {_y(m)}, position: [{', '.join(_y(v) for v in p)}], "
+        f"inertia_cg: [{', '.join('[' + ', '.join(_y(v) for v in r) + ']' for r in Ii)}]}}"
+        for n, m, p, Ii, c in pm)
+    vessel = (f"# floatmoor vessel imported from {Path(fst).name} (OpenFAST): ElastoDyn "
+              f"{ed.path.name}, HydroDyn {hd.path.name}.\n"
+              f"name: {Path(fst).stem}\n"
+              f"description: imported from {Path(fst).name}\n"
+              f"database: database.nc   # WAMIT {Path(root).name}, WAMITULEN {ulen:g}, rho "
+              f"{rho:g}, g {g:g}\n"
+              f"reference_point: [{', '.join(_y(v) for v in ref)}]   # HydroDyn PtfmRefxt/yt/zt "
+              f"(ElastoDyn PtfmRefzt {zref:g})\n"
+              f"mass: {_y(mass)}   # ElastoDyn PtfmMass\n"
+              f"centre_of_gravity: [{', '.join(_y(v) for v in cog)}]   # PtfmCMxt/yt/zt\n"
+              f"inertia_cg: [{', '.join('[' + ', '.join(_y(v) for v in r) + ']' for r in I)}]"
+              f"   # PtfmRIner/PIner/YIner and the products of inertia\n"
+              f"point_masses:\n{pm_yaml}\n"
+              + _matrix_yaml("linear_damping", B, "HydroDyn AddBLin (N s/m, N m s/rad)")
+              + _matrix_yaml("quadratic_damping", Bq, "HydroDyn AddBQuad")
+              + _matrix_yaml("additional_stiffness", C, "HydroDyn AddCLin (N/m, N m/rad)"))
+    (out / "vessel.yaml").write_text(vessel)
+    # --- mooring ---------------------------------------------------------------------------
+    comp = int(fst_f.float("CompMooring"))
+    mfile = fst_f.file("MooringFile")
+    files = {"vessel": out / "vessel.yaml", "database": out / "database.nc"}
+    if comp in (1, 3):
+        if comp == 1:
+            from .map import read_model
+        else:
+            from .moordyn import read_model
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter("always", FloatmoorWarning)
+            r = read_model(mfile, water_depth=depth, water_density=rho, gravity=g, model=model)
+        unmapped += [f"mooring: {u}" for u in r.unmapped]
+        (out / "mooring.yaml").write_text(r.yaml_text)
+        files["mooring"] = out / "mooring.yaml"
+    elif comp != 0:
+        unmapped.append(f"CompMooring = {comp} (FEAMooring or OrcaFlex): no mooring imported")
+    # --- SeaState -> environment -------------------------------------------------------------
+    env = None
+    if "SeaStFile" in fst_f.keys and fst_f.file("SeaStFile") is not None:
+        ss = _File(fst_f.file("SeaStFile"))
+        wm = int(ss.float("WaveMod"))
+        if wm in (2, 3) or wm == 1:
+            hs, tp = ss.float("WaveHs"), ss.float("WaveTp")
+            head = ss.float("WaveDir", 0.0)
+            if wm == 2:
+                gamma = "null" if ss.is_default("WavePkShp") else _y(ss.float("WavePkShp"))
+                env = (f"  waves: {{spectrum: jonswap, hs: {_y(hs)}, tp: {_y(tp)}, gamma: {gamma},"
+                       f" heading_deg: {_y(head)}, random_amplitudes: "
+                       f"{'true' if ss.raw('WaveNDAmp', 'FALSE').upper().startswith('T') else 'false'}}}"
+                       f"   # SeaState WaveMod 2 (JONSWAP); WavePkShp DEFAULT = the "
+                       f"IEC 61400-3 / DNV-RP-C205 gamma rule (gamma: null)")
+            else:
+                unmapped.append(f"SeaState WaveMod {wm} (regular or white noise): not mapped; "
+                                f"the scene is calm")
+            if ss.float("WaveDirMod", 0.0):
+                unmapped.append("SeaState directional spreading (WaveDirMod): not mapped")
+            unmapped.append(f"SeaState seeds {ss.raw('WaveSeed(1)', '-')}, "
+                            f"{ss.raw('WaveSeed(2)', '-')}: floatmoor's own seeds")
+        elif wm != 0:
+            unmapped.append(f"SeaState WaveMod {wm}: not mapped; the scene is calm")
+        if ss.float("CurrMod", 0.0):
+            unmapped.append("SeaState current (CurrMod): not mapped")
+    tmax = fst_f.float("TMax")
+    scene = (f"# floatmoor scene imported from {Path(fst).name} (OpenFAST).  Rotor and wind loads "
+             f"are not modelled.\n"
+             f"name: {Path(fst).stem}\n"
+             f"site: {{water_depth: {_y(depth)}, water_density: {_y(rho)}, gravity: {_y(g)}}}"
+             f"   # .fst WtrDpth, WtrDens, Gravity\n"
+             f"vessel: vessel.yaml\n"
+             + ("mooring: mooring.yaml\n" if "mooring" in files else "")
+             + (f"environment:\n  name: {Path(fst).stem}-seastate\n{env}\n" if env else "")
+             + f"analysis:\n  duration: {_y(tmax)}   # .fst TMax\n"
+             f"  dt: 0.1   # s, rigid-body step (the .fst DT {fst_f.raw('DT')} s is for the "
+             f"flexible turbine)\n  seeds: 1\n")
+    (out / "scene.yaml").write_text(scene)
+    files["scene"] = out / "scene.yaml"
+    warnings.warn(f"{fst}: not mapped to floatmoor:\n  - " + "\n  - ".join(unmapped),
+                  FloatmoorWarning, stacklevel=2)
+    return OpenFASTImport(files=files, unmapped=tuple(unmapped), notes=tuple(notes))
