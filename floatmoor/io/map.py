@@ -21,8 +21,17 @@ from __future__ import annotations
 import math
 
 from ..core.errors import SceneError
-from .moordyn import (ImportedMooring, ImpLine, ImpPoint, ImpType, MooringImport, _build,
-                      _read_lines, _split_sections, _table)
+from .moordyn import (
+    ImpLine,
+    ImportedMooring,
+    ImpPoint,
+    ImpType,
+    MooringImport,
+    _build,
+    _read_lines,
+    _split_sections,
+    _table,
+)
 
 __all__ = ["parse", "read", "read_model"]
 

@@ -50,8 +50,15 @@ from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import FloatmoorWarning, SceneError
 
-__all__ = ["read", "read_model", "MooringImport", "ImportedMooring", "parse", "export",
-           "MBS_UNKNOWN"]
+__all__ = [
+    "MBS_UNKNOWN",
+    "ImportedMooring",
+    "MooringImport",
+    "export",
+    "parse",
+    "read",
+    "read_model",
+]
 
 MBS_UNKNOWN = 1.0e30
 """MBS written for a line type whose source file gives none (N); the import warns."""
@@ -210,8 +217,8 @@ def _table(path, kind, title_line, body) -> _Table:
     content = [(n, t) for n, t in body if t.strip() and not t.strip().startswith("#")]
     if len(content) < 2:
         raise SceneError(path, f"line {title_line}", "a table: a row of column names, a row of "
-                         "units, then the rows", "a truncated table (the file or section ends "
-                         "after %d line%s)" % (len(content), "" if len(content) == 1 else "s"))
+                         "units, then the rows", f"a truncated table (the file or section ends "
+                         f"after {len(content)} line{'' if len(content) == 1 else 's'})")
     (hn, ht), _units = content[0], content[1]
     rows = [(n, t.split()) for n, t in content[2:]]
     return _Table(kind, title_line, ht.split(), hn, rows)
@@ -562,7 +569,7 @@ def _chains(m: ImportedMooring):
                 raise SceneError(path, f"line {ln.line_no}", "a line from an anchor to the "
                                  "vessel", f"line {ln.id} ending on fixed point {top}",
                                  "lines between two fixed points have no floatmoor counterpart")
-            nxt = [x for x in attached[top] if x.id != ln.id][0]
+            nxt = next(x for x in attached[top] if x.id != ln.id)
             joints.append(top)
             ln, rev = nxt, nxt.b == top
         name = "line" + "-".join(x.id for x, _ in seq)
@@ -619,11 +626,11 @@ def to_yaml(m: ImportedMooring, *, water_depth=None, water_density=None, gravity
               "    material: user",
               f"    diameter: {_f(t.diameter)}        # m, the file's volume-equivalent diameter",
               f"    mass_per_length: {_f(t.mass)}  # kg/m in air",
-              f"    volumetric_diameter: {_f(t.diameter)}  # displaced volume pi d^2/4 per m "
-              f"(the file's buoyancy)",
+              (f"    volumetric_diameter: {_f(t.diameter)}  # displaced volume pi d^2/4 per m "
+               f"(the file's buoyancy)"),
               f"    ea: {_f(t.ea)}               # N",
-              f"    mbs: {_f(MBS_UNKNOWN)}  # NOT IN THE SOURCE FILE: set the real MBS "
-              f"before any design check"]
+              (f"    mbs: {_f(MBS_UNKNOWN)}  # NOT IN THE SOURCE FILE: set the real MBS "
+               f"before any design check")]
         if t.cd is not None:
             L.append(f"    cdn: {_f(t.cd)}   # normal drag on d (MoorDyn Cd)")
         if t.ca is not None:
@@ -754,8 +761,6 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
     (``Cd = cdn d / d_v``, ``CdAx = cdt d / (pi d_v)``).  Fairleads are ``Coupled`` points in
     body axes (the body at zero pose).
     """
-    from dataclasses import replace as _replace  # noqa: F401
-
     rho, g = system.water_density, system.gravity
     opts = system.line_models.options if system.line_models is not None else None
     types = {}

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.errors import FloatmoorWarning, SceneError
 
-__all__ = ["import_openfast", "OpenFASTImport", "read_keyed"]
+__all__ = ["OpenFASTImport", "import_openfast", "read_keyed"]
 
 
 def read_keyed(path):
@@ -157,14 +157,14 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
     nm = ed.float("NacMass")
     # NacYIner is about the yaw axis: about the nacelle CoG subtract m (x^2 + y^2)
     nyi = ed.float("NacYIner") - nm * (nac[0] ** 2 + nac[1] ** 2)
-    a = np.array([math.cos(tilt), 0.0, -math.sin(tilt)])
+    a = np.array([math.cos(tilt), 0.0, math.sin(tilt)])  # shaft axis, apex = top + OverHang a
     hub_I = ed.float("HubIner") * np.outer(a, a)
     pm = [("nacelle", nm, nac, np.diag([0.0, 0.0, nyi]),
-           "ElastoDyn NacMass at NacCMxn, NacCMyn, TowerHt + NacCMzn; NacYIner less m r^2 "
-           "(about the yaw axis in ElastoDyn)"),
+           ("ElastoDyn NacMass at NacCMxn, NacCMyn, TowerHt + NacCMzn; NacYIner less m r^2 "
+            "(about the yaw axis in ElastoDyn)")),
           ("hub", ed.float("HubMass"), apex, hub_I,
-           "ElastoDyn HubMass at the rotor apex (OverHang, ShftTilt, TowerHt + Twr2Shft), "
-           "HubIner about the shaft")]
+           ("ElastoDyn HubMass at the rotor apex (OverHang, ShftTilt, TowerHt + Twr2Shft), "
+            "HubIner about the shaft"))]
     if ed.float("HubCM", 0.0):
         unmapped.append(f"HubCM = {ed.raw('HubCM')} m: the hub mass is put at the apex")
     for key, what in (("TwrFile", "tower"), ("BldFile(1)", "blades")):
@@ -244,8 +244,8 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
             from .map import read_model
         else:
             from .moordyn import read_model
-        with warnings.catch_warnings(record=True) as w:
-            warnings.simplefilter("always", FloatmoorWarning)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", FloatmoorWarning)  # listed below with the rest
             r = read_model(mfile, water_depth=depth, water_density=rho, gravity=g, model=model)
         unmapped += [f"mooring: {u}" for u in r.unmapped]
         (out / "mooring.yaml").write_text(r.yaml_text)

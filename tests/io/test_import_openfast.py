@@ -125,3 +125,13 @@ def test_cli_import_openfast_and_missing_file(tmp_path, capsys):
     assert "none.fst" in capsys.readouterr().err
     with pytest.raises(SceneError):
         import_openfast(tmp_path / "none.fst", tmp_path / "o")
+
+
+def test_floatmoor_run_runs_the_imported_scene(imported, tmp_path, capsys):
+    res, _ = imported
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FloatmoorWarning)
+        assert main(["run", str(res.files["scene"]), "--duration", "20", "--seeds", "1",
+                     "--workers", "1", "--out", str(tmp_path / "results")]) == 0
+    assert len(list((tmp_path / "results").glob("*.nc"))) == 1
+    assert "line1r1 tension" in capsys.readouterr().out
