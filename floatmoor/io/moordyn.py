@@ -751,6 +751,24 @@ def read(path, **kw):
     return read_model(path, **kw).system
 
 
+def _share(lengths, n_line, element_length):
+    """Segments per MoorDyn line: ``n_line`` for the whole floatmoor line shared in proportion
+    to the lengths (largest remainder, at least one each, as the FE lines do), else one per
+    ``element_length``."""
+    if n_line is None:
+        return [max(1, round(L / element_length)) for L in lengths]
+    total = sum(lengths)
+    exact = [n_line * L / total for L in lengths]
+    counts = [max(1, math.floor(e)) for e in exact]
+    order = sorted(range(len(lengths)), key=lambda k: exact[k] - math.floor(exact[k]),
+                   reverse=True)
+    for k in order:
+        if sum(counts) >= n_line:
+            break
+        counts[k] += 1
+    return counts
+
+
 def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.001) -> str:
     """MoorDyn v2 input text of a :class:`MooringSystem` (written to ``path`` when given).
 
@@ -816,14 +834,11 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
         ids.append(len(pts) + 1)
         pts.append(f"{ids[-1]} Coupled {_f(line.fairlead[0])} {_f(line.fairlead[1])} "
                    f"{_f(line.fairlead[2])} 0 0 0 0")
-        total = sum(s.length for s in line.segments)
-        for k, s in enumerate(line.segments):
-            if n_segments is not None:
-                ns = max(1, round(n_segments * s.length / total))
-            elif opts is not None and opts.n_elements is not None:
-                ns = max(1, round(opts.n_elements * s.length / total))
-            else:
-                ns = max(1, round(s.length / (opts.element_length if opts else 20.0)))
+        n_line = n_segments if n_segments is not None else (
+            opts.n_elements if opts is not None else None)
+        counts = _share([s.length for s in line.segments], n_line,
+                        opts.element_length if opts is not None else 20.0)
+        for k, (s, ns) in enumerate(zip(line.segments, counts)):
             lns.append(f"{len(lns) + 1} {seg_type[line.name, k]} {ids[k]} {ids[k + 1]} "
                        f"{_f(s.length)} {ns} -")
     seabed = opts.seabed_for(system.water_depth) if opts is not None else None

@@ -185,3 +185,40 @@ def test_library_readers_misread_v1(tmp_path):
     except (ValueError, IndexError, KeyError, TypeError):
         ok = False
     assert not ok
+
+
+def test_rods_bodies_are_listed_never_dropped_silently():
+    r, msgs = _read(DATA / "moordyn_v2_rods_bodies.dat")
+    assert r.system.n_lines == 3  # the lines are still the OC4 lines
+    text = msgs[0]
+    for what in ("section 'ROD TYPES' (line 8, 1 entries)", "section 'BODIES' (line 12",
+                 "section 'RODS' (line 16", "point 7 (line 29) on 'Body1', no line"):
+        assert what in text
+
+
+def test_line_on_a_body_point_is_an_error(tmp_path):
+    text = (DATA / "moordyn_v2_rods_bodies.dat").read_text().replace(
+        "3         main       3         6", "3         main       3         7")
+    bad = tmp_path / "body_line.dat"
+    bad.write_text(text)
+    with pytest.raises(SceneError) as ei:
+        moordyn.read(bad)
+    assert ei.value.key == "line 29" and "attached to 'Body1'" in ei.value.found
+
+
+def test_finite_element_model_of_the_import_runs(tmp_path):
+    """The FE options the file implies build FE lines that a short time-domain run accepts."""
+    import floatmoor
+    import yaml
+
+    r, _ = _read(OC3_MD, model="finite-element")
+    assert r.system.line_models.finite_element_lines == ["line1", "line2", "line3"]
+    (tmp_path / "mooring.yaml").write_text(r.yaml_text)
+    (tmp_path / "scene.yaml").write_text(yaml.safe_dump({
+        "site": {"water_depth": 320.0}, "vessel": str(ROOT / "vessels/oc3_hywind/vessel.yaml"),
+        "mooring": "mooring.yaml", "analysis": {"duration": 2.0, "dt": 0.1}}))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FloatmoorWarning)
+        ds = floatmoor.simulate(floatmoor.load_scene(tmp_path / "scene.yaml"))
+    t0 = r.system.tensions()["fairlead_tension"].values
+    np.testing.assert_allclose(ds["line_tension"].values[-1], t0, rtol=0.02)

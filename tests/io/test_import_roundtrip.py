@@ -25,10 +25,13 @@ def _read(path, **kw):
         return moordyn.read_model(path, **kw)
 
 
-@pytest.mark.parametrize("source", ["oc3", "clump"])
+@pytest.mark.parametrize("source", ["oc3", "clump", "floatel"])
 def test_export_then_import_gives_the_same_system(tmp_path, source):
     if source == "oc3":
         sys0 = parse_mooring(Node.load(ROOT / "vessels/oc3_hywind/mooring.yaml"), water_depth=320.0)
+    elif source == "floatel":  # 12 lines of chain - polyester - chain from the type library
+        sys0 = parse_mooring(Node.load(ROOT / "vessels/floatel_like/mooring_fe.yaml"),
+                             water_depth=150.0)
     else:
         sys0 = _read(DATA / "moordyn_v2_clump.dat").system
     out = tmp_path / "exported.dat"
@@ -45,12 +48,17 @@ def test_export_then_import_gives_the_same_system(tmp_path, source):
                                sys0.tensions()["fairlead_tension"].values, rtol=1e-12)
     np.testing.assert_allclose(back.stiffness(), sys0.stiffness(), rtol=1e-9,
                                atol=1e-9 * np.abs(sys0.stiffness()).max())
-    if source == "clump":
-        lt0, lt1 = sys0.line_types["chain"], back.line_types["chain"]
-        assert (lt1.cdn, lt1.can, lt1.cat) == pytest.approx((lt0.cdn, lt0.can, lt0.cat))
-        assert lt1.cdt == pytest.approx(lt0.cdt)
-        fe0, fe1 = sys0.line_models.options, back.line_models.options
-        assert fe1.internal_damping == fe0.internal_damping
+    fe0, fe1 = sys0.line_models.options, back.line_models.options
+    assert fe1.internal_damping == fe0.internal_damping
+    if fe0.n_elements is not None:
+        assert fe1.n_elements == fe0.n_elements
+    for name, lt0 in sys0.line_types.items():
+        lt1 = back.line_types[name]
+        # the exported diameter is the volume-equivalent one; drag per metre is kept
+        assert lt1.displaced_volume == pytest.approx(lt0.displaced_volume, rel=1e-12)
+        assert lt1.cdn * lt1.diameter == pytest.approx(lt0.cdn * lt0.diameter, rel=1e-12)
+        assert lt1.cdt * lt1.diameter == pytest.approx(lt0.cdt * lt0.diameter, rel=1e-12)
+        assert (lt1.can, lt1.cat) == (lt0.can, lt0.cat)
 
 
 def test_cli_export_scene(tmp_path, capsys):
