@@ -15,9 +15,9 @@ regression tests of September 2024 (5.0.0 reads the SeaState ``WaveHs`` from the
 line; both stop on the ``.fst``, ElastoDyn and HydroDyn files), which is why they are not used.
 
 Not mapped, and listed in one warning: the tower and blade masses when their ElastoDyn files
-are not found, the hub's offset from the apex, aerodynamics, control, the Morison members of
-HydroDyn, second-order wave loads, currents and wave models other than JONSWAP or
-Pierson-Moskowitz.
+are not found, the hub's offset from the apex, aerodynamics, control, the Morison members and
+filled members (ballast water) of HydroDyn, second-order wave loads, currents, wave models
+other than JONSWAP, and the waves altogether when the WAMIT ``.3`` file is missing.
 """
 
 from __future__ import annotations
@@ -193,8 +193,13 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
     if hd.float("PtfmRefztRot", 0.0):
         unmapped.append("PtfmRefztRot: a rotated WAMIT body frame")
     ds = read_wamit(root, ulen=ulen, rho=rho, g=g, water_depth=depth)
-    keep = ds.wave_direction.values < np.pi - 1e-9
-    ds = ds.isel(wave_direction=np.nonzero(keep)[0])
+    no_excitation = "wave_direction" not in ds.dims
+    if no_excitation:
+        unmapped.append(f"WAMIT {Path(root).name}.3 not found: the database has no wave "
+                        f"excitation, so the scene is written without waves")
+    else:  # WAMIT writes -180 and +180 deg: identical data, keep one
+        keep = ds.wave_direction.values < np.pi - 1e-9
+        ds = ds.isel(wave_direction=np.nonzero(keep)[0])
     ds.attrs["source"] = f"WAMIT {Path(root).name}.1/.3/.hst via {hd.path.name}"
     ds.attrs["displaced_volume"] = hd.float("PtfmVol0")
     ds.attrs["reference_point"] = ref
@@ -210,6 +215,10 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
         if key in hd.keys and hd.float(key) != 0:
             unmapped.append(f"HydroDyn {key} = {hd.raw(key)}: second-order loads (floatmoor "
                             f"takes drift from the database; see its frequency-domain options)")
+    if "NFillGroups" in hd.keys and hd.float("NFillGroups") > 0:
+        unmapped.append(f"HydroDyn filled members ({hd.raw('NFillGroups')} fill groups, e.g. "
+                        f"ballast water): their mass is NOT in the vessel (ElastoDyn PtfmMass "
+                        f"excludes it) -- add it to vessel.yaml before any analysis")
     if "NMembers" in hd.keys and hd.float("NMembers") > 0:
         unmapped.append(f"HydroDyn Morison members ({hd.raw('NMembers')}): strip-theory "
                         f"viscous loads are not imported")
@@ -254,28 +263,28 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
         unmapped.append(f"CompMooring = {comp} (FEAMooring or OrcaFlex): no mooring imported")
     # --- SeaState -> environment -------------------------------------------------------------
     env = None
-    if "SeaStFile" in fst_f.keys and fst_f.file("SeaStFile") is not None:
+    if ("SeaStFile" in fst_f.keys and fst_f.file("SeaStFile") is not None
+            and not no_excitation):
         ss = _File(fst_f.file("SeaStFile"))
-        wm = int(ss.float("WaveMod"))
-        if wm in (2, 3) or wm == 1:
+        wm_raw = ss.raw("WaveMod").upper()
+        wm = 1 if wm_raw.startswith("1P") else int(ss.float("WaveMod"))
+        if wm == 2:
             hs, tp = ss.float("WaveHs"), ss.float("WaveTp")
             head = ss.float("WaveDir", 0.0)
-            if wm == 2:
-                gamma = "null" if ss.is_default("WavePkShp") else _y(ss.float("WavePkShp"))
-                env = (f"  waves: {{spectrum: jonswap, hs: {_y(hs)}, tp: {_y(tp)}, gamma: {gamma},"
-                       f" heading_deg: {_y(head)}, random_amplitudes: "
-                       f"{'true' if ss.raw('WaveNDAmp', 'FALSE').upper().startswith('T') else 'false'}}}"
-                       f"   # SeaState WaveMod 2 (JONSWAP); WavePkShp DEFAULT = the "
-                       f"IEC 61400-3 / DNV-RP-C205 gamma rule (gamma: null)")
-            else:
-                unmapped.append(f"SeaState WaveMod {wm} (regular or white noise): not mapped; "
-                                f"the scene is calm")
+            gamma = "null" if ss.is_default("WavePkShp") else _y(ss.float("WavePkShp"))
+            nd = ss.raw("WaveNDAmp", "FALSE").upper().startswith("T")
+            env = (f"  waves: {{spectrum: jonswap, hs: {_y(hs)}, tp: {_y(tp)}, gamma: {gamma}, "
+                   f"heading_deg: {_y(head)}, random_amplitudes: {'true' if nd else 'false'}}}"
+                   f"   # SeaState WaveMod 2 (JONSWAP), WaveHs, WaveTp, WaveDir, WaveNDAmp; "
+                   f"WavePkShp DEFAULT = the IEC 61400-3 / DNV-RP-C205 gamma rule (null)")
             if ss.float("WaveDirMod", 0.0):
-                unmapped.append("SeaState directional spreading (WaveDirMod): not mapped")
+                unmapped.append("SeaState directional spreading (WaveDirMod): not mapped (the "
+                                "scene has long-crested waves)")
             unmapped.append(f"SeaState seeds {ss.raw('WaveSeed(1)', '-')}, "
-                            f"{ss.raw('WaveSeed(2)', '-')}: floatmoor's own seeds")
+                            f"{ss.raw('WaveSeed(2)', '-')}: floatmoor uses its own seeds")
         elif wm != 0:
-            unmapped.append(f"SeaState WaveMod {wm}: not mapped; the scene is calm")
+            unmapped.append(f"SeaState WaveMod {wm_raw} (only 2, JONSWAP, is mapped): the scene "
+                            f"is calm")
         if ss.float("CurrMod", 0.0):
             unmapped.append("SeaState current (CurrMod): not mapped")
     tmax = fst_f.float("TMax")

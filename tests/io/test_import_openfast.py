@@ -135,3 +135,27 @@ def test_floatmoor_run_runs_the_imported_scene(imported, tmp_path, capsys):
                      "--workers", "1", "--out", str(tmp_path / "results")]) == 0
     assert len(list((tmp_path / "results").glob("*.nc"))) == 1
     assert "line1r1 tension" in capsys.readouterr().out
+
+
+def test_oc4_import_moordyn_mooring_and_what_is_missing(tmp_path):
+    """OC4-DeepCwind (Robertson et al. 2014): MoorDyn mooring (CompMooring 3); the regression
+    files lack marin_semi.3 and HydroDyn adds the ballast as filled members: both listed."""
+    from floatmoor.io import moordyn
+
+    fst = ROOT / "vessels/oc4_semi/source/5MW_OC4Semi_WSt_WavesWN.fst"
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always", FloatmoorWarning)
+        res = import_openfast(fst, tmp_path)
+        md = moordyn.read(ROOT / "vessels/oc4_semi/source/"
+                          "NRELOffshrBsline5MW_OC4DeepCwindSemi_MoorDyn.dat")
+    text = next(str(x.message) for x in w if "not mapped to floatmoor" in str(x.message))
+    assert "marin_semi.3 not found" in text and "filled members (2 fill groups" in text
+    assert "environment" not in res.files["scene"].read_text()
+    from floatmoor.core.config import Node
+    from floatmoor.io.mooring_section import parse_mooring
+
+    ms = parse_mooring(Node.load(res.files["mooring"]), water_depth=200.0)
+    np.testing.assert_array_equal(ms.tensions()["fairlead_tension"].values,
+                                  md.tensions()["fairlead_tension"].values)
+    ves = yaml.safe_load(res.files["vessel"].read_text())
+    assert ves["mass"] == 3852180.0  # ElastoDyn PtfmMass (without the ballast)
