@@ -13,7 +13,7 @@ seabed friction coefficient of the lines of that type (``seabed_friction``), ``M
 connect node a point load ``(M - rho B) g``.  ``CIntDamp``, ``Ca``, ``Cdn`` and ``Cdt`` are not
 used by MAP++ (a static model) and are not imported (floatmoor's defaults apply to FE lines);
 flags and solver options other than ``repeat`` are listed as not mapped.  The mapping and the
-``mooring.yaml`` writer are those of :mod:`floatmoor.io.moordyn`.
+``mooring.yaml`` writer are shared with MoorDyn (:mod:`floatmoor.io.mooring_import`).
 """
 
 from __future__ import annotations
@@ -21,16 +21,14 @@ from __future__ import annotations
 import math
 
 from ..core.errors import SceneError
-from .moordyn import (
+from .moordyn import _read_lines, _split_sections, _table
+from .mooring_import import (
     ImpLine,
     ImportedMooring,
     ImpPoint,
     ImpType,
     MooringImport,
-    _build,
-    _read_lines,
-    _split_sections,
-    _table,
+    build,
 )
 
 __all__ = ["parse", "read", "read_model"]
@@ -222,8 +220,8 @@ def read_model(path, *, water_depth=None, water_density=None, gravity=None,
     """
     m = parse(path)
     _resolve_depth(m, water_depth)
-    return _build(m, water_depth=m.water_depth, water_density=water_density, gravity=gravity,
-                  model=model, warn=warn)
+    return build(m, water_depth=m.water_depth, water_density=water_density, gravity=gravity,
+                 model=model, warn=warn)
 
 
 def read(path, **kw):

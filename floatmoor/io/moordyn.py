@@ -40,15 +40,20 @@ from __future__ import annotations
 
 import math
 import re
-import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
-
-from ..core.config import Node
-from ..core.constants import GRAVITY, RHO_WATER
-from ..core.errors import FloatmoorWarning, SceneError
+from ..core.errors import SceneError
+from .mooring_import import (
+    MBS_UNKNOWN,
+    ImpLine,
+    ImportedMooring,
+    ImpPoint,
+    ImpType,
+    MooringImport,
+    build,
+    fmt,
+)
 
 __all__ = [
     "MBS_UNKNOWN",
@@ -59,92 +64,6 @@ __all__ = [
     "read",
     "read_model",
 ]
-
-MBS_UNKNOWN = 1.0e30
-"""MBS written for a line type whose source file gives none (N); the import warns."""
-
-
-# ------------------------------------------------------------------------------------------------
-# intermediate model shared with the MAP++ reader
-# ------------------------------------------------------------------------------------------------
-@dataclass(frozen=True, kw_only=True)
-class ImpType:
-    name: str
-    diameter: float
-    mass: float
-    ea: float
-    line_no: int
-    ba: float | None = None          # N s, or -zeta
-    ei: float = 0.0
-    cd: float | None = None          # normal drag on d
-    ca: float | None = None          # normal added mass on the displaced volume
-    cdax: float | None = None        # MoorDyn axial drag on pi d
-    caax: float | None = None
-    cdt_on_d: float | None = None    # axial drag already on d
-    cb: float | None = None          # MAP++ seabed friction of the type
-
-
-@dataclass(frozen=True, kw_only=True)
-class ImpPoint:
-    id: str
-    kind: str                        # fixed | vessel | free
-    xyz: tuple
-    line_no: int
-    mass: float = 0.0
-    volume: float = 0.0
-
-
-@dataclass(frozen=True, kw_only=True)
-class ImpLine:
-    id: str
-    type: str
-    a: str
-    b: str
-    length: float
-    line_no: int
-    n_segments: int | None = None
-
-
-@dataclass(kw_only=True)
-class ImportedMooring:
-    """What a reader understood: types, points, lines and options, plus what it could not map
-    (``unmapped``) and the conversions it made (``notes``)."""
-
-    file: Path
-    format: str
-    types: dict = field(default_factory=dict)
-    points: dict = field(default_factory=dict)
-    lines: list = field(default_factory=list)
-    water_depth: float | None = None
-    water_density: float | None = None
-    gravity: float | None = None
-    kbot: float | None = None
-    cbot: float | None = None
-    mu_axial: float | None = None
-    mu_lateral: float | None = None
-    unmapped: list = field(default_factory=list)
-    notes: list = field(default_factory=list)
-
-
-@dataclass(frozen=True, kw_only=True)
-class MooringImport:
-    """Result of an import: the system, the ``mooring.yaml`` text that builds it, the site
-    values it implies, the conversions made and what could not be mapped."""
-
-    system: object
-    yaml_text: str
-    water_depth: float
-    water_density: float
-    gravity: float
-    notes: tuple
-    unmapped: tuple
-    format: str
-
-    @property
-    def fe_options(self):
-        """The FE options the file implies (:class:`~floatmoor.mooring.fe.options.FEOptions`)."""
-        return self.system.line_models.options
-
 
 # ------------------------------------------------------------------------------------------------
 # low-level file reading
@@ -509,230 +428,6 @@ def _read_options(path, body, m, version):
             m.unmapped.append(f"option {name} = {value} (line {n}): {why}")
 
 
-# ------------------------------------------------------------------------------------------------
-# mapping: ImportedMooring -> mooring.yaml text -> MooringSystem
-# ------------------------------------------------------------------------------------------------
-def _f(x: float) -> str:
-    """Shortest exact text of a float that YAML 1.1 also reads as a float (``1.0e+30``)."""
-    t = repr(float(x))
-    if "e" in t and "." not in t.split("e")[0]:
-        a, b = t.split("e")
-        t = f"{a}.0e{b if b[0] in '+-' else '+' + b}"
-    return t
-
-
-def _chains(m: ImportedMooring):
-    """Group the lines into floatmoor lines: chains anchor -> (free points) -> vessel.
-
-    Returns a list of (name, [(ImpLine, reversed)], [free point ids between segments])."""
-    path = m.file
-    attached = {pid: [] for pid in m.points}
-    for ln in m.lines:
-        for p in (ln.a, ln.b):
-            attached[p].append(ln)
-    for pid, p in m.points.items():
-        if p.kind.startswith("attached:"):
-            if attached[pid]:
-                raise SceneError(path, f"line {p.line_no}", "lines attached to fixed, vessel or "
-                                 "free points (floatmoor has one floating body and no rods)",
-                                 f"point {pid} attached to {p.kind[9:]!r}")
-            m.unmapped.append(f"point {pid} (line {p.line_no}) on {p.kind[9:]!r}, no line")
-        if p.kind == "free" and len(attached[pid]) != 2:
-            raise SceneError(path, f"line {p.line_no}", "a free point joining exactly two lines "
-                             "(a clump weight or buoy between two segments)",
-                             f"point {pid} joining {len(attached[pid])} lines",
-                             "bridles and shared lines have no floatmoor counterpart")
-        if p.kind in ("fixed", "vessel") and len(attached[pid]) > 1:
-            ids = ", ".join(ln.id for ln in attached[pid])
-            raise SceneError(path, f"line {p.line_no}", f"one line on each {p.kind} point",
-                             f"point {pid} holding lines {ids}",
-                             "floatmoor lines have their own anchor and fairlead")
-    out = []
-    used = set()
-    for start in m.lines:
-        if start.id in used:
-            continue
-        ka, kb = m.points[start.a].kind, m.points[start.b].kind
-        if "fixed" not in (ka, kb):
-            continue
-        seq = []
-        ln, rev = start, ka != "fixed"
-        joints = []
-        while True:
-            seq.append((ln, rev))
-            used.add(ln.id)
-            top = ln.a if rev else ln.b
-            kind = m.points[top].kind
-            if kind == "vessel":
-                break
-            if kind == "fixed":
-                raise SceneError(path, f"line {ln.line_no}", "a line from an anchor to the "
-                                 "vessel", f"line {ln.id} ending on fixed point {top}",
-                                 "lines between two fixed points have no floatmoor counterpart")
-            nxt = next(x for x in attached[top] if x.id != ln.id)
-            joints.append(top)
-            ln, rev = nxt, nxt.b == top
-        name = "line" + "-".join(x.id for x, _ in seq)
-        out.append((name, seq, joints))
-    left = [ln for ln in m.lines if ln.id not in used]
-    if left:
-        ln = left[0]
-        raise SceneError(path, f"line {ln.line_no}", "a line on a path from a fixed point to a "
-                         "vessel point", f"line {ln.id} between points {ln.a} and {ln.b}",
-                         "lines between two vessel points have no floatmoor counterpart")
-    return out
-
-
-def to_yaml(m: ImportedMooring, *, water_depth=None, water_density=None, gravity=None,
-            model: str = "quasi-static"):
-    """The floatmoor ``mooring.yaml`` text of an imported mooring, with a comment per
-    conversion; returns ``(text, water_depth, water_density, gravity)``."""
-    notes = list(m.notes)
-    src = m.file.name
-    depth_src = "the file"
-    if water_depth is not None:
-        depth_src = "the caller"
-    elif m.water_depth is not None:
-        water_depth = m.water_depth
-    else:
-        fixed = [p.xyz[2] for p in m.points.values() if p.kind == "fixed"]
-        if not fixed:
-            raise SceneError(m.file, "", "a fixed point (anchor) or a water depth option",
-                             "neither")
-        water_depth = -min(fixed)
-        depth_src = "the deepest fixed point (the file gives no depth: OpenFAST passes its own)"
-    rho = water_density if water_density is not None else (m.water_density or RHO_WATER)
-    g = gravity if gravity is not None else (m.gravity or GRAVITY)
-    notes.append(f"water depth {water_depth:g} m from {depth_src}; water density {rho:g} kg/m^3"
-                 f" and gravity {g:g} m/s^2 "
-                 + ("from the file" if m.gravity is not None else
-                    "(not in the file: OpenFAST passes its own"
-                    + ("; standalone MoorDyn assumes g = 9.8)" if "MoorDyn" in m.format
-                       else ")"))
-                 + " -- put them in the scene's site section")
-    chains = _chains(m)
-    used_types = [t for t in m.types.values() if any(ln.type == t.name for _, seq, _ in chains
-                                                    for ln, _ in seq)]
-    for t in m.types.values():
-        if t not in used_types:
-            m.unmapped.append(f"line type {t.name!r} (line {t.line_no}): used by no line")
-    L = [f"# floatmoor mooring file imported from {src} ({m.format}).",
-         "# Conversions (source values in the comments; SI units throughout):"]
-    L += [f"#  - {n}" for n in notes]
-    L += [f"description: imported from {src} ({m.format})", "line_types:"]
-    d_seabed = []
-    for t in used_types:
-        L += [f"  {t.name}:",
-              "    material: user",
-              f"    diameter: {_f(t.diameter)}        # m, the file's volume-equivalent diameter",
-              f"    mass_per_length: {_f(t.mass)}  # kg/m in air",
-              (f"    volumetric_diameter: {_f(t.diameter)}  # displaced volume pi d^2/4 per m "
-               f"(the file's buoyancy)"),
-              f"    ea: {_f(t.ea)}               # N",
-              (f"    mbs: {_f(MBS_UNKNOWN)}  # NOT IN THE SOURCE FILE: set the real MBS "
-               f"before any design check")]
-        if t.cd is not None:
-            L.append(f"    cdn: {_f(t.cd)}   # normal drag on d (MoorDyn Cd)")
-        if t.ca is not None:
-            L.append(f"    can: {_f(t.ca)}   # normal added mass on the displaced volume "
-                     f"(MoorDyn Ca)")
-        if t.cdax is not None:
-            L.append(f"    cdt: {_f(math.pi * t.cdax)}   # = pi x MoorDyn CdAx {t.cdax:g}: "
-                     f"MoorDyn's axial drag acts on pi d, floatmoor's on d")
-        elif t.cdt_on_d is not None:
-            L.append(f"    cdt: {_f(t.cdt_on_d)}   # axial drag on d")
-        if t.caax is not None:
-            L.append(f"    cat: {_f(t.caax)}   # axial added mass on the displaced volume "
-                     f"(MoorDyn CaAx)")
-        L.append(f"    source: {src} line {t.line_no}")
-        d_seabed.append(t.diameter)
-    mu_ax = m.mu_axial
-    L.append(f"seabed_friction: {_f(mu_ax or 0.0)}   # axial Coulomb coefficient of "
-             "quasi-static lines" + ("" if mu_ax else " (none in the file)"))
-    L.append("lines:")
-    for name, seq, joints in chains:
-        first, rev0 = seq[0]
-        last, revn = seq[-1]
-        anchor = m.points[first.b if rev0 else first.a].xyz
-        fair = m.points[last.a if revn else last.b].xyz
-        L += [f"  - name: {name}",
-              f"    anchor: {{x: {_f(anchor[0])}, y: {_f(anchor[1])}, z: {_f(anchor[2])}}}",
-              f"    fairlead: [{_f(fair[0])}, {_f(fair[1])}, {_f(fair[2])}]   # body axes",
-              "    segments:"]
-        for k, (ln, rev) in enumerate(seq):
-            extra, comment = "", ""
-            if k < len(joints):
-                p = m.points[joints[k]]
-                load = (p.mass - rho * p.volume) * g
-                if load > 0:
-                    extra = f", clump_weight: {_f(load)}"
-                elif load < 0:
-                    extra = f", buoy_net_buoyancy: {_f(-load)}"
-                if load:
-                    comment = (f"   # N, point {p.id}: (M {p.mass:g} kg - rho V {p.volume:g} "
-                               f"m^3) g")
-            L.append(f"      - {{type: {ln.type}, length: {_f(ln.length)}{extra}}}{comment}")
-    # FE options
-    nseg = {ln.n_segments for ln in m.lines if ln.n_segments}
-    seq_counts = {sum(ln.n_segments or 0 for ln, _ in seq) for _, seq, _ in chains}
-    L.append(f"model: {model}   # quasi-static catenary lines; finite-element uses the options "
-             f"below")
-    fe = []
-    if len(seq_counts) == 1 and nseg:
-        fe.append(f"  n_elements: {seq_counts.pop()}   # MoorDyn NumSegs (segments per line)")
-    elif nseg:
-        Ltot = sum(ln.length for ln in m.lines)
-        ntot = sum(ln.n_segments for ln in m.lines)
-        fe.append(f"  element_length: {_f(Ltot / ntot)}   # lines differ in NumSegs: the mean "
-                  f"segment length")
-        m.unmapped.append("NumSegs differs between lines: finite_element.element_length is "
-                          "the mean segment length")
-    bas = {t.ba for t in used_types if t.ba is not None}
-    if len(bas) == 1:
-        fe.append(f"  internal_damping: {_f(bas.pop())}   # MoorDyn BA/-zeta (N s, or -zeta)")
-    elif len(bas) > 1:
-        b0 = used_types[0].ba
-        fe.append(f"  internal_damping: {_f(b0)}   # BA/-zeta of type {used_types[0].name}")
-        m.unmapped.append(f"BA/-zeta differs between line types {sorted(bas)}: floatmoor uses "
-                          f"one value ({b0:g}) for all FE lines")
-    if m.kbot is not None or m.cbot is not None:
-        dref = max(d_seabed)
-        kb = m.kbot if m.kbot is not None else 3.0e6
-        cb = m.cbot if m.cbot is not None else 3.0e5
-        fe.append(f"  seabed: {{model: springs, stiffness: {_f(kb * dref)}, damping: "
-                  f"{_f(cb * dref)}}}   # kBot {kb:g} Pa/m and cBot {cb:g} Pa s/m x d {dref:g} m "
-                  f"(per unit area -> per unit length)")
-        if len(set(d_seabed)) > 1:
-            m.unmapped.append("kBot, cBot: floatmoor's seabed springs are per unit length for "
-                              f"all lines; the largest diameter ({dref:g} m) is used")
-    if m.mu_axial or m.mu_lateral:
-        fe.append(f"  friction: {{model: velocity_ramp, mu_axial: {_f(m.mu_axial or 0.0)}, "
-                  f"mu_lateral: {_f(m.mu_lateral or 0.0)}}}   # seabed Coulomb coefficients")
-    if fe:
-        L.append("finite_element:")
-        L += fe
-    return "\n".join(L) + "\n", water_depth, rho, g
-
-
-def _build(m: ImportedMooring, *, water_depth=None, water_density=None, gravity=None,
-           model="quasi-static", warn=True) -> MooringImport:
-    from .mooring_section import parse_mooring
-
-    text, depth, rho, g = to_yaml(m, water_depth=water_depth, water_density=water_density,
-                                  gravity=gravity, model=model)
-    node = Node(yaml.safe_load(text), file=m.file)
-    system = parse_mooring(node, water_depth=depth, water_density=rho, gravity=g)
-    unmapped = list(m.unmapped)
-    unmapped.append("MBS: not in the file; the line types carry mbs = 1e30 N (replace before "
-                    "any design check)")
-    if warn:
-        warnings.warn(f"{m.file}: not mapped to floatmoor ({m.format}):\n  - "
-                      + "\n  - ".join(unmapped), FloatmoorWarning, stacklevel=3)
-    return MooringImport(system=system, yaml_text=text, water_depth=depth, water_density=rho,
-                         gravity=g, notes=tuple(m.notes), unmapped=tuple(unmapped),
-                         format=m.format)
-
-
 def read_model(path, *, water_depth=None, water_density=None, gravity=None,
                model: str = "quasi-static", warn: bool = True) -> MooringImport:
     """Read a MoorDyn v1/v2 file: the system, its ``mooring.yaml`` text and what was not mapped.
@@ -741,8 +436,8 @@ def read_model(path, *, water_depth=None, water_density=None, gravity=None,
     ``model`` is written as the mooring file's line model.  With ``warn`` one
     :class:`FloatmoorWarning` lists everything not mapped.
     """
-    return _build(parse(path), water_depth=water_depth, water_density=water_density,
-                  gravity=gravity, model=model, warn=warn)
+    return build(parse(path), water_depth=water_depth, water_density=water_density,
+                 gravity=gravity, model=model, warn=warn)
 
 
 def read(path, **kw):
@@ -809,17 +504,17 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
                     name = f"{name}_{len(types) + 1}"
                 ba = opts.internal_damping if opts is not None else -0.8
                 types[key] = (name,)
-                type_rows.append(f"{name:<16} {_f(dv)} {_f(m)} {_f(s.ea)} {_f(ba)} 0.0 "
-                                 f"{_f(cdn * dn / dv)} {_f(can)} "
-                                 f"{_f(cdt * dn / (math.pi * dv))} {_f(cat)}")
+                type_rows.append(f"{name:<16} {fmt(dv)} {fmt(m)} {fmt(s.ea)} {fmt(ba)} 0.0 "
+                                 f"{fmt(cdn * dn / dv)} {fmt(can)} "
+                                 f"{fmt(cdt * dn / (math.pi * dv))} {fmt(cat)}")
             seg_type[line.name, k] = types[key][0]
     pts, lns = [], []
     for line in system.lines:
         nseg = len(line.segments)
         ids = []
         ids.append(len(pts) + 1)
-        pts.append(f"{ids[-1]} Fixed {_f(line.anchor[0])} {_f(line.anchor[1])} "
-                   f"{_f(line.anchor[2])} 0 0 0 0")
+        pts.append(f"{ids[-1]} Fixed {fmt(line.anchor[0])} {fmt(line.anchor[1])} "
+                   f"{fmt(line.anchor[2])} 0 0 0 0")
         if nseg > 1:
             prof = system.line_profile(line.name, n_per_segment=2)
             s_joint = [sum(seg.length for seg in line.segments[:k + 1]) for k in range(nseg - 1)]
@@ -829,18 +524,18 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
                 mass = P / g if P > 0 else 0.0
                 vol = -P / (rho * g) if P < 0 else 0.0
                 ids.append(len(pts) + 1)
-                pts.append(f"{ids[-1]} Free {_f(prof['x'][i])} {_f(prof['y'][i])} "
-                           f"{_f(prof['z'][i])} {_f(mass)} {_f(vol)} 0 0")
+                pts.append(f"{ids[-1]} Free {fmt(prof['x'][i])} {fmt(prof['y'][i])} "
+                           f"{fmt(prof['z'][i])} {fmt(mass)} {fmt(vol)} 0 0")
         ids.append(len(pts) + 1)
-        pts.append(f"{ids[-1]} Coupled {_f(line.fairlead[0])} {_f(line.fairlead[1])} "
-                   f"{_f(line.fairlead[2])} 0 0 0 0")
+        pts.append(f"{ids[-1]} Coupled {fmt(line.fairlead[0])} {fmt(line.fairlead[1])} "
+                   f"{fmt(line.fairlead[2])} 0 0 0 0")
         n_line = n_segments if n_segments is not None else (
             opts.n_elements if opts is not None else None)
         counts = _share([s.length for s in line.segments], n_line,
                         opts.element_length if opts is not None else 20.0)
         for k, (s, ns) in enumerate(zip(line.segments, counts)):
             lns.append(f"{len(lns) + 1} {seg_type[line.name, k]} {ids[k]} {ids[k + 1]} "
-                       f"{_f(s.length)} {ns} -")
+                       f"{fmt(s.length)} {ns} -")
     seabed = opts.seabed_for(system.water_depth) if opts is not None else None
     dmax = max(float(v) for v in [r.split()[1] for r in type_rows])
     kbot = seabed.stiffness / dmax if seabed is not None else 3.0e6
@@ -858,14 +553,14 @@ def export(system, path=None, *, n_segments: int | None = None, dt: float = 0.00
            "ID LineType AttachA AttachB UnstrLen NumSegs Outputs",
            "(-) (-) (-) (-) (m) (-) (-)", *lns,
            "---------------------- OPTIONS -----------------------------------------------",
-           f"{_f(dt)} dtM - time step of the mooring integration (s)",
-           f"{_f(system.water_depth)} WtrDpth - water depth (m)",
-           f"{_f(rho)} WtrDnsty - water density (kg/m^3)",
-           f"{_f(g)} gravity - gravity (m/s^2)",
-           f"{_f(kbot)} kBot - seabed stiffness (Pa/m)",
-           f"{_f(cbot)} cBot - seabed damping (Pa-s/m)"]
+           f"{fmt(dt)} dtM - time step of the mooring integration (s)",
+           f"{fmt(system.water_depth)} WtrDpth - water depth (m)",
+           f"{fmt(rho)} WtrDnsty - water density (kg/m^3)",
+           f"{fmt(g)} gravity - gravity (m/s^2)",
+           f"{fmt(kbot)} kBot - seabed stiffness (Pa/m)",
+           f"{fmt(cbot)} cBot - seabed damping (Pa-s/m)"]
     if cb > 0:
-        out.append(f"{_f(cb)} FrictionCoefficient - seabed friction coefficient (-)")
+        out.append(f"{fmt(cb)} FrictionCoefficient - seabed friction coefficient (-)")
     out += ["----------------------- OUTPUTS ----------------------------------------------",
             "------------------------- need this line ------------------------------------"]
     text = "\n".join(out) + "\n"

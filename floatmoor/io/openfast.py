@@ -116,8 +116,8 @@ class OpenFASTImport:
 
 
 def _y(x):
-    from .moordyn import _f
-    return _f(x)
+    from .mooring_import import fmt
+    return fmt(x)
 
 
 def _matrix_yaml(name, M, comment):

@@ -15,7 +15,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
+import floatmoor
 from floatmoor.core.config import Node
 from floatmoor.core.errors import FloatmoorWarning, SceneError
 from floatmoor.io import moordyn
@@ -208,9 +210,6 @@ def test_line_on_a_body_point_is_an_error(tmp_path):
 
 def test_finite_element_model_of_the_import_runs(tmp_path):
     """The FE options the file implies build FE lines that a short time-domain run accepts."""
-    import floatmoor
-    import yaml
-
     r, _ = _read(OC3_MD, model="finite-element")
     assert r.system.line_models.finite_element_lines == ["line1", "line2", "line3"]
     (tmp_path / "mooring.yaml").write_text(r.yaml_text)
