@@ -1,14 +1,15 @@
 """MoorDyn input files (v1 and v2) -> floatmoor mooring (:class:`MooringSystem` or ``mooring.yaml``).
 
-MoorDyn (Hall 2015 v1 user guide; Hall 2020 MoorDyn v2 documentation) describes a mooring as
+MoorDyn (Hall (2015), the MoorDyn v1 user's guide; the MoorDyn v2 documentation of Hall and
+co-authors, "MoorDyn v2 input file") describes a mooring as
 tables of line types, points and lines plus options.  The two versions differ in the columns,
 not only in the section names, and MoorDyn itself reads every table by position, so a v1 file
 read as v2 gives wrong numbers without an error.  This reader recognises each table's version
 from its header row (column names), checks every row's column count against it and refuses a
 file that mixes the versions.  A hand-written parser is used because no maintained reader gets
 both versions right: ``openfast_io`` (the OpenFAST team's readers, versions 4.2 and 5.0) reads
-every table in the v2 column order whatever its header says, and MoorPy's reader puts the
-points of a v1 file at wrong depths (see ``tests/io/test_import_moordyn.py``).
+every table in the v2 column order whatever its header says, and MoorPy's reader stops on (or
+misplaces the points of) a v1 file (see ``tests/io/test_import_moordyn.py``).
 
 Mapping to floatmoor (a comment per conversion is written into ``mooring.yaml``)
 --------------------------------------------------------------------------------
