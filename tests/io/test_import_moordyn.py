@@ -104,8 +104,12 @@ def test_oc4_moordyn_statics_match_independent_catenary():
     hand = ROOT / "vessels/oc4_semi/mooring.yaml"
     if hand.exists():  # a hand-written OC4 mooring, when the repository has one
         ref = parse_mooring(Node.load(hand), water_depth=200.0)
-        np.testing.assert_allclose(ds["fairlead_tension"].values,
-                                   ref.tensions()["fairlead_tension"].values, rtol=1e-3)
+        # MoorDyn has no seabed friction (a hand-written file may carry MAP++'s CB = 1.0)
+        ref = MooringSystem([LineDef(name=a.name, anchor=a.anchor, fairlead=a.fairlead,
+                                     segments=a.segments, cb=0.0) for a in ref.lines],
+                            water_depth=200.0)
+        np.testing.assert_allclose(np.sort(ds["fairlead_tension"].values),
+                                   np.sort(ref.tensions()["fairlead_tension"].values), rtol=1e-4)
 
 
 def test_v1_file_reads_as_the_v2_file():
