@@ -1,6 +1,6 @@
 """OpenFAST floating models (``.fst``) -> floatmoor vessel, mooring and scene files.
 
-Reads the driver file, ElastoDyn (platform mass and inertia, nacelle and hub masses), HydroDyn
+Reads the driver file, ElastoDyn (platform mass and inertia, nacelle, hub, tower and blades), HydroDyn
 (WAMIT root, ``WAMITULEN``, reference point, additional preload, linear and quadratic damping and
 stiffness), SeaState (the sea state) and the mooring file (MoorDyn via
 :mod:`floatmoor.io.moordyn` or MAP++ via :mod:`floatmoor.io.map`), and writes
@@ -13,6 +13,9 @@ rows after their name), not by position: the released ``openfast_io`` readers (4
 read these inputs by position and fail on, or silently misread, the files of the OpenFAST
 regression tests of September 2024 (5.0.0 reads the SeaState ``WaveHs`` from the ``WaveTp``
 line; both stop on the ``.fst``, ElastoDyn and HydroDyn files), which is why they are not used.
+
+The tower and the blades are rigid point masses lumped at ElastoDyn's analysis nodes from their
+ElastoDyn files (tested against the masses and rotor inertia of ElastoDyn's summary file).
 
 Not mapped, and listed in one warning: the tower and blade masses when their ElastoDyn files
 are not found, the hub's offset from the apex, aerodynamics, control, the Morison members and
@@ -105,6 +108,97 @@ class _File:
         return np.array([r for r, _ in rows])
 
 
+def _station_table(f: _File, count_key: str, header: str, ncol: int):
+    """The distributed-property table of an ElastoDyn tower or blade file (after the section
+    line containing ``header``, two header lines, then ``count_key`` rows)."""
+    n = int(f.float(count_key))
+    start = next((i for i, t in enumerate(f.lines) if header in t.upper()), None)
+    if start is None:
+        raise SceneError(f.path, header, f"a {header} section", SceneError.MISSING)
+    rows = []
+    for k in range(n):
+        ln = start + 3 + k
+        tok = f.lines[ln].split() if ln < len(f.lines) else []
+        if len(tok) < ncol:
+            raise SceneError(f.path, f"line {ln + 1}", f"{ncol} or more numbers ({count_key} = "
+                             f"{n} rows after the {header} header)", " ".join(tok) or "nothing")
+        try:
+            rows.append([float(t) for t in tok[:ncol]])
+        except ValueError:
+            raise SceneError(f.path, f"line {ln + 1}", "numbers", " ".join(tok)) from None
+    return np.array(rows)
+
+
+def _lumped(frac, dens, length, nodes):
+    """ElastoDyn's discretisation: ``nodes`` equal elements, the density interpolated linearly
+    at their midpoints; returns (midpoint distances from the root, element masses)."""
+    d = length / nodes
+    x = d * (np.arange(nodes) + 0.5)
+    return x, np.interp(x / length, frac, dens) * d
+
+
+def _tower_and_blades(ed: _File, apex, shaft, unmapped):
+    """Point masses of the tower and of the blades from their ElastoDyn files, lumped at
+    ElastoDyn's analysis nodes (the sums its summary file prints as Tower Mass, blade Mass and
+    Rotor Inertia); a missing file is listed in ``unmapped``."""
+    out = []
+    twr = ed.file("TwrFile") if "TwrFile" in ed.keys else None
+    if twr is None or not twr.is_file():
+        unmapped.append(f"tower mass and inertia: ElastoDyn TwrFile "
+                        f"{twr.name if twr else '(absent)'} not found -- add it as a point mass "
+                        f"in vessel.yaml")
+    else:
+        tf = _File(twr)
+        tab = _station_table(tf, "NTwInpSt", "DISTRIBUTED TOWER PROPERTIES", 2)
+        base = ed.float("TowerBsHt")
+        h, m = _lumped(tab[:, 0], tab[:, 1] * tf.float("AdjTwMa", 1.0),
+                       ed.float("TowerHt") - base, int(ed.float("TwrNodes")))
+        hc = float(h @ m / m.sum())
+        i_fa = float(m @ (h - hc) ** 2)
+        out.append(("tower", float(m.sum()), [0.0, 0.0, base + hc],
+                    np.diag([i_fa, i_fa, 0.0]),
+                    (f"ElastoDyn {twr.name}: TMassDen x AdjTwMa lumped at the TwrNodes midpoints "
+                    f"from TowerBsHt to TowerHt (rigid tower)")))
+    nb = int(ed.float("NumBl", 3.0))
+    files = [ed.file(f"BldFile({k + 1})") for k in range(nb)]
+    if any(f is None or not f.is_file() for f in files):
+        miss = next(f for f in files if f is None or not f.is_file())
+        unmapped.append(f"blade mass and inertia: ElastoDyn blade file "
+                        f"{miss.name if miss else '(absent)'} not found -- add the blades as a "
+                        f"point mass in vessel.yaml")
+        return out
+    hub_r, tip_r = ed.float("HubRad"), ed.float("TipRad")
+    e_up = np.array([-shaft[2], 0.0, shaft[0]])   # in the rotor plane, up
+    e_y = np.array([0.0, 1.0, 0.0])
+    pts, mass = [], []
+    for k, bf in enumerate(files):
+        b = _File(bf)
+        tab = _station_table(b, "NBlInpSt", "DISTRIBUTED BLADE PROPERTIES", 4)
+        r, m = _lumped(tab[:, 0], tab[:, 3] * b.float("AdjBlMs", 1.0), tip_r - hub_r,
+                       int(ed.float("BldNodes")))
+        beta = math.radians(ed.float(f"PreCone({k + 1})", 0.0))
+        psi = 2.0 * math.pi * k / nb
+        axis = math.cos(beta) * (math.cos(psi) * e_up + math.sin(psi) * e_y) + math.sin(beta) * shaft
+        radii = list(hub_r + r)
+        masses = list(m)
+        tip = ed.float(f"TipMass({k + 1})", 0.0)
+        if tip:
+            radii.append(tip_r)
+            masses.append(tip)
+        pts += [np.asarray(apex) + ri * axis for ri in radii]
+        mass += masses
+    pts, mass = np.array(pts), np.array(mass)
+    mt = float(mass.sum())
+    c = mass @ pts / mt
+    d = pts - c
+    inertia = np.eye(3) * float(mass @ (d * d).sum(axis=1)) - (d.T * mass) @ d
+    out.append(("blades", mt, c.tolist(), inertia,
+                (f"ElastoDyn blade files: BMassDen x AdjBlMs lumped at the BldNodes midpoints "
+                f"from HubRad to TipRad, PreCone, TipMass; {nb} blades at 0, 360/{nb}, ... deg "
+                f"azimuth (rigid rotor)")))
+    return out
+
+
 @dataclass(frozen=True, kw_only=True)
 class OpenFASTImport:
     """Files written by :func:`import_openfast` (``files``: what -> path) and the list of what
@@ -167,12 +261,7 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
             "HubIner about the shaft"))]
     if ed.float("HubCM", 0.0):
         unmapped.append(f"HubCM = {ed.raw('HubCM')} m: the hub mass is put at the apex")
-    for key, what in (("TwrFile", "tower"), ("BldFile(1)", "blades")):
-        p = ed.file(key) if key in ed.keys else None
-        unmapped.append(f"{what} mass and inertia: ElastoDyn {key} "
-                        + (f"{p.name} not found" if p is not None and not p.is_file() else
-                           f"{p.name if p else 'absent'} (distributed properties are not read)")
-                        + " -- add them as point_masses in vessel.yaml")
+    pm += _tower_and_blades(ed, apex, a, unmapped)
     # --- HydroDyn --------------------------------------------------------------------------
     hd = _File(fst_f.file("HydroFile"))
     if hd.float("NBody", 1.0) != 1:

@@ -23,6 +23,7 @@ from floatmoor.core.errors import FloatmoorWarning, SceneError
 from floatmoor.io.openfast import import_openfast
 
 ROOT = Path(__file__).resolve().parents[2]
+DATA = Path(__file__).resolve().parent / "data"
 FST = ROOT / "vessels/oc3_hywind/source/5MW_OC3Spar_DLL_WTurb_WavesIrr.fst"
 
 
@@ -40,7 +41,8 @@ def test_files_and_what_was_not_mapped(imported):
     assert set(res.files) == {"vessel", "database", "mooring", "scene"}
     text = "\n".join(msgs)
     assert "TwrFile NRELOffshrBsline5MW_OC3Hywind_ElastoDyn_Tower.dat not found" in text
-    assert "BldFile(1)" in text and "Morison members" in text and "MBS" in text
+    assert "blade file NRELOffshrBsline5MW_Blade.dat not found" in text
+    assert "Morison members" in text and "MBS" in text
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FloatmoorWarning)  # a 60 s analysis (the .fst TMax)
         scene = floatmoor.load_scene(res.files["scene"])
@@ -159,3 +161,39 @@ def test_oc4_import_moordyn_mooring_and_what_is_missing(tmp_path):
                                   md.tensions()["fairlead_tension"].values)
     ves = yaml.safe_load(res.files["vessel"].read_text())
     assert ves["mass"] == 3852180.0  # ElastoDyn PtfmMass (without the ballast)
+
+
+def test_tower_and_blades_from_elastodyn_files(tmp_path):
+    """With the tower and blade files present, their masses are lumped as ElastoDyn does.
+    Expected: the ElastoDyn summary of the OpenFAST OC3 regression test (r-test,
+    5MW_OC3Spar_DLL_WTurb_WavesIrr.ED.sum): Tower Mass 249,718.003 kg, blade Mass 17,536.614 kg,
+    Rotor Inertia 38,677,040.613 kg m^2 (blades with PreCone -2.5 deg and the hub's HubIner).
+    The test files hold the densities at ElastoDyn's nodes as that summary prints them."""
+    import shutil
+
+    from floatmoor.hydro import load_vessel
+
+    case = tmp_path / "case"
+    shutil.copytree(FST.parent, case)
+    shutil.copy(DATA / "elastodyn_tower_oc3.dat",
+                case / "NRELOffshrBsline5MW_OC3Hywind_ElastoDyn_Tower.dat")
+    (tmp_path / "5MW_Baseline").mkdir()
+    shutil.copy(DATA / "elastodyn_blade_5mw.dat",
+                tmp_path / "5MW_Baseline" / "NRELOffshrBsline5MW_Blade.dat")
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always", FloatmoorWarning)
+        res = import_openfast(case / FST.name, tmp_path / "out")
+    text = "\n".join(str(x.message) for x in w)
+    assert "tower mass" not in text and "blade mass" not in text
+    pm = {p["name"]: p for p in yaml.safe_load(res.files["vessel"].read_text())["point_masses"]}
+    assert pm["tower"]["mass"] == pytest.approx(249718.003, rel=1e-6)
+    assert pm["blades"]["mass"] == pytest.approx(3 * 17536.614, rel=1e-6)
+    tilt = np.radians(-5.0)
+    a = np.array([np.cos(tilt), 0.0, np.sin(tilt)])
+    rotor = a @ (np.array(pm["blades"]["inertia_cg"]) + np.array(pm["hub"]["inertia_cg"])) @ a
+    assert rotor == pytest.approx(38677040.613, rel=1e-6)
+    # the blades' centre of mass is on the shaft, upwind of the apex (coned upwind)
+    c = np.array(pm["blades"]["position"]) - np.array(pm["hub"]["position"])
+    assert np.linalg.norm(np.cross(c, a)) < 1e-9 and c @ a < 0
+    v = load_vessel(res.files["vessel"])
+    assert v.mass == pytest.approx(8065437.845, rel=1e-6)  # the summary's Mass Incl. Platform
