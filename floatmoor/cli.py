@@ -8,6 +8,8 @@
 ``floatmoor convergence SCENE.yaml``  time-step convergence (:mod:`floatmoor.commands.convergence`)
 ``floatmoor lines SCENE.yaml``        FE lines driven by recorded or harmonic motion (:mod:`floatmoor.commands.lines`)
 ``floatmoor report RESULTS_DIR``      Gumbel statistics and DNV-OS-E301 checks (:mod:`floatmoor.commands.report`)
+``floatmoor import FORMAT FILE``     MoorDyn, MAP++ or OpenFAST model -> floatmoor files (:mod:`floatmoor.commands.import_`)
+``floatmoor export moordyn FILE``    mooring -> MoorDyn v2 input file (:mod:`floatmoor.commands.export`)
 
 Exit status: 0 success (``report``: 1 when a line fails its design check), 2 a mistake in an input file (:class:`~floatmoor.SceneError`, printed
 as ``floatmoor: error: <message>`` without a traceback) or on the command line, 3 a numerical
@@ -188,6 +190,8 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("convergence", "floatmoor.commands.convergence"),
     ("report", "floatmoor.commands.report"),
     ("lines", "floatmoor.commands.lines"),
+    ("import", "floatmoor.commands.import_"),
+    ("export", "floatmoor.commands.export"),
 ]
 """The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
 ``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""
