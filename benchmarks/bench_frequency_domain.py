@@ -24,7 +24,7 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from floatmoor.frequency_domain import frequency_domain  # noqa: E402
+from floatmoor.analyses.frequency_domain import frequency_domain  # noqa: E402
 from floatmoor.io.build import build  # noqa: E402
 
 VESSEL = ROOT / "vessels" / "floatel_like"

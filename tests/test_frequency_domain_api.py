@@ -7,7 +7,6 @@ Expected values: hand computation (written out below), seed 002 figure 5.9 (via
 
 from __future__ import annotations
 
-import importlib
 import math
 from pathlib import Path
 
@@ -15,9 +14,9 @@ import numpy as np
 import pytest
 import yaml
 
-import floatmoor.frequency_domain as fdm
+import floatmoor.analyses.frequency_domain as fdm
 from floatmoor.core.errors import SceneError
-from floatmoor.frequency_domain import (FDOptions, combine_maxima, format_table,
+from floatmoor.analyses.frequency_domain import (FDOptions, combine_maxima, format_table,
                                         frequency_domain, safety_factor, tension_columns)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -97,7 +96,7 @@ def test_oc3_head_seas_symmetry_and_combination(oc3):
 def test_oc3_mean_offset_matches_statics(oc3):
     """The mean position equals the statics of the same scene under the dataset's own mean
     loads; the current force is C V^2 of the vessel file (OC3 has none -> zero)."""
-    import floatmoor.statics as st
+    import floatmoor.analyses.statics as st
     path, ds = oc3
     f = ds.mean_force_wind.values + ds.mean_force_current.values + ds.mean_force_drift.values
     eq = st.equilibrium(path, external_force=f)
@@ -233,10 +232,8 @@ def test_fd_against_td_linear_limit(tmp_path):
     """OC3 spar, small JONSWAP waves, no wind/current/drift (the OC3 database has none): the
     TD WF standard deviation of surge and heave (20 seeds of 3000 s after a 600 s transient)
     within 3 % of the FD value (issue 6 verification)."""
-    sim = importlib.import_module("floatmoor.simulate")
-    run = getattr(sim, "simulate", None)
-    if run is None:
-        pytest.skip("floatmoor.simulate has no simulate() yet")
+    from floatmoor.analyses.simulate import simulate as run
+
     env = {"waves": {"spectrum": "jonswap", "hs": 1.0, "tp": 10.0, "heading_deg": 0.0}}
     sc = {"name": "fd-vs-td", "site": {"water_depth": 320.0, "water_density": 1025.0},
           "vessel": str(OC3 / "vessel.yaml"), "mooring": str(OC3 / "mooring.yaml"),
@@ -281,7 +278,7 @@ def test_fd_command_prints_table_and_writes_netcdf(oc3, tmp_path, capsys):
 def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     """OC4 semi (WAMIT QTF; its mean drift is the QTF diagonal): the slowly varying surge drift
     spectrum from the full QTF equals Newman's at mu = 0 and departs from it as mu grows."""
-    from floatmoor.frequency_domain import _interp0, _qtf_function
+    from floatmoor.analyses.frequency_domain import _interp0, _qtf_function
     from floatmoor.hydro.database import interpolate_heading
     from floatmoor.hydro.database import load_database
     from floatmoor.metocean.spectra import jonswap
@@ -304,7 +301,7 @@ def test_relative_flow_damping_against_finite_differences():
     """B = -dF/dv of F = T(yaw) C(theta - yaw) |U e - v|^2 (coefficients on the body heading)
     against central differences of that force in the surge/sway velocity, for an oblique
     flow and a non-zero yaw."""
-    from floatmoor.frequency_domain import _relative_flow_damping, _rot6
+    from floatmoor.analyses.frequency_domain import _relative_flow_damping, _rot6
     from floatmoor.hydro.vessel import CoefficientTable
     h = np.radians(np.arange(0.0, 360.0, 30.0))
     coef = np.zeros((h.size, 6))

@@ -18,7 +18,7 @@ import pytest
 import yaml
 
 from floatmoor.core.errors import FloatmoorWarning, SceneError
-from floatmoor.frequency_domain import frequency_domain
+from floatmoor.analyses.frequency_domain import frequency_domain
 
 ROOT = Path(__file__).resolve().parents[1]
 FLOATEL = ROOT / "vessels" / "floatel_like"

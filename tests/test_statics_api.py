@@ -10,12 +10,10 @@ Independent checks:
   away from it (ALS).
 """
 
-import math
-
 import numpy as np
 import pytest
 
-import floatmoor.statics as st
+import floatmoor.analyses.statics as st
 from floatmoor import SceneError
 from floatmoor.io.build import build
 

@@ -6,8 +6,6 @@ import datetime as _dt
 import math
 import os
 import platform
-import sys
-import types
 import time as _time
 import warnings
 from pathlib import Path
@@ -15,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
-from .core.errors import FloatmoorWarning, SceneError
+from ..core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
+from ..core.errors import FloatmoorWarning, SceneError
 
 __all__ = ["simulate", "result_dataset", "scene_text", "check_statistics_window",
            "YAW_WARNING_DEG"]
@@ -50,7 +48,7 @@ def scene_text(scene) -> str:
 def _versions() -> dict:
     import numba
     import scipy
-    from . import __version__
+    from .. import __version__
     return {"floatmoor": __version__, "numpy": np.__version__, "scipy": scipy.__version__,
             "xarray": xr.__version__, "numba": numba.__version__,
             "python": platform.python_version()}
@@ -114,9 +112,9 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         NaN, exploding state, line far beyond MBS, failed catenary, or dt beyond the stability
         limit (names the time, DOF or line, and a likely remedy).
     """
-    from .io.build import BuiltScene, build
-    from .io.scene import Scene, load_scene
-    from .solvers.time_domain import assemble, integrate
+    from ..io.build import BuiltScene, build
+    from ..io.scene import Scene, load_scene
+    from ..solvers.time_domain import assemble, integrate
 
     t_all = _time.perf_counter()
     if isinstance(scene, BuiltScene):
@@ -281,15 +279,3 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
     for k, v in _versions().items():
         ds.attrs[f"version_{k}"] = v
     return ds
-
-
-class _CallableModule(types.ModuleType):
-    """``floatmoor.simulate`` is both this module and the function: importing the submodule
-    makes the package attribute the module, so the module forwards calls to :func:`simulate`
-    (``floatmoor.simulate(scene, seed=1)`` works in either case)."""
-
-    def __call__(self, *args, **kwargs):
-        return simulate(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableModule

@@ -55,33 +55,31 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 import time
-import types
 import warnings
 from dataclasses import asdict, fields, replace
 
 import numpy as np
 import xarray as xr
 
-from . import __version__
-from .core.dofs import DOF_NAMES
-from .core.errors import FloatmoorWarning, SceneError
-from .forces.slender import (corrected_drift_database, refuse_qtf_with_correction,
+from .. import __version__
+from ..core.dofs import DOF_NAMES
+from ..core.errors import FloatmoorWarning, SceneError
+from ..forces.slender import (corrected_drift_database, refuse_qtf_with_correction,
                               viscous_linear_damping)
-from .hydro.database import interpolate_heading
-from .io.build import BuiltScene, build
-from .io.scene import Scene
-from .metocean.current import current_speed
-from .metocean.spectra import wave_spectrum
-from .metocean.wind import wind_mean_speed, wind_spectrum
-from .post.extremes import rayleigh_max
-from .solvers.frequency_domain import (DRIFT_METHODS, TENSION_MODELS, FDModel, FDOptions,
+from ..hydro.database import interpolate_heading
+from ..io.build import BuiltScene, build
+from ..io.scene import Scene
+from ..metocean.current import current_speed
+from ..metocean.spectra import wave_spectrum
+from ..metocean.wind import wind_mean_speed, wind_spectrum
+from ..post.extremes import rayleigh_max
+from ..solvers.frequency_domain import (DRIFT_METHODS, TENSION_MODELS, FDModel, FDOptions,
                                        aranha_drift_damping, gust_force_spectrum,
                                        mean_drift_force, newman_drift_spectrum,
                                        qtf_drift_spectrum, response_std_tz,
                                        solve_frequency_domain)
-from .solvers.statics import equilibrium
+from ..solvers.statics import solve_equilibrium
 
 __all__ = ["FDOptions", "frequency_domain", "format_table", "combine_maxima", "tension_columns",
            "safety_factor", "TENSION_MODELS",
@@ -344,7 +342,7 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
     for _ in range(opt.heading_iterations):
         f_wind, f_cur, f_drift, C_drift = mean_loads(yaw)
         f_ext = built.static_force + f_wind + f_cur + f_drift
-        eq = equilibrium(mooring, hydrostatic_stiffness=vessel.total_restoring,
+        eq = solve_equilibrium(mooring, hydrostatic_stiffness=vessel.total_restoring,
                          external_force=f_ext, x0=x0)
         x0 = eq.pose
         if abs(eq.pose[5] - yaw) < 1e-6:
@@ -666,14 +664,3 @@ def format_table(ds: xr.Dataset) -> str:
     if ds.attrs.get("notes"):
         out += ["", "notes: " + ds.attrs["notes"]]
     return "\n".join(out)
-
-
-class _CallableModule(types.ModuleType):
-    """Lets ``floatmoor.frequency_domain(scene)`` call :func:`frequency_domain` once this module
-    is imported (the module and the function share the name)."""
-
-    def __call__(self, *args, **kwargs):
-        return frequency_domain(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableModule

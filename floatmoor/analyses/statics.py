@@ -20,11 +20,11 @@ import os
 import numpy as np
 import xarray as xr
 
-from .core.errors import SceneError
-from .io.build import BuiltScene, build
-from .io.scene import Scene
-from .solvers.statics import EquilibriumResult, restoring_curve
-from .solvers.statics import equilibrium as _equilibrium
+from ..core.errors import SceneError
+from ..io.build import BuiltScene, build
+from ..io.scene import Scene
+from ..solvers.statics import EquilibriumResult, restoring_curve
+from ..solvers.statics import solve_equilibrium
 
 __all__ = ["equilibrium", "restoring_curves"]
 
@@ -58,7 +58,7 @@ def equilibrium(scene: Scene | BuiltScene | str | os.PathLike, *, external_force
     f = built.static_force.copy()
     if external_force is not None:
         f += np.asarray(external_force, float).reshape(6)
-    return _equilibrium(built.mooring, hydrostatic_stiffness=built.vessel.total_restoring,
+    return solve_equilibrium(built.mooring, hydrostatic_stiffness=built.vessel.total_restoring,
                         external_force=f, dofs=dofs)
 
 
