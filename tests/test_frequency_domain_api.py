@@ -98,10 +98,9 @@ def test_oc3_head_seas_symmetry_and_combination(oc3):
 def test_oc3_mean_offset_matches_statics(oc3):
     """The mean position equals the statics of the same scene under the dataset's own mean
     loads; the current force is C V^2 of the vessel file (OC3 has none -> zero)."""
-    import floatmoor.analyses.statics as st
     path, ds = oc3
     f = ds.mean_force_wind.values + ds.mean_force_current.values + ds.mean_force_drift.values
-    eq = st.equilibrium(path, external_force=f)
+    eq = floatmoor.equilibrium(path, external_force=f)
     np.testing.assert_allclose(ds["mean"].values, eq.pose, atol=1e-6)
 
 
@@ -245,7 +244,7 @@ def test_floatel_lf_period_consistent_with_mass_and_stiffness(floatel):
 def test_fd_against_td_linear_limit(tmp_path):
     """OC3 spar, small JONSWAP waves, no wind/current/drift (the OC3 database has none): the
     TD WF standard deviation of surge and heave (20 seeds of 3000 s after a 600 s transient)
-    within 3 % of the FD value (issue 6 verification)."""
+    within 3 % of the FD value (the linear-limit check: time domain against frequency domain)."""
     from floatmoor.analyses.simulate import simulate as run
 
     env = {"waves": {"spectrum": "jonswap", "hs": 1.0, "tp": 10.0, "heading_deg": 0.0}}

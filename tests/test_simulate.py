@@ -271,7 +271,7 @@ def test_relative_velocity_option_from_the_scene_file(tmp_path):
         simulate(p2, seed=1, duration=60.0)
 
 
-# -- finite-element lines coupled (issue 9): floatmoor run and report on their results --------
+# -- finite-element lines coupled: floatmoor run and report on their results -----------------
 def _fe_scene(tmp_path) -> Path:
     """The FE flagship scene (scenes/floatel_100yr_fe.yaml) with 8 elements per line, a
     moderate sea and short runs."""

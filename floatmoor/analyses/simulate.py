@@ -70,7 +70,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         Override ``analysis`` (s).  ``transient`` only marks the start of the statistics window
         (attribute ``transient``); the series keep it.  A duration not longer than the
         transient is allowed here (short checks) with a FloatmoorWarning;
-        :func:`floatmoor.runner.run_seeds` and ``floatmoor run`` refuse it (SceneError).
+        :func:`floatmoor.run_seeds` and ``floatmoor run`` refuse it (SceneError).
     forces : :class:`floatmoor.io.forces_section.ForcesSpec`, optional
         Force options (default: the scene's ``forces`` section, if any).
     record_forces : bool, optional
@@ -88,7 +88,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     they do not follow the body's yaw or offset (attribute ``wave_force_frame``).  A run whose
     yaw moves more than :data:`YAW_WARNING_DEG` (15 deg) from that heading warns with a
     :class:`FloatmoorWarning` (attribute ``max_yaw_excursion_deg``).  Wind and current act on
-    the velocity of the flow relative to the low-frequency body velocity (seed 002 eq. 2.24,
+    the velocity of the flow relative to the low-frequency body velocity (Wang (2016) eq. 2.24,
     2.26): the linear wave-frequency velocity is removed from the body velocity (scene option
     ``forces: {relative_velocity: low_frequency | total}``, attribute ``relative_velocity``).
 
@@ -182,13 +182,13 @@ def _relative_velocity_note(r) -> str:
         return "no wind or current force"
     what = " and ".join(flows)
     if mode == "total":
-        return f"{what} relative to the total body velocity (seed 002 eq. 6.7 form)"
+        return f"{what} relative to the total body velocity (Wang (2016) eq. 6.7 form)"
     if r.info.get("wf_velocity_removed", False):
         return (f"{what} relative to the low-frequency body velocity: the linear first-order "
                 "wave-frequency velocity (motion RAOs x the run's wave realisation) is removed "
-                "from the body velocity (seed 002 eq. 2.24, 2.26)")
+                "from the body velocity (Wang (2016) eq. 2.24, 2.26)")
     return (f"{what} relative to the body velocity (no first-order waves: it is the "
-            "low-frequency velocity, seed 002 eq. 2.24, 2.26)")
+            "low-frequency velocity, Wang (2016) eq. 2.24, 2.26)")
 
 
 def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: float,

@@ -1,8 +1,11 @@
 """Static equilibrium and restoring curves of a scene (user API).
 
->>> import floatmoor.statics as st
->>> res = st.equilibrium("scenes/floatel_100yr.yaml")
+>>> import floatmoor
+>>> res = floatmoor.equilibrium("scenes/floatel_100yr.yaml")
 >>> print(res.summary())
+
+:func:`equilibrium` is the one public equilibrium of floatmoor (of a scene); the numerics on a
+mooring system are :func:`floatmoor.solvers.statics.solve_equilibrium`.
 
 The body is held by its hydrostatic restoring (database hydrostatics + gravity terms +
 additional stiffness of the vessel file, linear about the zero pose), the quasi-static mooring
@@ -59,11 +62,12 @@ def equilibrium(scene: Scene | BuiltScene | str | os.PathLike, *, external_force
     if external_force is not None:
         f += np.asarray(external_force, float).reshape(6)
     return solve_equilibrium(built.mooring, hydrostatic_stiffness=built.vessel.total_restoring,
-                        external_force=f, dofs=dofs)
+                             external_force=f, dofs=dofs)
 
 
-def restoring_curves(scene: Scene | BuiltScene | str | os.PathLike, *, headings_deg=(0.0, 45.0, 90.0),
-                     offsets=None, failed_lines=None) -> xr.Dataset:
+def restoring_curves(scene: Scene | BuiltScene | str | os.PathLike, *,
+                     headings_deg=(0.0, 45.0, 90.0), offsets=None,
+                     failed_lines=None) -> xr.Dataset:
     """Mooring restoring force against horizontal offset for several headings.
 
     The offsets are taken from the still-water equilibrium pose (heave, roll, pitch held there).
