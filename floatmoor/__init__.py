@@ -13,7 +13,7 @@ They live in :mod:`floatmoor.analyses` (one module per analysis) and are importe
 use, so ``import floatmoor`` stays light.
 """
 
-from importlib import import_module
+from importlib import import_module as _import_module
 from importlib.metadata import PackageNotFoundError, version as _version
 
 from .core.errors import ConvergenceError, FloatmoorError, FloatmoorWarning, NumericalError, SceneError
@@ -46,7 +46,7 @@ def __getattr__(name):
     if where is None:
         raise AttributeError(f"module 'floatmoor' has no attribute {name!r}")
     module, attr = where.split(":")
-    obj = getattr(import_module(module), attr)
+    obj = getattr(_import_module(module), attr)
     globals()[name] = obj  # later look-ups skip __getattr__
     return obj
 
