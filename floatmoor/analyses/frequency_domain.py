@@ -138,9 +138,8 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
     viscous, viscous_model = _viscous_drift(sc, notes)
     grid = _WaveGrid.of(built.vessel.database, sc.environment.waves, opt, notes)
     loads = _MeanLoads(built, grid, viscous, notes)
-    eq, mean_parts = _mean_position(built, loads, opt)
-    model, lf_parts = _linear_model(built, opt, grid, loads, eq, mean_parts.pop("C_drift"),
-                                    viscous, notes)
+    eq, C_drift, mean_parts = _mean_position(built, loads, opt)
+    model, lf_parts = _linear_model(built, opt, grid, loads, eq, C_drift, viscous, notes)
     sol = solve_frequency_domain(model)
     lf_periods = _lf_natural_periods(model.stiffness, sol.lf_mass, opt, notes)
     mean = mean_parts["mean"]
@@ -164,7 +163,7 @@ class _Notes(list):
     attributed to the first caller outside this package (the user's line)."""
 
     def warn(self, msg: str) -> None:
-        here = os.path.dirname(__file__)
+        here = os.path.dirname(__file__) + os.sep
         frame, level = sys._getframe(0), 1
         while frame is not None and frame.f_code.co_filename.startswith(here):
             frame, level = frame.f_back, level + 1
@@ -298,7 +297,8 @@ class _MeanLoads:
 
 def _mean_position(built: BuiltScene, loads: _MeanLoads, opt: FDOptions):
     """Static equilibrium under the mean loads (eq. 2.39), the yaw iterated for the relative
-    headings.  Returns the equilibrium and a dict of FDResult fields (plus ``C_drift``)."""
+    headings.  Returns the equilibrium, the drift coefficients of the last iteration and a dict of
+    FDResult fields."""
     vessel = built.vessel
     yaw = 0.0
     x0 = None
@@ -311,8 +311,8 @@ def _mean_position(built: BuiltScene, loads: _MeanLoads, opt: FDOptions):
         if abs(eq.pose[5] - yaw) < 1e-6:
             break
         yaw = float(eq.pose[5])
-    return eq, {"mean": eq.pose.copy(), "mean_force_wind": f_wind, "mean_force_current": f_cur,
-                "mean_force_drift": f_drift, "C_drift": C_drift}
+    return eq, C_drift, {"mean": eq.pose.copy(), "mean_force_wind": f_wind,
+                         "mean_force_current": f_cur, "mean_force_drift": f_drift}
 
 
 def _linear_model(built: BuiltScene, opt: FDOptions, grid: _WaveGrid, loads: _MeanLoads, eq,
