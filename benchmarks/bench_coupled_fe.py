@@ -40,7 +40,7 @@ def main() -> None:
     warnings.simplefilter("ignore")
     import numba
 
-    from floatmoor.simulate import simulate
+    from floatmoor.analyses.simulate import simulate
 
     print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
           f"{numba.__version__}; seed {args.seed}, {args.duration:g} s simulated "

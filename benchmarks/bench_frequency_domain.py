@@ -1,4 +1,4 @@
-"""Benchmark of the frequency-domain analysis (issue 6).
+"""Benchmark of the frequency-domain analysis.
 
 Run:  .venv/bin/python benchmarks/bench_frequency_domain.py
 
@@ -24,7 +24,7 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from floatmoor.frequency_domain import frequency_domain  # noqa: E402
+from floatmoor.analyses.frequency_domain import frequency_domain  # noqa: E402
 from floatmoor.io.build import build  # noqa: E402
 
 VESSEL = ROOT / "vessels" / "floatel_like"
@@ -32,7 +32,7 @@ ENV = {"waves": {"spectrum": "jonswap", "hs": 16.0, "tp": 18.2, "heading_deg": 0
        "wind": {"spectrum": "npd", "u10": 36.0, "heading_deg": 0.0},
        "current": {"profile": "piecewise_linear", "levels": [[0.0, 0.94], [-50.0, 0.94]],
                    "heading_deg": 0.0}}
-# (Hs m, Tp s): points on and inside the Heidrun 100-year contour (seed 002 section 5.3) and
+# (Hs m, Tp s): points on and inside the Heidrun 100-year contour (Wang (2016) section 5.3) and
 # milder states
 SEA_STATES = [(16.0, 18.2), (15.5, 15.5), (15.5, 19.8), (12.0, 14.0), (10.0, 12.0), (8.0, 11.0),
               (6.0, 10.0), (4.0, 8.0)]

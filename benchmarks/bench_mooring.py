@@ -28,7 +28,7 @@ from floatmoor.core.config import Node  # noqa: E402
 from floatmoor.io.mooring_section import parse_mooring  # noqa: E402
 from floatmoor.mooring import catenary  # noqa: E402
 from floatmoor.mooring.catenary import OUT_SIZE, catenary_kernel  # noqa: E402
-from floatmoor.solvers.statics import equilibrium  # noqa: E402
+from floatmoor.solvers.statics import solve_equilibrium as equilibrium  # noqa: E402
 
 EXT = np.array([5.0e6, 0.0, 0.0, 0.0, 0.0, 0.0])
 

@@ -33,7 +33,7 @@ _FIRST = """
 import time, warnings
 warnings.simplefilter("ignore")
 t0 = time.perf_counter()
-from floatmoor.simulate import simulate
+from floatmoor.analyses.simulate import simulate
 ds = simulate({scene!r}, seed=1, duration=60.0, dt=0.1)
 print(time.perf_counter() - t0)
 """
@@ -71,7 +71,7 @@ def main() -> None:
           f"project cache {t_cached:.2f} s (cache load + imports)")
 
     warnings.simplefilter("ignore")
-    from floatmoor.simulate import simulate
+    from floatmoor.analyses.simulate import simulate
 
     simulate(SCENE, seed=args.seed, duration=60.0, dt=args.dt)  # load the kernels
     t0 = time.perf_counter()
@@ -106,7 +106,7 @@ def extreme(duration: float = 1200.0) -> None:
     sys.path.insert(0, str(ROOT))
     from tests.solvers.test_time_domain_extreme import extreme_scene
     from floatmoor.core.errors import NumericalError
-    from floatmoor.simulate import simulate
+    from floatmoor.analyses.simulate import simulate
 
     warnings.simplefilter("ignore")
     with tempfile.TemporaryDirectory() as tmp:

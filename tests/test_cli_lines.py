@@ -19,7 +19,7 @@ SCENE = ROOT / "scenes" / "oc3_hywind.yaml"
 def run_file(tmp_path_factory):
     """60 s of OC3-Hywind in Hs 6 m / Tp 10 s head seas (floatmoor.simulate, seed 1), written
     like a `floatmoor run` seed file."""
-    from floatmoor.simulate import simulate
+    from floatmoor.analyses.simulate import simulate
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -203,7 +203,7 @@ def test_lines_reproduce_the_coupled_fe_tension_with_current(tmp_path, capsys):
     from floatmoor.io.scene import load_scene
     from floatmoor.mooring.fe import run_decoupled
     from floatmoor.mooring.fe.body import scene_line_inputs
-    from floatmoor.simulate import simulate
+    from floatmoor.analyses.simulate import simulate
 
     p = _fe_current_scene(tmp_path)
     with warnings.catch_warnings():

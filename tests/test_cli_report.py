@@ -32,7 +32,7 @@ def _write_seeds(scene_path, seeds, out):
 
     import floatmoor
     from floatmoor.io.scene import load_scene
-    from floatmoor.runner import seed_file
+    from floatmoor.analyses.runner import seed_file
 
     out.mkdir(parents=True, exist_ok=True)
     scene = load_scene(scene_path)
@@ -57,7 +57,7 @@ def data(tmp_path_factory):
     import warnings
 
     from floatmoor.commands.fd import to_netcdf
-    from floatmoor.frequency_domain import frequency_domain
+    from floatmoor.analyses.frequency_domain import frequency_domain
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         fd = to_netcdf(frequency_domain(SCENE), base / "fd.nc")

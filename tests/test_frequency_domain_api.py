@@ -7,7 +7,6 @@ Expected values: hand computation (written out below), seed 002 figure 5.9 (via
 
 from __future__ import annotations
 
-import importlib
 import math
 from pathlib import Path
 
@@ -15,10 +14,12 @@ import numpy as np
 import pytest
 import yaml
 
-import floatmoor.frequency_domain as fdm
+import floatmoor
+from floatmoor.analyses.fd_dataset import VARIABLES, format_table, to_dataset
+from floatmoor.analyses.fd_maxima import combine_maxima, safety_factor, tension_columns
+from floatmoor.analyses.frequency_domain import (FDOptions, frequency_domain,
+                                                 frequency_domain_result)
 from floatmoor.core.errors import SceneError
-from floatmoor.frequency_domain import (FDOptions, combine_maxima, format_table,
-                                        frequency_domain, safety_factor, tension_columns)
 
 ROOT = Path(__file__).resolve().parents[1]
 OC3 = ROOT / "vessels" / "oc3_hywind"
@@ -97,10 +98,9 @@ def test_oc3_head_seas_symmetry_and_combination(oc3):
 def test_oc3_mean_offset_matches_statics(oc3):
     """The mean position equals the statics of the same scene under the dataset's own mean
     loads; the current force is C V^2 of the vessel file (OC3 has none -> zero)."""
-    import floatmoor.statics as st
     path, ds = oc3
     f = ds.mean_force_wind.values + ds.mean_force_current.values + ds.mean_force_drift.values
-    eq = st.equilibrium(path, external_force=f)
+    eq = floatmoor.equilibrium(path, external_force=f)
     np.testing.assert_allclose(ds["mean"].values, eq.pose, atol=1e-6)
 
 
@@ -151,9 +151,21 @@ def test_shorter_duration_gives_smaller_maxima(oc3):
     assert ds1.wf_max.values[0] == pytest.approx(ds.wf_std.values[0] * math.sqrt(2 * math.log(n1)))
 
 
-def test_module_is_callable(oc3):
+def test_package_function_and_result_object(oc3):
+    """``floatmoor.frequency_domain`` is the plain function; the computation alone
+    (``frequency_domain_result``, numpy arrays) turned into a Dataset by the variable table gives
+    the same numbers, and the table names every variable of the Dataset once, with units."""
     path, ds = oc3
-    assert float(fdm(path).wf_std[0]) == pytest.approx(float(ds.wf_std[0]))
+    assert floatmoor.frequency_domain is frequency_domain
+    res = frequency_domain_result(path)
+    assert isinstance(res.mean, np.ndarray) and res.solution.rao.shape == (ds.sizes["omega"], 6)
+    ds2 = to_dataset(res)
+    assert [v.name for v in VARIABLES] == list(ds2.data_vars) == list(ds.data_vars)
+    for name in ds.data_vars:
+        np.testing.assert_array_equal(ds2[name].values, ds[name].values, err_msg=name)
+        assert ds2[name].attrs["units"] and ds2[name].attrs["long_name"], name
+    assert ds2["lf_drift_force_spectrum"].attrs["long_name"].startswith(
+        f"slowly varying wave drift force spectrum ({res.drift_method},")
 
 
 # -- hand computations -------------------------------------------------------------------------
@@ -232,11 +244,9 @@ def test_floatel_lf_period_consistent_with_mass_and_stiffness(floatel):
 def test_fd_against_td_linear_limit(tmp_path):
     """OC3 spar, small JONSWAP waves, no wind/current/drift (the OC3 database has none): the
     TD WF standard deviation of surge and heave (20 seeds of 3000 s after a 600 s transient)
-    within 3 % of the FD value (issue 6 verification)."""
-    sim = importlib.import_module("floatmoor.simulate")
-    run = getattr(sim, "simulate", None)
-    if run is None:
-        pytest.skip("floatmoor.simulate has no simulate() yet")
+    within 3 % of the FD value (the linear-limit check: time domain against frequency domain)."""
+    from floatmoor.analyses.simulate import simulate as run
+
     env = {"waves": {"spectrum": "jonswap", "hs": 1.0, "tp": 10.0, "heading_deg": 0.0}}
     sc = {"name": "fd-vs-td", "site": {"water_depth": 320.0, "water_density": 1025.0},
           "vessel": str(OC3 / "vessel.yaml"), "mooring": str(OC3 / "mooring.yaml"),
@@ -281,7 +291,7 @@ def test_fd_command_prints_table_and_writes_netcdf(oc3, tmp_path, capsys):
 def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     """OC4 semi (WAMIT QTF; its mean drift is the QTF diagonal): the slowly varying surge drift
     spectrum from the full QTF equals Newman's at mu = 0 and departs from it as mu grows."""
-    from floatmoor.frequency_domain import _interp0, _qtf_function
+    from floatmoor.analyses.fd_loads import interp0, qtf_function
     from floatmoor.hydro.database import interpolate_heading
     from floatmoor.hydro.database import load_database
     from floatmoor.metocean.spectra import jonswap
@@ -292,10 +302,10 @@ def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     db = load_database(path)
     w = np.linspace(0.25, 3.0, 551)
     S = jonswap(w, 6.0, 10.0, 3.3)
-    C = _interp0(w, db.omega.values, np.nan_to_num(interpolate_heading(db, "mean_drift_force", 0.0)))
+    C = interp0(w, db.omega.values, np.nan_to_num(interpolate_heading(db, "mean_drift_force", 0.0)))
     mu = np.array([0.0, 0.2])
     a = newman_drift_spectrum(w, S, C, mu)[:, 0, 0]
-    b = qtf_drift_spectrum(w, S, _qtf_function(db, 0.0, np.eye(6)), mu)[:, 0, 0]
+    b = qtf_drift_spectrum(w, S, qtf_function(db, 0.0, np.eye(6)), mu)[:, 0, 0]
     assert b[0] == pytest.approx(a[0], rel=0.01)
     assert abs(b[1] / a[1] - 1.0) > 0.05
 
@@ -304,7 +314,7 @@ def test_relative_flow_damping_against_finite_differences():
     """B = -dF/dv of F = T(yaw) C(theta - yaw) |U e - v|^2 (coefficients on the body heading)
     against central differences of that force in the surge/sway velocity, for an oblique
     flow and a non-zero yaw."""
-    from floatmoor.frequency_domain import _relative_flow_damping, _rot6
+    from floatmoor.analyses.fd_loads import relative_flow_damping, rot6
     from floatmoor.hydro.vessel import CoefficientTable
     h = np.radians(np.arange(0.0, 360.0, 30.0))
     coef = np.zeros((h.size, 6))
@@ -317,8 +327,8 @@ def test_relative_flow_damping_against_finite_differences():
     def force(v):
         rel = U * np.array([math.cos(heading), math.sin(heading)]) - v
         th = math.atan2(rel[1], rel[0])
-        return _rot6(yaw) @ tab.at(th - yaw) * float(rel @ rel)
-    B = _relative_flow_damping(tab, U, heading, yaw)
+        return rot6(yaw) @ tab.at(th - yaw) * float(rel @ rel)
+    B = relative_flow_damping(tab, U, heading, yaw)
     for j in range(2):
         dv = np.zeros(2)
         dv[j] = 1e-4

@@ -1,10 +1,10 @@
-"""Viscous drift in the frequency domain (issue 8): the correction formula (seed 002 eq. 6.6)
+"""Viscous drift in the frequency domain: the correction formula (Wang (2016) eq. 6.6)
 feeds the FD mean and slow drift, its extra damping the FD linear damping; slender elements
 are refused loudly (a FloatmoorWarning: the FD has no Morison strips).
 
-Expected values: eq. 6.6 written out by hand below (Stansberg et al. 2015 as quoted in seed 002
+Expected values: eq. 6.6 written out by hand below (Stansberg et al. 2015 as quoted in Wang (2016)
 section 6.2) integrated over the scene's wave spectrum with the FD mean drift formula
-F = 2 int f(w) S(w) dw (seed 002 eq. 2.37); the time domain's Newman drift model (an independent
+F = 2 int f(w) S(w) dw (Wang (2016) eq. 2.37); the time domain's Newman drift model (an independent
 path: the realised wave components, F = sum a_i^2 f(w_i)) for the FD-TD agreement.
 """
 
@@ -18,7 +18,7 @@ import pytest
 import yaml
 
 from floatmoor.core.errors import FloatmoorWarning, SceneError
-from floatmoor.frequency_domain import frequency_domain
+from floatmoor.analyses.frequency_domain import frequency_domain
 
 ROOT = Path(__file__).resolve().parents[1]
 FLOATEL = ROOT / "vessels" / "floatel_like"
@@ -57,7 +57,7 @@ def runs(tmp_path_factory):
 def _hand_eq_6_6(ds, db, *, u, band=None):
     """2 int f(w) S(w) dw with f = f_pot (1 + Cp U) + B (G U + Hs), B = B0 k p sum(d_i),
     k = w^2/g, p = exp(-1.25 (k D0)^2): Cp 0.25 s/m, G 10 s, B0 1000 N/m^3, sum(d) 50 m,
-    D0 12.5 m (seed 002 eq. 6.6), on the FD's frequency grid; f_pot the database's surge
+    D0 12.5 m (Wang (2016) eq. 6.6), on the FD's frequency grid; f_pot the database's surge
     coefficient at 0 deg, linearly interpolated."""
     w = ds.omega.values
     S = ds.wave_spectrum.values
@@ -148,7 +148,7 @@ def test_fd_extra_damping_raises_surge_sway_linear_damping(tmp_path, runs):
         return (d.lf_damping.values - d.equivalent_quadratic_damping.values
                 - d.lf_damping_wind.values - d.lf_damping_current.values
                 - d.lf_damping_wave_drift.values)
-    # vessel file: 1.5e6 N s/m in surge and sway; +100 % -> 3.0e6 (seed 002 table 6.10)
+    # vessel file: 1.5e6 N s/m in surge and sway; +100 % -> 3.0e6 (Wang (2016) table 6.10)
     assert linear(cf)[0, 0] == pytest.approx(1.5e6, rel=1e-9)
     assert linear(ds)[0, 0] == pytest.approx(3.0e6, rel=1e-9)
     assert linear(ds)[1, 1] == pytest.approx(3.0e6, rel=1e-9)

@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 
 from floatmoor.core.errors import SceneError
-from floatmoor.simulate import simulate
+from floatmoor.analyses.simulate import simulate
 
 pytestmark = pytest.mark.filterwarnings("ignore::floatmoor.core.errors.FloatmoorWarning")
 
@@ -81,7 +81,7 @@ def test_runner_parallel_resumable_and_failure_tolerant(scene_file, tmp_path, ca
     """Three seeds on two workers; seed 2 cannot be written (its temp path is a folder): it is
     recorded as failed with its error and the others finish; a second run skips the finished
     seeds and retries seed 2 only."""
-    from floatmoor.runner import run_seeds, seed_file
+    from floatmoor.analyses.runner import run_seeds, seed_file
 
     out = tmp_path / "out"
     out.mkdir()
@@ -132,11 +132,19 @@ def test_convergence_study_errors_shrink(scene_file):
 
 
 def test_package_level_api(scene_file):
-    """``floatmoor.load_scene`` and ``floatmoor.simulate`` (the latter also after the submodule
-    ``floatmoor.simulate`` has been imported) give the same result."""
-    import floatmoor
-    import floatmoor.simulate as mod  # noqa: F401  (makes the package attribute the module)
+    """``floatmoor.load_scene`` and ``floatmoor.simulate`` are plain functions (the package
+    re-exports them from :mod:`floatmoor.analyses`, even after the analysis modules have been
+    imported) and give the same result as the module's function."""
+    import types
 
+    import floatmoor
+    import floatmoor.analyses.simulate as mod
+
+    assert isinstance(floatmoor.simulate, types.FunctionType) and floatmoor.simulate is simulate
+    assert mod.simulate is simulate
+    for name in ("load_scene", "equilibrium", "restoring_curves", "frequency_domain",
+                 "run_seeds"):
+        assert isinstance(getattr(floatmoor, name), types.FunctionType), name
     scene = floatmoor.load_scene(scene_file)
     a = floatmoor.simulate(scene, seed=2, duration=30.0)
     b = simulate(scene, seed=2, duration=30.0)
@@ -161,7 +169,7 @@ def test_run_command_failed_seed_exit_status(scene_file, tmp_path, capsys):
     """A seed that fails: the others are written, the exit status is 3 and the failed seed is
     named on stderr."""
     from floatmoor.commands import run as run_cmd
-    from floatmoor.runner import seed_file
+    from floatmoor.analyses.runner import seed_file
 
     out = tmp_path / "o"
     out.mkdir()
@@ -185,7 +193,7 @@ def test_duration_not_longer_than_transient(scene_file, tmp_path, capsys):
     from floatmoor.cli import main
     from floatmoor.commands import run as run_cmd
     from floatmoor.core.errors import FloatmoorWarning
-    from floatmoor.runner import run_seeds
+    from floatmoor.analyses.runner import run_seeds
 
     p = argparse.ArgumentParser()
     run_cmd.add_arguments(p)
@@ -238,7 +246,7 @@ def test_large_yaw_excursion_warns_about_the_wave_heading(scene_file):
 def test_runner_reports_the_warnings_of_a_seed(scene_file, tmp_path):
     """The workers' FloatmoorWarnings (here the yaw far from the wave heading) are kept in the
     outcome and echoed, not lost in the worker process."""
-    from floatmoor.runner import run_seeds
+    from floatmoor.analyses.runner import run_seeds
     from floatmoor.solvers.time_domain import assemble
     from floatmoor.io.build import build
     from floatmoor.io.scene import load_scene
@@ -263,7 +271,7 @@ def test_relative_velocity_option_from_the_scene_file(tmp_path):
         simulate(p2, seed=1, duration=60.0)
 
 
-# -- finite-element lines coupled (issue 9): floatmoor run and report on their results --------
+# -- finite-element lines coupled: floatmoor run and report on their results -----------------
 def _fe_scene(tmp_path) -> Path:
     """The FE flagship scene (scenes/floatel_100yr_fe.yaml) with 8 elements per line, a
     moderate sea and short runs."""
@@ -287,7 +295,7 @@ def test_run_and_report_with_fe_lines(tmp_path, monkeypatch):
     """``floatmoor run`` of a scene with FE lines on two workers writes the FE channels per
     seed; a seed whose FE line fails is recorded with the line's NumericalError (time, line,
     remedy) while the others finish; ``floatmoor report`` reads the results."""
-    from floatmoor.runner import run_seeds, seed_file
+    from floatmoor.analyses.runner import run_seeds, seed_file
     from floatmoor.solvers import fe_coupling
 
     scene = _fe_scene(tmp_path)

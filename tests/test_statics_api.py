@@ -10,12 +10,10 @@ Independent checks:
   away from it (ALS).
 """
 
-import math
-
 import numpy as np
 import pytest
 
-import floatmoor.statics as st
+import floatmoor
 from floatmoor import SceneError
 from floatmoor.io.build import build
 
@@ -37,7 +35,7 @@ def test_oc3_net_buoyancy_matches_map_vertical_load(tmp_path):
     b = build(oc3_scene(tmp_path))
     assert b.displaced_volume == pytest.approx(8029.21)
     assert b.static_force[2] == pytest.approx(3 * 535728.0, rel=1e-3)
-    res = st.equilibrium(b)
+    res = floatmoor.equilibrium(b)
     assert abs(res.pose[2]) < 0.01                      # m: floats at its design draft
     t = res.tensions["fairlead_tension"].values
     np.testing.assert_allclose(t, 911089.0, rtol=1e-3)  # MAP++ .sum value
@@ -46,13 +44,14 @@ def test_oc3_net_buoyancy_matches_map_vertical_load(tmp_path):
 @pytest.mark.filterwarnings("ignore::floatmoor.FloatmoorWarning")
 def test_floatel_head_sea_symmetry_and_line_failure():
     scene = ROOT / "scenes/floatel_100yr.yaml"
-    intact = st.equilibrium(scene, external_force=[2.0e6, 0, 0, 0, 0, 0])
+    intact = floatmoor.equilibrium(scene, external_force=[2.0e6, 0, 0, 0, 0, 0])
     assert intact.pose[0] > 0.0
     assert abs(intact.pose[1]) < 1e-6 and abs(intact.pose[3]) < 1e-8 and abs(intact.pose[5]) < 1e-8
-    failed = st.equilibrium(scene, external_force=[2.0e6, 0, 0, 0, 0, 0], failed_lines=["line7"])
+    failed = floatmoor.equilibrium(scene, external_force=[2.0e6, 0, 0, 0, 0, 0],
+                                   failed_lines=["line7"])
     assert failed.pose[0] > intact.pose[0]              # less restoring: larger offset
     assert abs(failed.pose[1]) > 0.1                    # asymmetric system: it moves sideways
-    ds = st.restoring_curves(scene, headings_deg=[0.0, 180.0], offsets=[0.0, 10.0, 30.0])
+    ds = floatmoor.restoring_curves(scene, headings_deg=[0.0, 180.0], offsets=[0.0, 10.0, 30.0])
     f = ds["restoring_force"].values
     assert np.all(np.diff(f, axis=1) > 0)               # stiffening with offset
     np.testing.assert_allclose(f[0], f[1], rtol=1e-6, atol=1e-3)  # fore-aft symmetric layout

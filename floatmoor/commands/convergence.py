@@ -32,7 +32,7 @@ def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, ech
 
     import numpy as np
 
-    from ..simulate import simulate
+    from ..analyses.simulate import simulate
 
     rows = []
     for k in range(levels):

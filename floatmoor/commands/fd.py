@@ -42,7 +42,8 @@ def to_netcdf(ds, path) -> Path:
 
 def run(args: argparse.Namespace) -> int:
     """Run the analysis and print the table; returns the exit status."""
-    from ..frequency_domain import format_table, frequency_domain
+    from ..analyses.fd_dataset import format_table
+    from ..analyses.frequency_domain import frequency_domain
 
     overrides = {}
     if args.duration is not None:

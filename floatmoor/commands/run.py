@@ -75,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
     from ..cli import EXIT_NUMERICAL_ERROR, EXIT_OK, UsageError
     from ..io.analysis import seeds_from_text
     from ..io.scene import load_scene
-    from ..runner import run_seeds
+    from ..analyses.runner import run_seeds
 
     scene = load_scene(args.scene)
     if args.seeds is None:
@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out) if args.out else Path(scene.file).parent / "results" / scene.name
     overrides = {}
     if args.duration is not None:
-        from ..simulate import check_statistics_window
+        from ..analyses.simulate import check_statistics_window
         check_statistics_window(scene.file, args.duration, scene.analysis.transient,
                                 key="--duration")
         overrides["duration"] = args.duration

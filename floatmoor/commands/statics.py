@@ -67,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
     import xarray as xr
 
     from ..io.build import build
-    from ..statics import equilibrium, restoring_curves
+    from ..analyses.statics import equilibrium, restoring_curves
 
     built = build(args.scene, failed_lines=args.fail)
     res = equilibrium(built, external_force=args.force)

@@ -152,7 +152,7 @@ def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, exter
         statics that fail.
     """
     from ..core.errors import ConvergenceError
-    from .statics import equilibrium
+    from .statics import solve_equilibrium as equilibrium
 
     qs_fe = system.without_lines([n for n, a in zip(system.names, system.active)
                                   if a and n not in c.names])

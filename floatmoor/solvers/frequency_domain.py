@@ -1,9 +1,10 @@
 """Frequency-domain response of a moored floater (MIMOSA-style): wave-frequency and low-frequency.
 
 This module holds the numerics on plain arrays (no scene, no xarray); the user API
-:func:`floatmoor.frequency_domain.frequency_domain` builds the arrays from a scene, adds the
-mean offset, the Rayleigh maxima and the per-line tensions.  Theory: seed 002 (Wang 2016)
-section 2.2.2, eq. 2.34-2.49; the equation numbers below are that document's.
+:func:`floatmoor.frequency_domain` (:mod:`floatmoor.analyses.frequency_domain`) builds the
+arrays from a scene, adds the mean offset, the Rayleigh maxima and the per-line tensions.
+Theory: Wang (2016) section 2.2.2, eq. 2.34-2.49; the equation numbers below are that
+document's.
 
 Conventions: DOF order surge, sway, heave, roll, pitch, yaw; SI units; exp(+i w t) (a harmonic
 x = Re[X exp(i w t)], so M xdd + B xd + K x -> (K - w^2 M + i w B) X); one-sided spectra in
@@ -253,7 +254,7 @@ DRIFT_METHODS = ("auto", "newman", "qtf")
 
 @dataclass(frozen=True, kw_only=True)
 class FDOptions:
-    """Options of :func:`floatmoor.frequency_domain.frequency_domain` (scene section
+    """Options of :func:`floatmoor.frequency_domain` (scene section
     ``frequency_domain:`` when present, read by :mod:`floatmoor.io.fd_section`).
 
     duration : s, the storm duration for the number of cycles N = duration / Tz (3 h).

@@ -1,4 +1,8 @@
-"""Static equilibrium of a moored body and restoring curves.
+"""Static equilibrium of a moored body and restoring curves (the numerics, on a mooring system).
+
+The scene-level function is :func:`floatmoor.equilibrium` (:mod:`floatmoor.analyses.statics`):
+it builds the scene and calls :func:`solve_equilibrium` with the vessel's restoring and the net
+buoyancy.
 
 The static balance on the body, with moments about the body reference point, is
 
@@ -31,12 +35,12 @@ from ..core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS, dof_index
 from ..core.errors import ConvergenceError, NumericalError
 from ..mooring.system import MooringSystem
 
-__all__ = ["equilibrium", "EquilibriumResult", "restoring_curve"]
+__all__ = ["solve_equilibrium", "EquilibriumResult", "restoring_curve"]
 
 
 @dataclass(frozen=True, kw_only=True)
 class EquilibriumResult:
-    """Result of :func:`equilibrium` (SI units, moments about the body reference point).
+    """Result of :func:`solve_equilibrium` (SI units, moments about the body reference point).
 
     Attributes
     ----------
@@ -119,7 +123,7 @@ def _free_indices(dofs) -> np.ndarray:
     return np.array(idx)
 
 
-def equilibrium(mooring: MooringSystem, *, hydrostatic_stiffness=None, external_force=None,
+def solve_equilibrium(mooring: MooringSystem, *, hydrostatic_stiffness=None, external_force=None,
                 x0=None, dofs: Sequence[str] | None = None, tol_translation: float = 1e-6,
                 tol_rotation: float = 1e-8, max_iter: int = 60, max_step_translation: float = 20.0,
                 max_step_rotation: float = 0.1) -> EquilibriumResult:

@@ -57,7 +57,7 @@ from ..forces.base import (N_PARTS, PART_NAMES, PART_SERIES, KernelAssembly, Set
 from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.slender import refuse_qtf_with_correction
 from ..forces.waves import wave_components
-from .statics import equilibrium
+from .statics import solve_equilibrium as equilibrium
 from .td_kernel import td_kernel
 from .wf_velocity import RELATIVE_VELOCITY_MODES, wf_velocity_series
 

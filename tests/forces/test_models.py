@@ -15,7 +15,7 @@ from floatmoor.forces.kernels import relative_flow_force_into, table_at_into
 from floatmoor.forces.series import complex_envelope, grid_for
 from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
-from floatmoor.simulate import simulate
+from floatmoor.analyses.simulate import simulate
 from floatmoor.solvers.time_domain import assemble, integrate
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -9,7 +9,7 @@ import pytest
 from floatmoor.core.config import Node
 from floatmoor.core.errors import ConvergenceError
 from floatmoor.io.mooring_section import parse_mooring
-from floatmoor.solvers.statics import equilibrium, restoring_curve
+from floatmoor.solvers.statics import restoring_curve, solve_equilibrium
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -37,7 +37,7 @@ def test_small_force_gives_linear_offset(oc3):
     f0 = oc3.force(np.zeros(6))
     F = np.array([2.0e4, -1.0e4, 0.0, 0.0, 0.0, 5.0e4])
     ext = F - f0  # the net buoyancy balances the lines' vertical pull at zero pose
-    res = equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=ext)
+    res = solve_equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=ext)
     K = oc3.stiffness(np.zeros(6)) + KH_OC3
     lin = np.linalg.solve(K, F)
     # heave: a second-order set-down of about 0.2 mm is not in the linear model
@@ -51,7 +51,7 @@ def test_balance_at_large_offset(oc3):
     force equals the applied force."""
     f0 = oc3.force(np.zeros(6))
     F = np.array([1.5e6, 0, 0, 0, 0, 0])
-    res = equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=F - f0)
+    res = solve_equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=F - f0)
     total = res.mooring_force - KH_OC3 @ res.pose + F - f0
     assert np.abs(total[:3]).max() < 1e-2 and np.abs(total[3:]).max() < 1.0
     assert res.pose[0] > 10.0
@@ -61,7 +61,7 @@ def test_balance_at_large_offset(oc3):
 
 
 def test_restricted_dofs(floatel):
-    res = equilibrium(floatel, external_force=[3.0e6, 1.0e6, 0, 0, 0, 0],
+    res = solve_equilibrium(floatel, external_force=[3.0e6, 1.0e6, 0, 0, 0, 0],
                       dofs=("surge", "sway", "yaw"))
     assert res.pose[2] == 0 and res.pose[3] == 0 and res.pose[4] == 0
     f = res.mooring_force
@@ -73,8 +73,8 @@ def test_line_failure_raises_neighbour_tension(floatel):
     """Same environment (5,000 kN towards +x), line 7 removed: the body drifts further and the
     neighbouring lines 8 and 9 of the same corner, and line 6, carry more tension."""
     ext = [5.0e6, 0, 0, 0, 0, 0]
-    intact = equilibrium(floatel, external_force=ext, dofs=("surge", "sway", "yaw"))
-    broken = equilibrium(floatel.without_lines(["line7"]), external_force=ext,
+    intact = solve_equilibrium(floatel, external_force=ext, dofs=("surge", "sway", "yaw"))
+    broken = solve_equilibrium(floatel.without_lines(["line7"]), external_force=ext,
                          dofs=("surge", "sway", "yaw"))
     ti = intact.tensions["fairlead_tension"]
     tb = broken.tensions["fairlead_tension"]
@@ -112,12 +112,12 @@ def test_restoring_curve_any_heading(floatel):
 
 def test_non_convergence_names_the_dof(oc3):
     with pytest.raises(ConvergenceError, match="surge|sway|heave|roll|pitch|yaw"):
-        equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=[3e6, 0, 0, 0, 0, 0],
+        solve_equilibrium(oc3, hydrostatic_stiffness=KH_OC3, external_force=[3e6, 0, 0, 0, 0, 0],
                     max_iter=1)
 
 
 def test_summary_and_dataset(floatel):
-    res = equilibrium(floatel.without_lines(["line7"]), external_force=[5.0e6, 0, 0, 0, 0, 0],
+    res = solve_equilibrium(floatel.without_lines(["line7"]), external_force=[5.0e6, 0, 0, 0, 0, 0],
                       dofs=("surge", "sway", "yaw"))
     text = res.summary()
     assert "line7       failed" in text and "surge" in text and "mooring stiffness" in text

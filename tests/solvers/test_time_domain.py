@@ -15,8 +15,8 @@ from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
 from floatmoor.metocean.kinematics import wavenumber
 from floatmoor.metocean.realisation import WaveRealisation
-from floatmoor.simulate import simulate
-from floatmoor.solvers.statics import equilibrium
+from floatmoor.analyses.simulate import simulate
+from floatmoor.solvers.statics import solve_equilibrium as equilibrium
 from floatmoor.solvers.time_domain import assemble, integrate
 
 from pathlib import Path
@@ -264,7 +264,7 @@ def test_line_failure_transient(oc3):
 _NOJIT = """
 import warnings, sys, numpy as np
 warnings.simplefilter("ignore")
-from floatmoor.simulate import simulate
+from floatmoor.analyses.simulate import simulate
 ds = simulate(sys.argv[1], seed=2, duration=3.0, dt=0.1, ramp=1.0, record_forces=True)
 np.save(sys.argv[2], np.concatenate([ds["motion"].values.ravel(), ds["line_tension"].values.ravel(),
                                      ds["force"].values.ravel()]))

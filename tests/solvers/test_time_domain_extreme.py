@@ -18,7 +18,7 @@ import yaml
 from floatmoor.core.errors import NumericalError
 from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
-from floatmoor.simulate import simulate
+from floatmoor.analyses.simulate import simulate
 
 pytestmark = pytest.mark.filterwarnings("ignore::floatmoor.core.errors.FloatmoorWarning")
 

@@ -28,8 +28,8 @@ from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
 from floatmoor.mooring.fe.line import FELine
 from floatmoor.mooring.fe.prescribed import fairlead_track_from_body, run_prescribed
-from floatmoor.simulate import simulate
-from floatmoor.solvers.statics import equilibrium
+from floatmoor.analyses.simulate import simulate
+from floatmoor.solvers.statics import solve_equilibrium as equilibrium
 from floatmoor.solvers.time_domain import assemble, integrate
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -6,8 +6,6 @@ import datetime as _dt
 import math
 import os
 import platform
-import sys
-import types
 import time as _time
 import warnings
 from pathlib import Path
@@ -15,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
-from .core.errors import FloatmoorWarning, SceneError
+from ..core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
+from ..core.errors import FloatmoorWarning, SceneError
 
 __all__ = ["simulate", "result_dataset", "scene_text", "check_statistics_window",
            "YAW_WARNING_DEG"]
@@ -50,7 +48,7 @@ def scene_text(scene) -> str:
 def _versions() -> dict:
     import numba
     import scipy
-    from . import __version__
+    from .. import __version__
     return {"floatmoor": __version__, "numpy": np.__version__, "scipy": scipy.__version__,
             "xarray": xr.__version__, "numba": numba.__version__,
             "python": platform.python_version()}
@@ -72,7 +70,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         Override ``analysis`` (s).  ``transient`` only marks the start of the statistics window
         (attribute ``transient``); the series keep it.  A duration not longer than the
         transient is allowed here (short checks) with a FloatmoorWarning;
-        :func:`floatmoor.runner.run_seeds` and ``floatmoor run`` refuse it (SceneError).
+        :func:`floatmoor.run_seeds` and ``floatmoor run`` refuse it (SceneError).
     forces : :class:`floatmoor.io.forces_section.ForcesSpec`, optional
         Force options (default: the scene's ``forces`` section, if any).
     record_forces : bool, optional
@@ -90,7 +88,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     they do not follow the body's yaw or offset (attribute ``wave_force_frame``).  A run whose
     yaw moves more than :data:`YAW_WARNING_DEG` (15 deg) from that heading warns with a
     :class:`FloatmoorWarning` (attribute ``max_yaw_excursion_deg``).  Wind and current act on
-    the velocity of the flow relative to the low-frequency body velocity (seed 002 eq. 2.24,
+    the velocity of the flow relative to the low-frequency body velocity (Wang (2016) eq. 2.24,
     2.26): the linear wave-frequency velocity is removed from the body velocity (scene option
     ``forces: {relative_velocity: low_frequency | total}``, attribute ``relative_velocity``).
 
@@ -114,9 +112,9 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         NaN, exploding state, line far beyond MBS, failed catenary, or dt beyond the stability
         limit (names the time, DOF or line, and a likely remedy).
     """
-    from .io.build import BuiltScene, build
-    from .io.scene import Scene, load_scene
-    from .solvers.time_domain import assemble, integrate
+    from ..io.build import BuiltScene, build
+    from ..io.scene import Scene, load_scene
+    from ..solvers.time_domain import assemble, integrate
 
     t_all = _time.perf_counter()
     if isinstance(scene, BuiltScene):
@@ -184,13 +182,13 @@ def _relative_velocity_note(r) -> str:
         return "no wind or current force"
     what = " and ".join(flows)
     if mode == "total":
-        return f"{what} relative to the total body velocity (seed 002 eq. 6.7 form)"
+        return f"{what} relative to the total body velocity (Wang (2016) eq. 6.7 form)"
     if r.info.get("wf_velocity_removed", False):
         return (f"{what} relative to the low-frequency body velocity: the linear first-order "
                 "wave-frequency velocity (motion RAOs x the run's wave realisation) is removed "
-                "from the body velocity (seed 002 eq. 2.24, 2.26)")
+                "from the body velocity (Wang (2016) eq. 2.24, 2.26)")
     return (f"{what} relative to the body velocity (no first-order waves: it is the "
-            "low-frequency velocity, seed 002 eq. 2.24, 2.26)")
+            "low-frequency velocity, Wang (2016) eq. 2.24, 2.26)")
 
 
 def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: float,
@@ -281,15 +279,3 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
     for k, v in _versions().items():
         ds.attrs[f"version_{k}"] = v
     return ds
-
-
-class _CallableModule(types.ModuleType):
-    """``floatmoor.simulate`` is both this module and the function: importing the submodule
-    makes the package attribute the module, so the module forwards calls to :func:`simulate`
-    (``floatmoor.simulate(scene, seed=1)`` works in either case)."""
-
-    def __call__(self, *args, **kwargs):
-        return simulate(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableModule

@@ -1,8 +1,11 @@
 """Static equilibrium and restoring curves of a scene (user API).
 
->>> import floatmoor.statics as st
->>> res = st.equilibrium("scenes/floatel_100yr.yaml")
+>>> import floatmoor
+>>> res = floatmoor.equilibrium("scenes/floatel_100yr.yaml")
 >>> print(res.summary())
+
+:func:`equilibrium` is the one public equilibrium of floatmoor (of a scene); the numerics on a
+mooring system are :func:`floatmoor.solvers.statics.solve_equilibrium`.
 
 The body is held by its hydrostatic restoring (database hydrostatics + gravity terms +
 additional stiffness of the vessel file, linear about the zero pose), the quasi-static mooring
@@ -20,11 +23,11 @@ import os
 import numpy as np
 import xarray as xr
 
-from .core.errors import SceneError
-from .io.build import BuiltScene, build
-from .io.scene import Scene
-from .solvers.statics import EquilibriumResult, restoring_curve
-from .solvers.statics import equilibrium as _equilibrium
+from ..core.errors import SceneError
+from ..io.build import BuiltScene, build
+from ..io.scene import Scene
+from ..solvers.statics import EquilibriumResult, restoring_curve
+from ..solvers.statics import solve_equilibrium
 
 __all__ = ["equilibrium", "restoring_curves"]
 
@@ -58,12 +61,13 @@ def equilibrium(scene: Scene | BuiltScene | str | os.PathLike, *, external_force
     f = built.static_force.copy()
     if external_force is not None:
         f += np.asarray(external_force, float).reshape(6)
-    return _equilibrium(built.mooring, hydrostatic_stiffness=built.vessel.total_restoring,
-                        external_force=f, dofs=dofs)
+    return solve_equilibrium(built.mooring, hydrostatic_stiffness=built.vessel.total_restoring,
+                             external_force=f, dofs=dofs)
 
 
-def restoring_curves(scene: Scene | BuiltScene | str | os.PathLike, *, headings_deg=(0.0, 45.0, 90.0),
-                     offsets=None, failed_lines=None) -> xr.Dataset:
+def restoring_curves(scene: Scene | BuiltScene | str | os.PathLike, *,
+                     headings_deg=(0.0, 45.0, 90.0), offsets=None,
+                     failed_lines=None) -> xr.Dataset:
     """Mooring restoring force against horizontal offset for several headings.
 
     The offsets are taken from the still-water equilibrium pose (heave, roll, pitch held there).

@@ -65,8 +65,8 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> Seed
 
     import numpy as np
 
-    from .core.errors import FloatmoorWarning
-    from .io.scene import load_scene
+    from ..core.errors import FloatmoorWarning
+    from ..io.scene import load_scene
     from .simulate import simulate
 
     out = Path(out_path)
@@ -128,7 +128,7 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     SceneError
         A bad scene file, or a duration not longer than the transient (before any seed runs).
     """
-    from .io.scene import load_scene
+    from ..io.scene import load_scene
 
     from .simulate import check_statistics_window
 
