@@ -188,10 +188,8 @@ def test_figure_5_9_safety_factor_column_from_max_total():
     np.testing.assert_allclose(t[:, 3] + t[:, 5], t[:, 6], atol=0.11)
 
 
-def test_figure_5_9_matches_shared_reference_copy():
-    ref = Path("/work/shared/reference/floatel_superior.yaml")
-    if not ref.is_file():
-        pytest.skip("shared reference data not on this machine")
+def test_figure_5_9_matches_floatel_source_data():
+    ref = FLOATEL / "source" / "floatel_superior.yaml"
     data = yaml.safe_load(ref.read_text())["results"]["mimosa_fd_0deg"]
     np.testing.assert_allclose([data[f"line_{i + 1}"] for i in range(12)], FIGURE_5_9)
 
