@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from ..core.errors import SceneError
+from ..core.errors import argument_error
 from .extremes import gumbel_fit
 
 __all__ = [
@@ -97,10 +97,6 @@ STRENGTH_FACTOR = 0.95
 """S_C = 0.95 S_mbs."""
 SPM_FACTOR = 1.2
 """Increase of the ULS factors for single point moorings without redundancy."""
-
-
-def _bad(key, expected, found):
-    return SceneError(None, key, expected, found)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -170,18 +166,20 @@ def partial_factors(limit_state: str = "ULS", consequence_class: int = 2,
     """
     ls = str(limit_state).upper()
     if ls not in LIMIT_STATES:
-        raise _bad("limit_state", "one of: ULS, ALS", limit_state)
+        raise argument_error("limit_state", "one of: ULS, ALS", limit_state)
     if consequence_class not in (1, 2) or isinstance(consequence_class, bool):
-        raise _bad("consequence_class", "1 or 2 (DNV-OS-E301 ULS/ALS consequence classes)",
-                   consequence_class)
+        raise argument_error("consequence_class",
+                             "1 or 2 (DNV-OS-E301 ULS/ALS consequence classes)",
+                             consequence_class)
     an = str(analysis).lower().replace("_", "-").replace(" ", "-")
     if an == "quasistatic":
         an = "quasi-static"
     if an not in ANALYSES:
-        raise _bad("analysis", "one of: dynamic, quasi-static", analysis)
+        raise argument_error("analysis", "one of: dynamic, quasi-static", analysis)
     if single_point_mooring and ls == "ALS":
-        raise _bad("limit_state", "ULS only for a single point mooring without redundancy "
-                   "(the ALS is not applicable; remark under seed table 3.1)", limit_state)
+        raise argument_error("limit_state",
+                             "ULS only for a single point mooring without redundancy "
+                             "(the ALS is not applicable; remark under seed table 3.1)", limit_state)
     gm, gd = (ULS_FACTORS if ls == "ULS" else ALS_FACTORS)[(int(consequence_class), an)]
     if single_point_mooring:
         gm, gd = gm * SPM_FACTOR, gd * SPM_FACTOR
@@ -206,9 +204,9 @@ def characteristic_strength(mbs, strength_factor: float = STRENGTH_FACTOR):
     """
     s = np.asarray(mbs, dtype=float)
     if np.any(~np.isfinite(s)) or np.any(s <= 0):
-        raise _bad("mbs", "a minimum breaking strength > 0 in N", mbs)
+        raise argument_error("mbs", "a minimum breaking strength > 0 in N", mbs)
     if not (0 < strength_factor <= 1):
-        raise _bad("strength_factor", "a factor in (0, 1]", strength_factor)
+        raise argument_error("strength_factor", "a factor in (0, 1]", strength_factor)
     out = strength_factor * s
     return float(out) if out.ndim == 0 else out
 
@@ -235,7 +233,8 @@ def design_tension(t_mean, t_dyn, factors: PartialFactors, *,
         ``common_factor_applied`` (bool), arrays of the broadcast shape.
     """
     if common_factor_rule not in ("as_written", "conservative"):
-        raise _bad("common_factor_rule", "'as_written' or 'conservative'", common_factor_rule)
+        raise argument_error("common_factor_rule",
+                             "'as_written' or 'conservative'", common_factor_rule)
     tm = np.asarray(t_mean, dtype=float)
     td = np.asarray(t_dyn, dtype=float)
     tm, td = np.broadcast_arrays(tm, td)
@@ -267,9 +266,9 @@ def simple_safety_factor(mbs, t_max):
     m = np.asarray(mbs, dtype=float)
     t = np.asarray(t_max, dtype=float)
     if np.any(~np.isfinite(t)) or np.any(t <= 0):
-        raise _bad("t_max", "a maximum tension > 0", t_max)
+        raise argument_error("t_max", "a maximum tension > 0", t_max)
     if np.any(~np.isfinite(m)) or np.any(m <= 0):
-        raise _bad("mbs", "a minimum breaking strength > 0", mbs)
+        raise argument_error("mbs", "a minimum breaking strength > 0", mbs)
     out = m / t
     return float(out) if out.ndim == 0 else out
 
@@ -307,11 +306,11 @@ def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_clas
     tm = np.asarray(t_mean, dtype=float)
     tc = np.asarray(t_max, dtype=float)
     if np.any(~np.isfinite(tm)) or np.any(tm < 0):
-        raise _bad("t_mean", "characteristic mean tensions >= 0 in N", t_mean)
+        raise argument_error("t_mean", "characteristic mean tensions >= 0 in N", t_mean)
     if np.any(~np.isfinite(tc)):
-        raise _bad("t_max", "finite characteristic tensions in N", t_max)
+        raise argument_error("t_max", "finite characteristic tensions in N", t_max)
     if np.any(tc < tm):
-        raise _bad("t_max", "characteristic tensions >= the mean tensions", t_max)
+        raise argument_error("t_max", "characteristic tensions >= the mean tensions", t_max)
     sc = np.asarray(characteristic_strength(mbs, strength_factor))
     td = tc - tm
     d = design_tension(tm, td, f, common_factor_rule=common_factor_rule)
@@ -375,13 +374,13 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
     lines = list(lines)
     nl = len(lines)
     if nl == 0:
-        raise _bad("lines", "at least one line", lines)
+        raise argument_error("lines", "at least one line", lines)
     if len(set(map(str, lines))) != nl:
-        raise _bad("lines", "distinct line names", lines)
+        raise argument_error("lines", "distinct line names", lines)
     cases = [("ULS", uls_mean, uls_max)]
     if (als_mean is None) != (als_max is None):
-        raise _bad("als_max" if als_max is None else "als_mean",
-                   "both ALS mean and ALS characteristic tensions, or neither", None)
+        raise argument_error("als_max" if als_max is None else "als_mean",
+                             "both ALS mean and ALS characteristic tensions, or neither", None)
     if als_mean is not None:
         cases.append(("ALS", als_mean, als_max))
     mbs_arr = np.broadcast_to(np.asarray(mbs, dtype=float), (nl,))
@@ -392,12 +391,13 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
         tc = np.asarray(tc, dtype=float)
         for key, arr in (("mean", tm), ("max", tc)):
             if arr.shape != (nl,):
-                raise _bad(f"{ls.lower()}_{key}", f"{nl} values (one per line)",
-                           f"shape {arr.shape}")
+                raise argument_error(f"{ls.lower()}_{key}", f"{nl} values (one per line)",
+                                     f"shape {arr.shape}")
         checked = np.isfinite(tm) & np.isfinite(tc)
         if ls == "ULS" and not checked.all():
-            raise _bad("uls_max", "finite ULS tensions for every line (the intact system)",
-                       "NaN")
+            raise argument_error("uls_max",
+                                 "finite ULS tensions for every line (the intact system)",
+                                 "NaN")
         r = line_check(np.where(checked, tm, 0.0), np.where(checked, tc, 1.0), mbs_arr,
                        limit_state=ls, consequence_class=consequence_class, analysis=analysis,
                        strength_factor=strength_factor,
@@ -475,8 +475,8 @@ def characteristic_tensions(seed_max, seed_mean, *, p: float = 0.9, method: str 
     """
     for key, da in (("seed_max", seed_max), ("seed_mean", seed_mean)):
         if not isinstance(da, xr.DataArray) or set(da.dims) != {"seed", "line"}:
-            raise _bad(key, "a DataArray with dims (seed, line)",
-                       getattr(da, "dims", type(da).__name__))
+            raise argument_error(key, "a DataArray with dims (seed, line)",
+                                 getattr(da, "dims", type(da).__name__))
     seed_max = seed_max.transpose("seed", "line")
     seed_mean = seed_mean.transpose("seed", "line")
     lines = seed_max["line"].values if "line" in seed_max.coords else np.arange(seed_max.shape[1])

@@ -36,7 +36,7 @@ from typing import Sequence
 import numpy as np
 import xarray as xr
 
-from ..core.errors import SceneError
+from ..core.errors import SceneError, argument_error
 from . import dnv_os_e301 as dnv
 from .extremes import gumbel_fit
 from .timeseries import DEFAULT_CUTOFF_HZ, per_seed_statistics, window
@@ -44,10 +44,6 @@ from .timeseries import DEFAULT_CUTOFF_HZ, per_seed_statistics, window
 __all__ = ["ReportFiles", "build_report", "summarise"]
 
 _KN = 1e-3
-
-
-def _bad(key, expected, found):
-    return SceneError(None, key, expected, found)
 
 
 @dataclass(frozen=True)
@@ -74,19 +70,19 @@ def _version() -> str:
 def _check_results(results, key):
     results = list(results)
     if not results:
-        raise _bad(key, "at least one per-seed result Dataset", "none")
+        raise argument_error(key, "at least one per-seed result Dataset", "none")
     for i, ds in enumerate(results):
         if not isinstance(ds, xr.Dataset):
-            raise _bad(f"{key}[{i}]", "an xarray Dataset", type(ds).__name__)
+            raise argument_error(f"{key}[{i}]", "an xarray Dataset", type(ds).__name__)
         if "line_tension" not in ds:
-            raise _bad(f"{key}[{i}]", "a 'line_tension(time, line)' variable",
-                       list(map(str, ds.data_vars)))
+            raise argument_error(f"{key}[{i}]", "a 'line_tension(time, line)' variable",
+                                 list(map(str, ds.data_vars)))
         unit = ds["line_tension"].attrs.get("units", "N")
         if unit != "N":
-            raise _bad(f"{key}[{i}].line_tension.units", "'N'", unit)
+            raise argument_error(f"{key}[{i}].line_tension.units", "'N'", unit)
     if len(results) < 3:
-        raise _bad(key, "results of at least 3 seeds for a Gumbel fit (the seed uses 20)",
-                   len(results))
+        raise argument_error(key, "results of at least 3 seeds for a Gumbel fit (the seed uses 20)",
+                             len(results))
     return results
 
 
@@ -191,8 +187,8 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         astats = per_seed_statistics(als_results, start=als_start, end=end, cutoff=cutoff,
                                      variables=["line_tension"])
         if list(astats["line"].values) != lines:
-            raise _bad("als_results", f"the same lines as the intact results {lines}",
-                       list(astats["line"].values))
+            raise argument_error("als_results", f"the same lines as the intact results {lines}",
+                                 list(astats["line"].values))
         if failed_lines is None:
             attr = als_results[0].attrs.get("failed_lines")
             if attr is not None:
@@ -200,12 +196,13 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
             else:
                 failed_lines = detect_failed_lines(als_results)
                 if not failed_lines:
-                    raise _bad("als_results", "results with a failed line (a line whose "
-                               "tension is zero at the end of every ALS seed), or the failed "
-                               "line named (failed_lines)", "no failed line found")
+                    raise argument_error("als_results",
+                                         "results with a failed line (a line whose tension is "
+                                         "zero at the end of every ALS seed), or the failed "
+                                         "line named (failed_lines)", "no failed line found")
         failed = {str(f) for f in failed_lines}
         if not failed <= {str(ln) for ln in lines}:
-            raise _bad("failed_lines", f"names of lines among {lines}", sorted(failed))
+            raise argument_error("failed_lines", f"names of lines among {lines}", sorted(failed))
         alive = np.array([str(ln) not in failed for ln in lines])
         sub_max = astats["line_tension_max"].isel(line=np.flatnonzero(alive))
         sub_mean = astats["line_tension_mean"].isel(line=np.flatnonzero(alive))
@@ -481,18 +478,19 @@ def _fd_offsets_table(fd, stats):
 
 def _check_fd(fd, lines):
     if not isinstance(fd, xr.Dataset):
-        raise _bad("fd", "a frequency-domain result Dataset (floatmoor fd --out)",
-                   type(fd).__name__)
+        raise argument_error("fd", "a frequency-domain result Dataset (floatmoor fd --out)",
+                             type(fd).__name__)
     need = ("tension_static", "tension_max_total", "safety_factor", "mean", "max_total",
             "min_total")
     missing = [v for v in need if v not in fd]
     if missing or "line" not in fd.dims:
-        raise _bad("fd", "a floatmoor frequency-domain result (variables "
-                   + ", ".join(need) + " over 'line' and 'dof')", f"missing {missing}")
+        raise argument_error("fd", "a floatmoor frequency-domain result (variables "
+                             + ", ".join(need) + " over 'line' and 'dof')", f"missing {missing}")
     fd_lines = sorted(map(str, fd["line"].values))
     if fd_lines != sorted(map(str, lines)):
-        raise _bad("fd.line", f"the lines of the time-domain results {list(map(str, lines))}",
-                   fd_lines)
+        raise argument_error("fd.line",
+                             f"the lines of the time-domain results {list(map(str, lines))}",
+                             fd_lines)
 
 
 def _png(fig) -> bytes:
