@@ -54,7 +54,7 @@ for name in ("oc3_hywind", "oc4_semi", "floatel_like"):
         t, _ = best(lambda: load_vessel(p))
         print(f"load_vessel {name}: {t * 1e3:.0f} ms")
 
-# `floatmoor check` prints consistency_report of the scene's vessel database (issue 4): its cost
+# `floatmoor check` prints consistency_report of the scene's vessel database: its cost
 # on the shipped databases, and the whole `floatmoor check` command in a fresh interpreter.
 for name in ("oc3_hywind", "oc4_semi", "floatel_like"):
     p = ROOT / "vessels" / name / "vessel.yaml"

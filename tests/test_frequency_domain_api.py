@@ -1,7 +1,7 @@
 """User API floatmoor.frequency_domain: scene -> Dataset, maxima, tension columns.
 
-Expected values: hand computation (written out below), seed 002 figure 5.9 (via
-/work/shared/reference/floatel_superior.yaml copied into FIGURE_5_9), statics of the same scene
+Expected values: hand computation (written out below), Wang (2016) figure 5.9 (copied into
+FIGURE_5_9 from vessels/floatel_like/source/floatel_superior.yaml), statics of the same scene
 (floatmoor.statics), symmetry of head seas on symmetric hulls and moorings.
 """
 
@@ -24,8 +24,9 @@ ROOT = Path(__file__).resolve().parents[1]
 OC3 = ROOT / "vessels" / "oc3_hywind"
 FLOATEL = ROOT / "vessels" / "floatel_like"
 
-# Seed 002 figure 5.9 (MIMOSA, 0 deg), kN: static, std LF, max LF, WF base, std WF, max WF,
-# max total, safety factor (copied from the seed; also in shared/reference/floatel_superior.yaml)
+# Wang (2016) figure 5.9 (MIMOSA, 0 deg), kN: static, std LF, max LF, WF base, std WF, max WF,
+# max total, safety factor (copied from Wang (2016); also in
+# vessels/floatel_like/source/floatel_superior.yaml)
 FIGURE_5_9 = [
     [684.3, 102.1, 322.6, 953.5, 205.2, 842.3, 1795.8, 4.73],
     [715.9, 100.1, 335.2, 958.6, 173.9, 713.1, 1671.7, 5.08],
@@ -230,7 +231,7 @@ def test_floatel_lf_period_consistent_with_mass_and_stiffness(floatel):
 def test_fd_against_td_linear_limit(tmp_path):
     """OC3 spar, small JONSWAP waves, no wind/current/drift (the OC3 database has none): the
     TD WF standard deviation of surge and heave (20 seeds of 3000 s after a 600 s transient)
-    within 3 % of the FD value (issue 6 verification)."""
+    within 3 % of the FD value."""
     sim = importlib.import_module("floatmoor.simulate")
     run = getattr(sim, "simulate", None)
     if run is None:

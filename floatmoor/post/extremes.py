@@ -1,7 +1,7 @@
 """Extreme-value statistics: Gumbel fits to per-seed maxima, Weibull fits to peaks, Rayleigh maxima.
 
 Gumbel (type I largest) distribution, ``F(x) = exp(-exp(-(x - loc) / scale))``, as
-:data:`scipy.stats.gumbel_r`.  Seed ``002_783d33d2c304eef8.txt`` section 5.4.4 fits the 3-hour
+:data:`scipy.stats.gumbel_r`.  Wang (2016) section 5.4.4 fits the 3-hour
 maxima of 20 seeds and takes the 90 % fractile as the characteristic value.
 
 * fractile: ``x_p = loc - scale ln(-ln p)``; most probable maximum (mode) ``= loc``
@@ -19,11 +19,11 @@ maxima of 20 seeds and takes the 90 % fractile as the characteristic value.
   excess kurtosis 12/5, giving 1.1678, 1.1000 and 0.0959.  For 20 seeds they are rough; the
   bootstrap interval is the better statement of uncertainty.
 
-Rayleigh maxima (frequency domain, seed eq. 2.43 and 2.48): for ``N`` Rayleigh peaks with
+Rayleigh maxima (frequency domain, Wang (2016) eq. 2.43 and 2.48): for ``N`` Rayleigh peaks with
 parameter ``sigma`` (the standard deviation of a narrow-band Gaussian process),
 ``P(peak > a) = exp(-a^2 / (2 sigma^2))`` and the largest of ``N`` has
 
-* most probable value ``sigma sqrt(2 ln N)`` (asymptotic, the seed's formula),
+* most probable value ``sigma sqrt(2 ln N)`` (asymptotic, Wang's (2016) formula),
 * expected value ``sigma (sqrt(2 ln N) + gamma / sqrt(2 ln N))`` (asymptotic),
 * fractile ``p``: ``sigma sqrt(-2 ln(1 - p^(1/N)))`` (exact for independent peaks).
 """
@@ -180,7 +180,7 @@ class GumbelFit:
 
     @property
     def p90(self) -> float:
-        """90 % fractile (seed 002, section 5.4.4)."""
+        """90 % fractile (Wang (2016), section 5.4.4)."""
         return float(self.fractile(0.9))
 
     @property
@@ -329,7 +329,7 @@ def gumbel_fit(maxima, method: str = "mle") -> GumbelFit:
     if x.size < 10:
         import warnings
         warnings.warn(f"Gumbel fit to only {x.size} maxima: the fractiles are very uncertain "
-                      "(the seed uses 20 seeds)", FloatmoorWarning, stacklevel=2)
+                      "(Wang (2016) uses 20 seeds)", FloatmoorWarning, stacklevel=2)
     if method == "mle":
         loc, scale = _fit_mle(x[None, :])
         cov_unit = _MLE_COV
@@ -430,7 +430,7 @@ def rayleigh_max(sigma, n, kind: str = "mpm", p: float = 0.9):
     n : float or array_like
         Number of peaks (cycles) in the duration, e.g. :func:`n_cycles`.
     kind : str
-        ``"mpm"`` most probable maximum ``sigma sqrt(2 ln N)`` (seed eq. 2.43 / 2.48);
+        ``"mpm"`` most probable maximum ``sigma sqrt(2 ln N)`` (Wang (2016) eq. 2.43 / 2.48);
         ``"expected"`` ``sigma (sqrt(2 ln N) + gamma / sqrt(2 ln N))``;
         ``"fractile"`` exact fractile ``p`` of the largest, ``sigma sqrt(-2 ln(1 - p^(1/N)))``.
     p : float
@@ -461,8 +461,8 @@ def rayleigh_max(sigma, n, kind: str = "mpm", p: float = 0.9):
 
 
 def significant_value(sigma):
-    """Significant value ``2 sigma`` (seed eq. 2.42 / 2.47; mean of the highest third of
-    Rayleigh peaks, exactly 2.0027 sigma, rounded to 2 sigma as MIMOSA and the seed do)."""
+    """Significant value ``2 sigma`` (Wang (2016) eq. 2.42 / 2.47; mean of the highest third of
+    Rayleigh peaks, exactly 2.0027 sigma, rounded to 2 sigma as MIMOSA and Wang (2016) do)."""
     s = np.asarray(sigma, dtype=float)
     if np.any(~np.isfinite(s)) or np.any(s < 0):
         raise argument_error("sigma", "a standard deviation >= 0", sigma)

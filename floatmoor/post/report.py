@@ -15,10 +15,11 @@ governing line highlighted, offsets and motions, and, with ``fd=``, the frequenc
 and safety factors beside the time-domain Gumbel values.  Plots: governing-line time series (the
 seed with its largest maximum), Gumbel plot, tension per line, offset.
 
-Method (seed ``002_783d33d2c304eef8.txt`` section 5.4.4 and chapter 3): per seed, statistics in
+Method (Wang (2016) section 5.4.4 and chapter 3): per seed, statistics in
 the window (default: from the results' ``transient`` attribute); per line, a Gumbel fit of the
 seed maxima; the characteristic tension is its 90 %
-fractile; the design check is DNV-OS-E301 eq. 3.4 with the partial factors of
+fractile; the design check is the DNV-OS-E301 design equation (DNV (2008); Wang (2016)
+eq. 3.4) with the partial factors of
 :mod:`floatmoor.post.dnv_os_e301`.  Plots need matplotlib (optional); without it the report has
 tables only and says so.
 """
@@ -81,7 +82,8 @@ def _check_results(results, key):
         if unit != "N":
             raise argument_error(f"{key}[{i}].line_tension.units", "'N'", unit)
     if len(results) < 3:
-        raise argument_error(key, "results of at least 3 seeds for a Gumbel fit (the seed uses 20)",
+        raise argument_error(key, "results of at least 3 seeds for a Gumbel fit "
+                                  "(Wang (2016) uses 20)",
                              len(results))
     return results
 
@@ -423,7 +425,8 @@ def _motion_table(stats):
 
 
 def _fd_lines_table(fd, checks, ct, stats):
-    """Frequency-domain line tensions (seed figure 5.9 columns) beside the TD Gumbel values."""
+    """Frequency-domain line tensions (Wang (2016) figure 5.9 columns) beside the TD Gumbel
+    values."""
     c = checks.sel(limit_state="ULS")
     header = ["line", "TD mean [kN]", "FD static [kN]", "TD Gumbel MPM [kN]",
               "TD Gumbel 90% [kN]", "FD max total [kN]", "FD max / TD MPM",
@@ -445,15 +448,15 @@ def _fd_lines_table(fd, checks, ct, stats):
         rows.append(row)
         hl.append(bool(c["governing"].values[j]))
     dur = fd.attrs.get("duration", float("nan"))
-    caption = (f"Frequency domain beside time domain: per-line maximum tension (FD: eq. 2.49 "
-               f"with Rayleigh maxima over {_fmt(float(dur), 0)} s, the columns of seed figure "
-               f"5.9; TD: Gumbel fit of the seed maxima over the statistics window "
+    caption = (f"Frequency domain beside time domain: per-line maximum tension (FD: Wang (2016) "
+               f"eq. 2.49 with Rayleigh maxima over {_fmt(float(dur), 0)} s, the columns of its "
+               f"figure 5.9; TD: Gumbel fit of the seed maxima over the statistics window "
                f"{stats.attrs['window_start_s']:g} - {stats.attrs['window_end_s']:g} s)")
     return _Table("fd_lines", caption, header, rows, highlight=hl)
 
 
 def _fd_offsets_table(fd, stats):
-    """Frequency-domain motions (mean, eq. 2.49 max/min) beside the TD statistics."""
+    """Frequency-domain motions (mean, Wang (2016) eq. 2.49 max/min) beside the TD statistics."""
     if "motion_mean" not in stats:
         return None
     header = ["DOF", "unit", "TD mean", "FD mean", "TD Gumbel MPM of max", "TD Gumbel 90% of max",
@@ -472,7 +475,8 @@ def _fd_offsets_table(fd, stats):
                      _fmt(float(np.min(stats["motion_min"].values[:, j])) * f, 3),
                      _fmt(float(fd["min_total"].values[i]) * f, 3)])
     return _Table("fd_offsets", "Offsets, frequency domain beside time domain: FD mean = static "
-                  "equilibrium, FD max/min total = eq. 2.49; TD as in the offsets table",
+                  "equilibrium, FD max/min total = Wang (2016) eq. 2.49; TD as in the offsets "
+                  "table",
                   header, rows)
 
 

@@ -1,11 +1,11 @@
 """Time-series post-processing: window, LF/WF separation, channel statistics, up-crossing peaks.
 
-The quantities follow seed ``002_783d33d2c304eef8.txt`` (Wang 2016), section 5.4.4:
+The quantities follow Wang (2016), section 5.4.4:
 
 * a *window* removes the start-up transient (SIMO's "window" filter, 1200 s to 12000 s there);
 * the low-frequency (LF) and wave-frequency (WF) parts are separated with a cut-off of
   1/30 Hz ("LF period range T > 30 s, WF period range T = 5 - 30 s");
-* ``lf_max`` is the maximum of the low-pass filtered signal **including the mean** (the seed's
+* ``lf_max`` is the maximum of the low-pass filtered signal **including the mean** (Wang's (2016)
   ``LF_max``: in its table 7.2 the wind-only case has mean 6.42 m, LF_max 11.93 m and max 12.28 m,
   so LF_max cannot exclude the mean);
 * ``wf_sig`` is the significant WF value, ``2 * std`` of the WF part (eq. 2.42: the mean of the
@@ -53,7 +53,7 @@ __all__ = [
 ]
 
 DEFAULT_CUTOFF_HZ = 1.0 / 30.0
-"""LF/WF cut-off frequency in Hz (seed 002, section 5.4.4: 0.03333 1/s)."""
+"""LF/WF cut-off frequency in Hz (Wang (2016), section 5.4.4: 0.03333 1/s)."""
 
 # name -> (long-name template, unit: None = unit of the channel)
 STATISTICS: dict[str, tuple[str, str | None]] = {
@@ -65,7 +65,7 @@ STATISTICS: dict[str, tuple[str, str | None]] = {
     "lf_min": ("minimum of low-pass filtered {} (mean included)", None),
     "lf_std": ("standard deviation of the LF part of {}", None),
     "wf_std": ("standard deviation of the WF part of {}", None),
-    "wf_sig": ("significant WF value of {} (2 x WF std, seed eq. 2.42)", None),
+    "wf_sig": ("significant WF value of {} (2 x WF std, Wang (2016) eq. 2.42)", None),
     "wf_max": ("maximum of the WF part of {}", None),
     "tz": ("mean zero up-crossing period of {} about its mean", "s"),
     "n_cycles": ("number of mean up-crossings of {}", "1"),
@@ -136,7 +136,7 @@ def split_lf_wf(x, dt: float, cutoff: float = DEFAULT_CUTOFF_HZ, *, order: int =
     dt : float
         Sample interval in s.
     cutoff : float
-        Cut-off frequency in Hz (default 1/30 Hz, seed 002 section 5.4.4).
+        Cut-off frequency in Hz (default 1/30 Hz, Wang (2016) section 5.4.4).
     order : int
         Butterworth order of one pass.
     axis : int

@@ -812,7 +812,7 @@ def haskind_heave_d3(omega, headings, X3):
 
 def tube_study(ref: Path, configs=TUBE_CONFIGS, omegas=TUBE_OMEGAS,
                out=HERE / "capytaine_tube_study.nc"):
-    """Targeted study of the pontoon / brace tubes (issue 4, fourth session): tube panels round
+    """Targeted study of the pontoon / brace tubes: tube panels round
     and long, column panel size, and the junction trimming (build_mesh trim_inside), at a few
     frequencies; 6 radiation problems + heave excitation on 0 .. 60 deg (Haskind check, D3
     symmetry), one process per (mesh, frequency) (``--tube-study-one``).  Writes diagonal
