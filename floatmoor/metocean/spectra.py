@@ -1,6 +1,6 @@
 """Wave spectra: one-sided S(omega) in m^2 s/rad, with Hm0 = 4 sqrt(m0).
 
-Models (all from DNV-RP-C205 (2010/2014) chapter 3.5, "Wave spectra"):
+Models (all from DNV-RP-C205, DNV (2010), chapter 3.5, "Wave spectra"):
 
 * :func:`pierson_moskowitz` -- S_PM(w) = 5/16 Hs^2 wp^4 w^-5 exp(-5/4 (w/wp)^-4), wp = 2 pi/Tp.
   Its zeroth moment is exactly Hs^2/16 (substitute u = 5/4 (w/wp)^-4).
