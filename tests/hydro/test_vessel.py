@@ -192,7 +192,7 @@ def test_floatel_panel_model_symmetry_and_damping(floatel):
     assert np.all(diag >= -1e-3 * np.abs(diag).max(axis=0))
 
 
-def test_floatel_wind_current_and_damping_match_seed_002(floatel):
+def test_floatel_wind_current_and_damping_match_wang_2016(floatel):
     # wind-only mean surge force about 2 MN at U10 = 36 m/s (Wang (2016) section 7)
     assert floatel.wind_coefficients.at(0.0)[0] * 36.0 ** 2 == pytest.approx(2.0e6, rel=0.01)
     # current coefficient in surge 3.129e5 N s^2/m^2 (section 6.1.3)

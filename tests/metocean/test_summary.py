@@ -70,7 +70,7 @@ def test_summary_of_partial_environment():
 
 # --------------------------------------------------------------------------- data files
 
-def test_heidrun_100yr_file_matches_seed_002():
+def test_heidrun_100yr_file_matches_wang_2016():
     # Wang (2016) sec. 5.2, tables 5.3-5.5
     d = yaml.safe_load((ROOT / "metocean" / "heidrun_100yr.yaml").read_text())
     assert d["name"] == "heidrun-100yr" and "Wang (2016)" in d["description"]
