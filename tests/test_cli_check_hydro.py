@@ -3,7 +3,6 @@ database; ``--quick`` skips it."""
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from floatmoor.cli import main

@@ -12,7 +12,6 @@ the viscous mean drift of the columns in waves and current).
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pytest

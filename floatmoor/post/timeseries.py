@@ -44,7 +44,7 @@ import numpy as np
 import xarray as xr
 from scipy import signal
 
-from ..core.errors import SceneError, argument_error
+from ..core.errors import argument_error
 
 __all__ = [
     "DEFAULT_CUTOFF_HZ", "STATISTICS", "lowpass", "split_lf_wf", "window", "sample_interval",
