@@ -40,7 +40,7 @@ def test_oc3_vessel():
     v = load_vessel(VESSELS / "oc3_hywind" / "vessel.yaml")
     # total mass: platform 7,466,330 + tower 249,718 + nacelle 240,000 + rotor 110,000 kg
     assert v.mass == pytest.approx(8066048.0)
-    # Independent check (reference README: MAP++ solution): buoyancy - weight equals the
+    # Independent check (MAP++ solution, docs/PUBLISHED_VALUES.md): buoyancy - weight equals the
     # vertical mooring load 3 x 535,728 N (MAP run with g = 9.81)
     buoyancy = 1025 * G * 8029.21
     assert buoyancy - v.mass * G == pytest.approx(3 * 535728.0, rel=0.005)
@@ -223,7 +223,7 @@ def test_oc4_vessel_mass_balances_buoyancy_and_mooring():
     # platform incl. ballast 1.3473e7 kg (published) + tower, nacelle, rotor as for OC3
     assert v.mass == pytest.approx(1.3473e7 + 249718 + 240000 + 110000)
     # buoyancy (PtfmVol0 = 13,917 m^3) - weight = vertical mooring load: 3 x 631.1 kN from the
-    # static catenary of the MoorDyn data (reference README cross-check; the published 613 kN
+    # static catenary of the MoorDyn data (docs/PUBLISHED_VALUES.md; the published 613 kN
     # per line is marked uncertain there)
     assert 1025 * G * 13917 - v.mass * G == pytest.approx(3 * 631.1e3, rel=0.01)
     assert v.fairleads["FL2"][0] == pytest.approx(-40.868)
