@@ -1,6 +1,8 @@
 """Timing of the hydro layer: WAMIT read, netCDF save/load, retardation functions, report.
 
-Usage: .venv/bin/python benchmarks/bench_hydro.py [reference_dir]
+Usage: .venv/bin/python benchmarks/bench_hydro.py [vessels_dir]
+
+The WAMIT files are read from vessels/oc3_hywind/source/ and vessels/oc4_semi/source/.
 """
 
 import sys
@@ -14,8 +16,8 @@ import numpy as np
 from floatmoor.hydro import (consistency_report, load_database, load_vessel, read_wamit,
                              retardation_function, save_database)
 
-REF = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/work/shared/reference")
 ROOT = Path(__file__).resolve().parents[1]
+VESSELS = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "vessels"
 
 
 def best(f, n=3):
@@ -28,9 +30,9 @@ def best(f, n=3):
 
 
 warnings.simplefilter("ignore")
-t, oc4 = best(lambda: read_wamit(REF / "OC4_DeepCwind_semi" / "marin_semi"))
+t, oc4 = best(lambda: read_wamit(VESSELS / "oc4_semi" / "source" / "marin_semi"))
 print(f"read_wamit OC4 (.1 500 periods, .hst, .12d 9576 rows): {t * 1e3:.0f} ms")
-t, oc3 = best(lambda: read_wamit(REF / "OC3_Hywind" / "Spar"))
+t, oc3 = best(lambda: read_wamit(VESSELS / "oc3_hywind" / "source" / "Spar"))
 print(f"read_wamit OC3 (.1, .3 100 x 37 x 6, .hst): {t * 1e3:.0f} ms")
 with tempfile.TemporaryDirectory() as d:
     t, _ = best(lambda: save_database(oc4, Path(d) / "x.nc"))
@@ -52,7 +54,7 @@ for name in ("oc3_hywind", "oc4_semi", "floatel_like"):
         t, _ = best(lambda: load_vessel(p))
         print(f"load_vessel {name}: {t * 1e3:.0f} ms")
 
-# `floatmoor check` prints consistency_report of the scene's vessel database (issue 4): its cost
+# `floatmoor check` prints consistency_report of the scene's vessel database: its cost
 # on the shipped databases, and the whole `floatmoor check` command in a fresh interpreter.
 for name in ("oc3_hywind", "oc4_semi", "floatel_like"):
     p = ROOT / "vessels" / name / "vessel.yaml"

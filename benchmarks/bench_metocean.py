@@ -1,4 +1,4 @@
-"""Benchmark of the metocean layer (issue 2).
+"""Benchmark of the metocean layer.
 
 Times, for the Heidrun 100-year sea state (JONSWAP Hs 16 m, Tp 18.2 s, 320 m depth):
 

@@ -1,4 +1,4 @@
-"""Benchmarks of the quasi-static mooring (issue 3).
+"""Benchmarks of the quasi-static mooring.
 
 1. A single catenary solve after compilation: the numba kernel called with preallocated arrays
    (cold start and warm start), and the Python wrapper ``floatmoor.mooring.catenary``.

@@ -1,7 +1,7 @@
 """Benchmark of floatmoor.post: 20 seeds x 3 h at dt = 0.1 s x (6 DOFs + 12 lines).
 
 Run: .venv/bin/python benchmarks/bench_post.py
-Synthetic results shaped like the simulator's (issue 5): motion(time, dof), line_tension(time,
+Synthetic results shaped like the simulator's: motion(time, dof), line_tension(time,
 line) in N.  Building the data is not timed.
 """
 

@@ -137,7 +137,7 @@ def _read_references(scene) -> list[str]:
 
 def _hydro_report(vessel) -> str:
     """The retardation-function consistency report of the vessel's hydrodynamic database
-    (:func:`floatmoor.hydro.consistency_report`, issue 4).  Its warnings (undecayed damping,
+    (:func:`floatmoor.hydro.consistency_report`).  Its warnings (undecayed damping,
     irregular-frequency spikes) are part of the printed table, so they are not repeated on
     stderr.  Takes about 0.1 s for the shipped vessels; nothing is cached."""
     from .hydro import consistency_report, format_consistency

@@ -1,9 +1,8 @@
 """``floatmoor check`` prints the hydrodynamic consistency report of the scene's vessel
-database (issue 4, "Done when"); ``--quick`` skips it."""
+database; ``--quick`` skips it."""
 
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from floatmoor.cli import main

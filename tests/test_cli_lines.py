@@ -1,4 +1,4 @@
-"""``floatmoor lines``: decoupled FE line analysis driven by a short OC3-Hywind run (seed 002
+"""``floatmoor lines``: decoupled FE line analysis driven by a short OC3-Hywind run (Wang (2016)
 chapter 8 workflow) or a harmonic; exit status 2 for bad input, 3 for a numerical failure."""
 
 import warnings
@@ -43,13 +43,13 @@ def test_lines_from_a_run_table_file_and_checks(run_file, tmp_path, capsys):
     # along it reproduces the coupled run's own quasi-static line tension
     qs, ref = res.qs_tension.values[:, sel], res.run_tension.values[:, sel]
     assert np.max(np.abs(qs - ref)) < 1e-4 * ref.max()
-    # eq. 8.1 (seed 002) recomputed from the written series
+    # Wang (2016) eq. 8.1 recomputed from the written series
     fe = res.fe_tension.values[:, sel]
     daf = (fe.max(1) - fe.mean(1)) / (qs.max(1) - qs.mean(1))
     assert np.allclose(res.daf.values, daf, rtol=1e-12)
     assert np.allclose(res.fe_std.values, fe.std(1), rtol=1e-12)
     # physics: same mean tension within 1.5% (the dynamics hardly shift the mean), larger
-    # wave-frequency range from drag and inertia (seed 002 ch. 8 found DAF > 1 as well)
+    # wave-frequency range from drag and inertia (Wang (2016) ch. 8 found DAF > 1 as well)
     assert np.allclose(res.fe_mean.values, res.qs_mean.values, rtol=0.015)
     assert np.all(res.daf.values > 1.0)
     # head seas: lines 2 and 3 (at +-120 deg) are mirror images

@@ -4,7 +4,7 @@ HTML/Markdown/CSV/netCDF report, exit status 0/1/2, ALS and FD beside TD.
 The expected numbers are recomputed here from the netCDF files independently of floatmoor.post:
 per-seed maxima over t >= the ``transient`` attribute, Gumbel fit by scipy.stats.gumbel_r.fit
 (maximum likelihood), MPM = loc, 90 % value = gumbel_r.ppf(0.9), and the DNV-OS-E301 (2008)
-design equation with the factors of seed 002 table 3.1 (class 2, dynamic: 1.4 / 2.1) and
+design equation with the factors of Wang (2016) table 3.1 (class 2, dynamic: 1.4 / 2.1) and
 S_C = 0.95 MBS.
 """
 
@@ -358,7 +358,7 @@ def test_bad_input_exits_2_without_traceback(case, data, tmp_path, capsys):
 
 
 def test_quasi_static_class_1_factors(data, tmp_path, capsys):
-    """Seed 002 table 3.1, consequence class 1, quasi-static: one factor 1.70 on the total."""
+    """Wang (2016) table 3.1, consequence class 1, quasi-static: one factor 1.70 on the total."""
     code, stdout, _ = run_report([data["intact"], "--consequence-class", "1", "--analysis",
                                   "quasi-static", "--out", tmp_path / "r"], capsys)
     assert code == 0 and "consequence class 1, quasi-static analysis" in stdout

@@ -1,8 +1,8 @@
 """User API floatmoor.frequency_domain: scene -> Dataset, maxima, tension columns.
 
-Expected values: hand computation (written out below), seed 002 figure 5.9 (via
-/work/shared/reference/floatel_superior.yaml copied into FIGURE_5_9), statics of the same scene
-(floatmoor.statics), symmetry of head seas on symmetric hulls and moorings.
+Expected values: hand computation (written out below), Wang (2016) figure 5.9 (copied into
+FIGURE_5_9 from vessels/floatel_like/source/floatel_superior.yaml), statics of the same scene
+(floatmoor.equilibrium), symmetry of head seas on symmetric hulls and moorings.
 """
 
 from __future__ import annotations
@@ -25,8 +25,9 @@ ROOT = Path(__file__).resolve().parents[1]
 OC3 = ROOT / "vessels" / "oc3_hywind"
 FLOATEL = ROOT / "vessels" / "floatel_like"
 
-# Seed 002 figure 5.9 (MIMOSA, 0 deg), kN: static, std LF, max LF, WF base, std WF, max WF,
-# max total, safety factor (copied from the seed; also in shared/reference/floatel_superior.yaml)
+# Wang (2016) figure 5.9 (MIMOSA, 0 deg), kN: static, std LF, max LF, WF base, std WF, max WF,
+# max total, safety factor (copied from Wang (2016); also in
+# vessels/floatel_like/source/floatel_superior.yaml)
 FIGURE_5_9 = [
     [684.3, 102.1, 322.6, 953.5, 205.2, 842.3, 1795.8, 4.73],
     [715.9, 100.1, 335.2, 958.6, 173.9, 713.1, 1671.7, 5.08],
@@ -200,10 +201,8 @@ def test_figure_5_9_safety_factor_column_from_max_total():
     np.testing.assert_allclose(t[:, 3] + t[:, 5], t[:, 6], atol=0.11)
 
 
-def test_figure_5_9_matches_shared_reference_copy():
-    ref = Path("/work/shared/reference/floatel_superior.yaml")
-    if not ref.is_file():
-        pytest.skip("shared reference data not on this machine")
+def test_figure_5_9_matches_floatel_source_data():
+    ref = FLOATEL / "source" / "floatel_superior.yaml"
     data = yaml.safe_load(ref.read_text())["results"]["mimosa_fd_0deg"]
     np.testing.assert_allclose([data[f"line_{i + 1}"] for i in range(12)], FIGURE_5_9)
 

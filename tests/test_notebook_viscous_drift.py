@@ -1,18 +1,17 @@
-"""The viscous-drift study notebook (issue 8) runs headless, reduced to 2 seeds per case.
+"""The viscous-drift study notebook runs headless, reduced to 2 seeds per case.
 
 Slow: 2 seeds x 7 cases + 1 current-only run + 5 force-recording runs of 12000 s each, about
 4-6 minutes on the 2-core sandbox.  The cache goes to a temporary folder, so every storm is
 computed (nothing is read from the committed notebooks/data/viscous_drift summaries).
 
 Expected: the notebook's cells execute without error, every case writes its per-seed summary,
-and the ordering of seed 002 table 6.8 holds seed by seed in the mean offset (case 5 > case 2 >
+and the ordering of Wang (2016) table 6.8 holds seed by seed in the mean offset (case 5 > case 2 >
 case 1: the correction formula more than doubles the mean drift force, the slender elements add
 the viscous mean drift of the columns in waves and current).
 """
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pytest
@@ -46,5 +45,5 @@ def test_viscous_drift_notebook_runs_with_two_seeds(tmp_path, monkeypatch):
         assert (abs(res[k].surge_wf_sig / res["case1"].surge_wf_sig - 1.0) < 0.1).all()
     text = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code"
                    for o in c.get("outputs", []))
-    assert "seed 002 table 6.8" in text and "seed table 7.2" in text
+    assert "Wang (2016) table 6.8" in text and "Wang (2016) table 7.2" in text
     assert (tmp_path / "forces_seed1.csv").is_file()

@@ -1,6 +1,6 @@
 """``floatmoor fd SCENE.yaml [--out FILE]``: frequency-domain analysis, MIMOSA-style table.
 
-Prints the motions (mean, LF, WF, eq. 2.49 total) and the line-tension table of seed 002
+Prints the motions (mean, LF, WF, eq. 2.49 total) and the line-tension table of Wang (2016)
 figure 5.9; ``--out`` writes the full result (spectra, RAOs, per-line columns) as netCDF.
 """
 

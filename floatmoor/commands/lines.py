@@ -1,5 +1,5 @@
 """``floatmoor lines SCENE.yaml --motion RESULTS_seed0001.nc``: decoupled dynamic analysis of the
-scene's mooring lines (seed 002 chapter 8: SIMO motions into RIFLEX).
+scene's mooring lines (Wang (2016) chapter 8: SIMO motions into RIFLEX).
 
 The recorded body motion of a previous ``floatmoor run`` seed (``motion(time, dof)``), or a
 harmonic motion given with ``--harmonic``, drives finite-element models of the lines (options
@@ -9,7 +9,7 @@ of its line types, as a coupled run with FE lines uses them:
 :func:`floatmoor.mooring.fe.body.scene_line_inputs`).  Printed per line over the statistics
 window: mean, standard deviation and maximum of the fairlead tension FE and quasi-static
 (elastic catenary along the same fairlead track), the dynamic amplification factor
-DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS (seed 002 eq. 8.1), the maximum tension along
+DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS (Wang (2016) eq. 8.1), the maximum tension along
 the line and the range of the grounded length.  All series and statistics are written to a
 netCDF file with units.
 

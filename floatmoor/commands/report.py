@@ -3,7 +3,7 @@
 Reads the per-seed netCDF files that ``floatmoor run`` wrote in RESULTS_DIR (seeds that failed,
 ``*.error.txt``, are left out and listed), removes the transient recorded in the files
 (``transient`` attribute), fits a Gumbel distribution to the seed maxima of every line, takes
-its 90 % value as the characteristic tension (seed 002 section 5.4.4) and checks the design
+its 90 % value as the characteristic tension (Wang (2016) section 5.4.4) and checks the design
 equation S_C >= T_C-mean gamma_mean + T_C-dyn gamma_dyn of DNV-OS-E301 (October 2008) with the
 partial factors of the consequence class and analysis type.  The MBS per line comes from the
 results (``mbs`` variable), else from the scene's mooring.

@@ -11,9 +11,11 @@ Two kinds of failure matter to a mooring engineer:
 
 from __future__ import annotations
 
+import math
 import os
 
-__all__ = ["FloatmoorError", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorWarning"]
+__all__ = ["FloatmoorError", "SceneError", "NumericalError", "ConvergenceError", "FloatmoorWarning",
+           "argument_error", "check_positive"]
 
 
 class FloatmoorError(Exception):
@@ -74,6 +76,26 @@ class SceneError(FloatmoorError, ValueError):
 
 def _rebuild_scene_error(file, key, expected, found, missing, hint):
     return SceneError(file, key, expected, SceneError.MISSING if missing else found, hint)
+
+
+def argument_error(key: str, expected: str, found=SceneError.MISSING,
+                   hint: str | None = None) -> SceneError:
+    """The :class:`SceneError` of a value given in Python rather than read from a file.
+
+    ``key`` names the argument (or ``argument.field``); the error carries no file name.
+    """
+    return SceneError(None, key, expected, found, hint)
+
+
+def check_positive(value, key: str) -> float:
+    """``value`` as a finite float > 0, else the :func:`argument_error` naming ``key``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise argument_error(key, "a number > 0", value) from None
+    if not math.isfinite(v) or v <= 0.0:
+        raise argument_error(key, "a number > 0", value)
+    return v
 
 
 class NumericalError(FloatmoorError, RuntimeError):

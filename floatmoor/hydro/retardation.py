@@ -1,12 +1,12 @@
 """Retardation functions of the Cummins equation and their consistency with the database.
 
-Theory (seed 002 section 2.2.3, eq. 2.55-2.59; Ogilvie 1964).  With A(w) = A_inf + a(w):
+Theory (Wang (2016) section 2.2.3, eq. 2.55-2.59; Ogilvie 1964).  With A(w) = A_inf + a(w):
 
     K(t)  = (2/pi) int_0^inf B(w) cos(w t) dw                                   (eq. 2.58)
     B(w)  = int_0^inf K(t) cos(w t) dt
     A(w)  = A_inf - (1/w) int_0^inf K(t) sin(w t) dt                  (Ogilvie's relation)
 
-The seed writes eq. 2.59 with the opposite sign of h; floatmoor uses the usual Cummins sign: the
+Wang (2016) writes eq. 2.59 with the opposite sign of h; floatmoor uses the usual Cummins sign: the
 radiation force is -A_inf x'' - int_0^t K(t - tau) x'(tau) dtau.
 
 Numerics

@@ -1,6 +1,6 @@
 """Viscous correction of the mean wave drift coefficients: the EXWAVE formula (eq. 6.6).
 
-Stansberg et al. (2015, EXWAVE JIP), as quoted in seed 002 (Wang 2016), section 6.2, eq. 6.6,
+Stansberg et al. (2015, EXWAVE JIP), as quoted in Wang (2016), section 6.2, eq. 6.6,
 corrects the potential-flow mean drift coefficients of a column-stabilised unit for high waves
 and a current ``U`` along the waves::
 
@@ -18,10 +18,10 @@ with
   main columns (m); ``p`` removes the viscous part in short waves (large ``k D0``),
 * ``k`` the deep-water wave number (rad/m), as in eq. 6.6.
 
-Units of B.  ``k p sum(d_i)`` is dimensionless; the seed gives B in kN/m^3 ("[kN/m^3]" next to
+Units of B.  ``k p sum(d_i)`` is dimensionless; Wang (2016) gives B in kN/m^3 ("[kN/m^3]" next to
 p), i.e. ``B = B0 k p sum(d_i)`` with ``B0 = 1 kN/m^3 = 1000 N/m^3``; then ``B (G U + Hs)`` is in
 N/m^2 like f_d,pot.  ``B0`` is a parameter (:attr:`CorrectionFormula.b0`) so that a user with the
-original paper's constant can set it; 1000 N/m^3 is this module's reading of the seed, not a
+original paper's constant can set it; 1000 N/m^3 is this module's reading of Wang (2016), not a
 verified published value.
 
 How the formula is applied to a 6-DOF database (our choices, documented in the report):
@@ -61,7 +61,7 @@ class CorrectionFormula:
     main_column_diameter : D0 (m) in p = exp(-1.25 (k D0)^2).
     cp : C_p (s/m), default 0.25.
     g_time : G (s), default 10.
-    b0 : B0 (N/m^3), default 1000 (the seed's kN/m^3, see the module docstring).
+    b0 : B0 (N/m^3), default 1000 (Wang's (2016) kN/m^3, see the module docstring).
     gravity : g (m/s^2) in k = w^2/g.
     """
 
@@ -183,7 +183,7 @@ def corrected_mean_drift(db, *, current_speed: float, current_heading: float, hs
 def extra_linear_damping(linear_damping, *, increase: float, dofs=(0, 1)) -> np.ndarray:
     """The linear damping matrix with its diagonal in ``dofs`` raised by ``increase`` (fraction).
 
-    Seed 002 section 6.6 (table 6.10) raises the surge/sway linear damping of the
+    Wang (2016) section 6.6 (table 6.10) raises the surge/sway linear damping of the
     correction-formula case by 50 %, 100 %, 200 %, 300 % (``increase`` 0.5 ... 3.0) to put back
     the viscous damping that eq. 6.6 leaves out.  Returns a new (6, 6) array (N s/m, N m s/rad).
     """

@@ -15,7 +15,7 @@ forces:
                                    # floatmoor.io.viscous_drift_section
 ```
 
-``relative_velocity``: seed 002 writes the hull wind and current forces with the flow velocity
+``relative_velocity``: Wang (2016) writes the hull wind and current forces with the flow velocity
 relative to the low-frequency body velocity, eq. 2.24 ``Q_wi = C_wi [(U + u(t)) - x'_LF]^2``
 and eq. 2.26 ``Q_cu = C_cu (V - x'_LF)|V - x'_LF|``.  With ``low_frequency`` the solver predicts
 the linear wave-frequency velocity x'_WF from the motion RAOs (same database, mass, damping and

@@ -1,4 +1,4 @@
-"""The ``forces: viscous_drift:`` key of a scene: how viscous drift is modelled (seed 002 ch. 6).
+"""The ``forces: viscous_drift:`` key of a scene: how viscous drift is modelled (Wang (2016) ch. 6).
 
 ```yaml
 forces:
@@ -6,7 +6,7 @@ forces:
     model: slender_elements        # slender_elements | correction_formula | none (default)
     # -- slender_elements (the vessel file's slender_elements section) -------------------
     double_counting: true          # zero the hull current coefficients in the DOFs the
-                                   # elements cover (seed 002 section 6.1.2), with a warning
+                                   # elements cover (Wang (2016) section 6.1.2), with a warning
     stretching: wheeler            # wheeler | constant (MWL velocity in the splash zone)
     inertia: false                 # Morison inertia cm a (vessel file inertia_per_length);
                                    # off by default: potential flow already carries it

@@ -1,6 +1,6 @@
 """Wave spectra: one-sided S(omega) in m^2 s/rad, with Hm0 = 4 sqrt(m0).
 
-Models (all from DNV-RP-C205 (2010/2014) chapter 3.5, "Wave spectra"):
+Models (all from DNV-RP-C205, DNV (2010), chapter 3.5, "Wave spectra"):
 
 * :func:`pierson_moskowitz` -- S_PM(w) = 5/16 Hs^2 wp^4 w^-5 exp(-5/4 (w/wp)^-4), wp = 2 pi/Tp.
   Its zeroth moment is exactly Hs^2/16 (substitute u = 5/4 (w/wp)^-4).
@@ -36,7 +36,7 @@ import numpy as np
 from scipy import integrate
 from scipy.special import gammaln
 
-from floatmoor.core.errors import SceneError
+from floatmoor.core.errors import SceneError, check_positive
 from floatmoor.metocean.config import SPREADING_FUNCTIONS, WaveSpec
 
 __all__ = ["dnv_gamma", "jonswap", "pierson_moskowitz", "torsethaugen", "torsethaugen_parameters",
@@ -51,16 +51,6 @@ SIGMA_HIGH = 0.09
 
 
 # --------------------------------------------------------------------------- validation helpers
-
-def _check_positive(value, key: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise SceneError(None, key, "a number > 0", value) from None
-    if not math.isfinite(v) or v <= 0.0:
-        raise SceneError(None, key, "a number > 0", value)
-    return v
-
 
 def _check_gamma(gamma, key: str = "waves.gamma") -> float:
     try:
@@ -102,8 +92,8 @@ def dnv_gamma(hs: float, tp: float) -> float:
     float
         gamma (-), between 1 and 5.
     """
-    hs = _check_positive(hs, "waves.hs")
-    tp = _check_positive(tp, "waves.tp")
+    hs = check_positive(hs, "waves.hs")
+    tp = check_positive(tp, "waves.tp")
     r = tp / math.sqrt(hs)
     if r <= 3.6:
         return 5.0
@@ -174,8 +164,8 @@ def pierson_moskowitz(omega, hs: float, tp: float) -> np.ndarray:
     numpy.ndarray
         S(omega) in m^2 s/rad, same shape as ``omega``; 0 at omega = 0.
     """
-    hs = _check_positive(hs, "waves.hs")
-    tp = _check_positive(tp, "waves.tp")
+    hs = check_positive(hs, "waves.hs")
+    tp = check_positive(tp, "waves.tp")
     w = _omega_array(omega)
     wp = 2.0 * np.pi / tp
     out = np.zeros_like(w)
@@ -204,8 +194,8 @@ def jonswap(omega, hs: float, tp: float, gamma: float | None = None) -> np.ndarr
     numpy.ndarray
         S(omega) in m^2 s/rad.  ``4 * sqrt(int S domega) == hs`` (see module docstring).
     """
-    hs = _check_positive(hs, "waves.hs")
-    tp = _check_positive(tp, "waves.tp")
+    hs = check_positive(hs, "waves.hs")
+    tp = check_positive(tp, "waves.tp")
     g = dnv_gamma(hs, tp) if gamma is None else _check_gamma(gamma)
     w = _omega_array(omega)
     wp = 2.0 * np.pi / tp
@@ -228,8 +218,8 @@ def torsethaugen_parameters(hs: float, tp: float) -> dict:
     Constants (DNV-RP-C205 sec. 3.5.6): af = 6.6 s m^-1/3, ae = 2 s m^-1/2, Tu = 25 s,
     a1 = 0.5, a10 = 0.7, a2 = 0.3, a20 = 0.6, a3 = 6, b1 = 2 s, kg = 35.
     """
-    hs = _check_positive(hs, "waves.hs")
-    tp = _check_positive(tp, "waves.tp")
+    hs = check_positive(hs, "waves.hs")
+    tp = check_positive(tp, "waves.tp")
     g = 9.80665
     af, ae, tu = 6.6, 2.0, 25.0
     tpf = af * hs ** (1.0 / 3.0)
@@ -354,7 +344,7 @@ def default_omega_range(spec: WaveSpec, cutoff: float = 1e-3) -> tuple[float, fl
     state (JONSWAP, gamma 1.68) and cutoff 1e-3 this is 0.59 wp ... 4.6 wp and leaves out
     0.24 % of m0.
     """
-    wp = 2.0 * np.pi / _check_positive(spec.tp, "waves.tp")
+    wp = 2.0 * np.pi / check_positive(spec.tp, "waves.tp")
     w = wp * np.logspace(np.log10(0.05), np.log10(20.0), 4000)
     s = wave_spectrum(spec, w)
     keep = np.nonzero(s >= cutoff * s.max())[0]
@@ -368,7 +358,7 @@ def cos2s_spreading(theta, mean_direction: float, s: float) -> np.ndarray:
 
     D = Gamma(s+1) / (2 sqrt(pi) Gamma(s+1/2)) cos^(2s)((theta - mean)/2).
     """
-    s = _check_positive(s, "waves.spreading_s")
+    s = check_positive(s, "waves.spreading_s")
     th = np.asarray(theta, dtype=float)
     c = math.exp(gammaln(s + 1.0) - gammaln(s + 0.5)) / (2.0 * math.sqrt(math.pi))
     return c * np.abs(np.cos(0.5 * (th - mean_direction))) ** (2.0 * s)

@@ -32,23 +32,13 @@ from typing import Callable
 
 import numpy as np
 
-from floatmoor.core.errors import SceneError
+from floatmoor.core.errors import SceneError, check_positive
 from floatmoor.metocean.config import WindSpec
 
 __all__ = ["npd_wind_spectrum", "npd_wind_profile", "npd_turbulence_intensity",
            "api_wind_spectrum", "api_wind_profile", "api_turbulence_intensity",
            "constant_wind_spectrum", "wind_spectrum", "wind_mean_speed", "WIND_SPECTRUM_FUNCTIONS",
            "WIND_PROFILE_FUNCTIONS"]
-
-
-def _check_positive(value, key: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise SceneError(None, key, "a number > 0", value) from None
-    if not math.isfinite(v) or v <= 0.0:
-        raise SceneError(None, key, "a number > 0", value)
-    return v
 
 
 def _check_nonneg(value, key: str) -> float:
@@ -129,7 +119,7 @@ def npd_wind_profile(z, u10: float, averaging_s: float = 3600.0) -> np.ndarray:
         U(T, z) in m/s.
     """
     u0 = _check_nonneg(u10, "wind.u10")
-    t = _check_positive(averaging_s, "wind.averaging_s")
+    t = check_positive(averaging_s, "wind.averaging_s")
     if t > 3600.0 * (1.0 + 1e-12):
         raise SceneError(None, "wind.averaging_s", "an averaging time <= 3600 s "
                          "(the NPD profile is defined for T <= 1 hour)", averaging_s)
@@ -176,7 +166,7 @@ def api_wind_spectrum(f, u_mean: float, z: float, a: float = 0.025) -> np.ndarra
     u = _check_nonneg(u_mean, "wind.u10")
     fa = _f_array(f)
     z = float(_z_array(z))
-    a = _check_positive(a, "wind.api_a")
+    a = check_positive(a, "wind.api_a")
     if u == 0.0:
         return np.zeros_like(fa)
     sigma = float(api_turbulence_intensity(z)) * u

@@ -15,14 +15,14 @@ Without friction on suspended parts, ``H`` is constant along the suspended line 
 tension component at unstretched arc length ``s`` follows from the weight above it, ``V(s)``.
 For a suspended piece with tension components ``Vt`` (top) and ``Vb = Vt - w Ls`` (bottom) and
 unstretched length ``Ls``, integrating ``dx/ds = (1 + T/EA) H/T`` and ``dz/ds = (1 + T/EA) V/T``
-with ``dV/ds = w`` gives (seed 002, eq. 2.28-2.30 with the current load F, D = 0)::
+with ``dV/ds = w`` gives (Wang (2016), eq. 2.28-2.30 with the current load F, D = 0)::
 
     dx = H/w [asinh(Vt/H) - asinh(Vb/H)] + H Ls / EA
     dz = 1/w [sqrt(H^2 + Vt^2) - sqrt(H^2 + Vb^2)] + Ls (Vt + Vb) / (2 EA)
 
 A piece with ``|w| Ls`` negligible against its tension is straight (limit of the same formulas).
 
-Seabed contact (seed 000, sec. 2.1, with the friction along the line axis as in the MAP++ and
+Seabed contact (Lu (2012), sec. 2.1, with the friction along the line axis as in the MAP++ and
 FAST formulations): when the vertical force that a freely hanging line would need at the anchor is
 negative, the line rests on the seabed from the anchor to the touchdown point, where the free
 vertical force crosses zero.  The grounded part carries the tension ``H`` at the touchdown point,

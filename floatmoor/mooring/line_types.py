@@ -31,7 +31,7 @@ catalogue); verify against the manufacturer's data:
   volume = mass / 6000 kg/m^3 (steel plus sheathing).
 
 ``polyester`` (parallel-strand / sub-rope polyester): mass 0.00066 d_mm^2 kg/m, MBS 0.25
-d_mm^2 kN (catalogue fit, e.g. 185 mm -> 8,556 kN, compare seed 002 table 5.2: 8,500 kN), static
+d_mm^2 kN (catalogue fit, e.g. 185 mm -> 8,556 kN, compare Wang (2016) table 5.2: 8,500 kN), static
 axial stiffness 15 MBS and dynamic 25 MBS (mid-range of the 10-20 and 20-35 MBS quoted in
 DNV-OS-E303 / API RP 2SM for polyester), displaced volume = mass / 1380 kg/m^3 (fibre density).
 

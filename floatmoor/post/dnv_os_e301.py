@@ -2,18 +2,18 @@
 
 Source of every factor here
 ---------------------------
-DNV-OS-E301 "Position Mooring", **October 2008 edition** -- the edition cited by seed
-``002_783d33d2c304eef8.txt`` (Wang 2016, reference "Veritas, D. N. (2008). Offshore standard
-dnv-os-e301: Position mooring", used in its chapter 3).  Clauses: Ch.2 Sec.2 (mooring system
+DNV-OS-E301 "Position Mooring", **October 2008 edition** (DNV (2008)) -- the edition cited by
+Wang (2016) (reference "Veritas, D. N. (2008). Offshore standard dnv-os-e301: Position
+mooring", used in its chapter 3).  Clauses: Ch.2 Sec.2 (mooring system
 analysis): characteristic line tensions, characteristic capacity, and the partial safety
-factors for the ULS and the ALS.  The numbers are those the seed reproduces:
+factors for the ULS and the ALS.  The numbers are those Wang (2016) reproduces:
 
-* design equation, seed eq. 3.4: ``S_C - T_C-mean gamma_mean - T_C-dyn gamma_dyn >= 0``
-  (identical for ULS and ALS, seed section 3.4.2);
-* ULS factors, seed table 3.1; ALS factors, seed table 3.2 (consequence class 1 or 2, dynamic or
-  quasi-static analysis of the WF tension).  In the quasi-static rows the standard prints one
-  value across both columns; it is applied to both the mean and the dynamic tension here
-  (``gamma_mean = gamma_dyn``), i.e. to the total characteristic tension;
+* design equation, Wang (2016) eq. 3.4: ``S_C - T_C-mean gamma_mean - T_C-dyn gamma_dyn >= 0``
+  (identical for ULS and ALS, Wang (2016) section 3.4.2);
+* ULS factors, Wang (2016) table 3.1; ALS factors, Wang (2016) table 3.2 (consequence class 1 or
+  2, dynamic or quasi-static analysis of the WF tension).  In the quasi-static rows the standard
+  prints one value across both columns; it is applied to both the mean and the dynamic tension
+  here (``gamma_mean = gamma_dyn``), i.e. to the total characteristic tension;
 * remark 1 under table 3.1 (ULS only): "If T_C-mean > 2/3 T_C-dyn, when applying a dynamic
   analysis in consequence class 1, then a common value of 1.3 shall be applied as the partial
   factor instead of the separate static and dynamic safety factors".  Note the strict ``>``, and
@@ -25,22 +25,22 @@ factors for the ULS and the ALS.  The numbers are those the seed reproduces:
   (``single_point_mooring=True``);
 * characteristic strength of the main body of a line, ``S_C = 0.95 S_mbs`` (DNV-OS-E301
   Ch.2 Sec.2, characteristic capacity, for a line of new chain or steel wire rope components
-  whose strength statistics are not documented; the seed's section 3.2 explains why the
+  whose strength statistics are not documented; Wang's (2016) section 3.2 explains why the
   strength of a long line is below the average component strength but gives no number, and
   the 2008 text for fibre rope was not checked here).  The factor is a parameter
   (``strength_factor``).
 
-The simple safety factor ``SF = S_MBS / T_C`` (seed eq. 3.3) is what MIMOSA prints in figure 5.9
-(e.g. line 7: 8500 kN / 4762.9 kN = 1.78).
+The simple safety factor ``SF = S_MBS / T_C`` (Wang (2016) eq. 3.3) is what MIMOSA prints in
+figure 5.9 (e.g. line 7: 8500 kN / 4762.9 kN = 1.78).
 
-Characteristic tensions from time-domain seeds follow seed section 5.4.4: the 3-hour maxima of
-the seeds are fitted with a Gumbel distribution and its 90 % fractile is the characteristic
-tension ``T_C``; ``T_C-mean`` is the mean tension (averaged over the seeds) and
+Characteristic tensions from time-domain seeds follow Wang (2016) section 5.4.4: the 3-hour
+maxima of the seeds are fitted with a Gumbel distribution and its 90 % fractile is the
+characteristic tension ``T_C``; ``T_C-mean`` is the mean tension (averaged over the seeds) and
 ``T_C-dyn = T_C - T_C-mean``.  The fractile is a parameter (``p``; ``p = 1/e`` is the most
 probable maximum).
 
 The clause lettering inside Ch.2 Sec.2 is not repeated here because it was not verified against
-the text of the 2008 edition; the factors were checked against the seed's tables.
+the text of the 2008 edition; the factors were checked against Wang's (2016) tables.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from ..core.errors import SceneError
+from ..core.errors import argument_error
 from .extremes import gumbel_fit
 
 __all__ = [
@@ -64,9 +64,9 @@ STANDARD = "DNV-OS-E301"
 EDITION = "DNV-OS-E301 Position Mooring, October 2008"
 SOURCE = (
     "DNV-OS-E301 Position Mooring, October 2008 edition, Ch.2 Sec.2 (characteristic capacity "
-    "S_C = 0.95 S_mbs; partial safety factors for ULS and ALS), as reproduced in seed "
-    "002_783d33d2c304eef8 (Wang 2016) eq. 3.4, tables 3.1 and 3.2 and the remarks under "
-    "table 3.1; the seed's practice for the characteristic tension is the 90 % Gumbel "
+    "S_C = 0.95 S_mbs; partial safety factors for ULS and ALS), as reproduced in "
+    "Wang (2016) eq. 3.4, tables 3.1 and 3.2 and the remarks under "
+    "table 3.1; Wang's (2016) practice for the characteristic tension is the 90 % Gumbel "
     "fractile of the 3-hour maxima of 20 seeds (section 5.4.4)")
 """A sentence a report can print: where the factors and the method come from."""
 
@@ -80,7 +80,7 @@ ULS_FACTORS = {
     (1, "quasi-static"): (1.70, 1.70),
     (2, "quasi-static"): (2.50, 2.50),
 }
-"""Seed table 3.1 (DNV-OS-E301 2008, ULS)."""
+"""Wang (2016) table 3.1 (DNV-OS-E301 2008, ULS)."""
 
 ALS_FACTORS = {
     (1, "dynamic"): (1.00, 1.10),
@@ -88,7 +88,7 @@ ALS_FACTORS = {
     (1, "quasi-static"): (1.10, 1.10),
     (2, "quasi-static"): (1.35, 1.35),
 }
-"""Seed table 3.2 (DNV-OS-E301 2008, ALS)."""
+"""Wang (2016) table 3.2 (DNV-OS-E301 2008, ALS)."""
 
 COMMON_FACTOR = 1.3
 """Common ULS factor for consequence class 1, dynamic analysis, when T_C-mean > 2/3 T_C-dyn."""
@@ -97,10 +97,6 @@ STRENGTH_FACTOR = 0.95
 """S_C = 0.95 S_mbs."""
 SPM_FACTOR = 1.2
 """Increase of the ULS factors for single point moorings without redundancy."""
-
-
-def _bad(key, expected, found):
-    return SceneError(None, key, expected, found)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -132,7 +128,7 @@ class PartialFactors:
     @property
     def source(self) -> str:
         table = "3.1 (ULS)" if self.limit_state == "ULS" else "3.2 (ALS)"
-        text = f"{EDITION}, Ch.2 Sec.2; seed 002 table {table}"
+        text = f"{EDITION}, Ch.2 Sec.2; Wang (2016) table {table}"
         if self.single_point_mooring:
             text += ", increased by 1.2 for a single point mooring (remark under table 3.1)"
         return text
@@ -141,7 +137,7 @@ class PartialFactors:
     def common_factor_possible(self) -> bool:
         """Whether the common factor 1.3 of the remark under table 3.1 can apply.
 
-        Not combined with the single-point-mooring increase: the seed does not say how the two
+        Not combined with the single-point-mooring increase: Wang (2016) does not say how the two
         remarks combine, so a single point mooring keeps its 1.2 x table factors.
         """
         return (self.limit_state == "ULS" and self.consequence_class == 1
@@ -151,7 +147,7 @@ class PartialFactors:
 def partial_factors(limit_state: str = "ULS", consequence_class: int = 2,
                     analysis: str = "dynamic", *, single_point_mooring: bool = False
                     ) -> PartialFactors:
-    """Partial safety factors from seed tables 3.1 (ULS) and 3.2 (ALS).
+    """Partial safety factors from Wang (2016) tables 3.1 (ULS) and 3.2 (ALS).
 
     Parameters
     ----------
@@ -170,18 +166,21 @@ def partial_factors(limit_state: str = "ULS", consequence_class: int = 2,
     """
     ls = str(limit_state).upper()
     if ls not in LIMIT_STATES:
-        raise _bad("limit_state", "one of: ULS, ALS", limit_state)
+        raise argument_error("limit_state", "one of: ULS, ALS", limit_state)
     if consequence_class not in (1, 2) or isinstance(consequence_class, bool):
-        raise _bad("consequence_class", "1 or 2 (DNV-OS-E301 ULS/ALS consequence classes)",
-                   consequence_class)
+        raise argument_error("consequence_class",
+                             "1 or 2 (DNV-OS-E301 ULS/ALS consequence classes)",
+                             consequence_class)
     an = str(analysis).lower().replace("_", "-").replace(" ", "-")
     if an == "quasistatic":
         an = "quasi-static"
     if an not in ANALYSES:
-        raise _bad("analysis", "one of: dynamic, quasi-static", analysis)
+        raise argument_error("analysis", "one of: dynamic, quasi-static", analysis)
     if single_point_mooring and ls == "ALS":
-        raise _bad("limit_state", "ULS only for a single point mooring without redundancy "
-                   "(the ALS is not applicable; remark under seed table 3.1)", limit_state)
+        raise argument_error("limit_state",
+                             "ULS only for a single point mooring without redundancy "
+                             "(the ALS is not applicable; remark under Wang (2016) "
+                             "table 3.1)", limit_state)
     gm, gd = (ULS_FACTORS if ls == "ULS" else ALS_FACTORS)[(int(consequence_class), an)]
     if single_point_mooring:
         gm, gd = gm * SPM_FACTOR, gd * SPM_FACTOR
@@ -206,9 +205,9 @@ def characteristic_strength(mbs, strength_factor: float = STRENGTH_FACTOR):
     """
     s = np.asarray(mbs, dtype=float)
     if np.any(~np.isfinite(s)) or np.any(s <= 0):
-        raise _bad("mbs", "a minimum breaking strength > 0 in N", mbs)
+        raise argument_error("mbs", "a minimum breaking strength > 0 in N", mbs)
     if not (0 < strength_factor <= 1):
-        raise _bad("strength_factor", "a factor in (0, 1]", strength_factor)
+        raise argument_error("strength_factor", "a factor in (0, 1]", strength_factor)
     out = strength_factor * s
     return float(out) if out.ndim == 0 else out
 
@@ -235,7 +234,8 @@ def design_tension(t_mean, t_dyn, factors: PartialFactors, *,
         ``common_factor_applied`` (bool), arrays of the broadcast shape.
     """
     if common_factor_rule not in ("as_written", "conservative"):
-        raise _bad("common_factor_rule", "'as_written' or 'conservative'", common_factor_rule)
+        raise argument_error("common_factor_rule",
+                             "'as_written' or 'conservative'", common_factor_rule)
     tm = np.asarray(t_mean, dtype=float)
     td = np.asarray(t_dyn, dtype=float)
     tm, td = np.broadcast_arrays(tm, td)
@@ -255,7 +255,7 @@ def design_tension(t_mean, t_dyn, factors: PartialFactors, *,
 
 
 def simple_safety_factor(mbs, t_max):
-    """Simple safety factor ``S_MBS / T_max`` (seed eq. 3.3, MIMOSA's column in figure 5.9).
+    """Simple safety factor ``S_MBS / T_max`` (Wang (2016) eq. 3.3, MIMOSA's column in figure 5.9).
 
     Parameters
     ----------
@@ -267,9 +267,9 @@ def simple_safety_factor(mbs, t_max):
     m = np.asarray(mbs, dtype=float)
     t = np.asarray(t_max, dtype=float)
     if np.any(~np.isfinite(t)) or np.any(t <= 0):
-        raise _bad("t_max", "a maximum tension > 0", t_max)
+        raise argument_error("t_max", "a maximum tension > 0", t_max)
     if np.any(~np.isfinite(m)) or np.any(m <= 0):
-        raise _bad("mbs", "a minimum breaking strength > 0", mbs)
+        raise argument_error("mbs", "a minimum breaking strength > 0", mbs)
     out = m / t
     return float(out) if out.ndim == 0 else out
 
@@ -307,11 +307,11 @@ def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_clas
     tm = np.asarray(t_mean, dtype=float)
     tc = np.asarray(t_max, dtype=float)
     if np.any(~np.isfinite(tm)) or np.any(tm < 0):
-        raise _bad("t_mean", "characteristic mean tensions >= 0 in N", t_mean)
+        raise argument_error("t_mean", "characteristic mean tensions >= 0 in N", t_mean)
     if np.any(~np.isfinite(tc)):
-        raise _bad("t_max", "finite characteristic tensions in N", t_max)
+        raise argument_error("t_max", "finite characteristic tensions in N", t_max)
     if np.any(tc < tm):
-        raise _bad("t_max", "characteristic tensions >= the mean tensions", t_max)
+        raise argument_error("t_max", "characteristic tensions >= the mean tensions", t_max)
     sc = np.asarray(characteristic_strength(mbs, strength_factor))
     td = tc - tm
     d = design_tension(tm, td, f, common_factor_rule=common_factor_rule)
@@ -375,13 +375,13 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
     lines = list(lines)
     nl = len(lines)
     if nl == 0:
-        raise _bad("lines", "at least one line", lines)
+        raise argument_error("lines", "at least one line", lines)
     if len(set(map(str, lines))) != nl:
-        raise _bad("lines", "distinct line names", lines)
+        raise argument_error("lines", "distinct line names", lines)
     cases = [("ULS", uls_mean, uls_max)]
     if (als_mean is None) != (als_max is None):
-        raise _bad("als_max" if als_max is None else "als_mean",
-                   "both ALS mean and ALS characteristic tensions, or neither", None)
+        raise argument_error("als_max" if als_max is None else "als_mean",
+                             "both ALS mean and ALS characteristic tensions, or neither", None)
     if als_mean is not None:
         cases.append(("ALS", als_mean, als_max))
     mbs_arr = np.broadcast_to(np.asarray(mbs, dtype=float), (nl,))
@@ -392,12 +392,13 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
         tc = np.asarray(tc, dtype=float)
         for key, arr in (("mean", tm), ("max", tc)):
             if arr.shape != (nl,):
-                raise _bad(f"{ls.lower()}_{key}", f"{nl} values (one per line)",
-                           f"shape {arr.shape}")
+                raise argument_error(f"{ls.lower()}_{key}", f"{nl} values (one per line)",
+                                     f"shape {arr.shape}")
         checked = np.isfinite(tm) & np.isfinite(tc)
         if ls == "ULS" and not checked.all():
-            raise _bad("uls_max", "finite ULS tensions for every line (the intact system)",
-                       "NaN")
+            raise argument_error("uls_max",
+                                 "finite ULS tensions for every line (the intact system)",
+                                 "NaN")
         r = line_check(np.where(checked, tm, 0.0), np.where(checked, tc, 1.0), mbs_arr,
                        limit_state=ls, consequence_class=consequence_class, analysis=analysis,
                        strength_factor=strength_factor,
@@ -451,7 +452,7 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
 
 def characteristic_tensions(seed_max, seed_mean, *, p: float = 0.9, method: str = "mle"
                             ) -> xr.Dataset:
-    """Characteristic tensions per line from time-domain seeds (seed section 5.4.4).
+    """Characteristic tensions per line from time-domain seeds (Wang (2016) section 5.4.4).
 
     Parameters
     ----------
@@ -461,7 +462,7 @@ def characteristic_tensions(seed_max, seed_mean, *, p: float = 0.9, method: str 
     seed_mean : xarray.DataArray
         Per-seed mean tension, dims ``(seed, line)``, in N.
     p : float
-        Gumbel fractile taken as the characteristic tension (0.9 as the seed; ``1/e`` for
+        Gumbel fractile taken as the characteristic tension (0.9 as Wang (2016); ``1/e`` for
         the most probable maximum).
     method : str
         Gumbel fit method, ``"mle"`` or ``"moments"``.
@@ -475,8 +476,8 @@ def characteristic_tensions(seed_max, seed_mean, *, p: float = 0.9, method: str 
     """
     for key, da in (("seed_max", seed_max), ("seed_mean", seed_mean)):
         if not isinstance(da, xr.DataArray) or set(da.dims) != {"seed", "line"}:
-            raise _bad(key, "a DataArray with dims (seed, line)",
-                       getattr(da, "dims", type(da).__name__))
+            raise argument_error(key, "a DataArray with dims (seed, line)",
+                                 getattr(da, "dims", type(da).__name__))
     seed_max = seed_max.transpose("seed", "line")
     seed_mean = seed_mean.transpose("seed", "line")
     lines = seed_max["line"].values if "line" in seed_max.coords else np.arange(seed_max.shape[1])

@@ -1,7 +1,7 @@
 """Extreme-value statistics: Gumbel fits to per-seed maxima, Weibull fits to peaks, Rayleigh maxima.
 
 Gumbel (type I largest) distribution, ``F(x) = exp(-exp(-(x - loc) / scale))``, as
-:data:`scipy.stats.gumbel_r`.  Seed ``002_783d33d2c304eef8.txt`` section 5.4.4 fits the 3-hour
+:data:`scipy.stats.gumbel_r`.  Wang (2016) section 5.4.4 fits the 3-hour
 maxima of 20 seeds and takes the 90 % fractile as the characteristic value.
 
 * fractile: ``x_p = loc - scale ln(-ln p)``; most probable maximum (mode) ``= loc``
@@ -19,11 +19,11 @@ maxima of 20 seeds and takes the 90 % fractile as the characteristic value.
   excess kurtosis 12/5, giving 1.1678, 1.1000 and 0.0959.  For 20 seeds they are rough; the
   bootstrap interval is the better statement of uncertainty.
 
-Rayleigh maxima (frequency domain, seed eq. 2.43 and 2.48): for ``N`` Rayleigh peaks with
+Rayleigh maxima (frequency domain, Wang (2016) eq. 2.43 and 2.48): for ``N`` Rayleigh peaks with
 parameter ``sigma`` (the standard deviation of a narrow-band Gaussian process),
 ``P(peak > a) = exp(-a^2 / (2 sigma^2))`` and the largest of ``N`` has
 
-* most probable value ``sigma sqrt(2 ln N)`` (asymptotic, the seed's formula),
+* most probable value ``sigma sqrt(2 ln N)`` (asymptotic, Wang's (2016) formula),
 * expected value ``sigma (sqrt(2 ln N) + gamma / sqrt(2 ln N))`` (asymptotic),
 * fractile ``p``: ``sigma sqrt(-2 ln(1 - p^(1/N)))`` (exact for independent peaks).
 """
@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import special, stats
 
-from ..core.errors import ConvergenceError, FloatmoorWarning, SceneError
+from ..core.errors import ConvergenceError, FloatmoorWarning, argument_error
 
 __all__ = [
     "EULER_GAMMA", "GumbelFit", "gumbel_fit", "gumbel_reduced_variate", "WeibullFit",
@@ -73,15 +73,11 @@ _MOM_COV = _moments_cov()
 _METHODS = ("mle", "moments")
 
 
-def _bad(key, expected, found):
-    return SceneError(None, key, expected, found)
-
-
 def gumbel_reduced_variate(p):
     """Gumbel reduced variate ``y = -ln(-ln p)`` of a non-exceedance probability ``p``."""
     p = np.asarray(p, dtype=float)
     if np.any(~((p > 0) & (p < 1))):
-        raise _bad("p", "probabilities strictly between 0 and 1", p)
+        raise argument_error("p", "probabilities strictly between 0 and 1", p)
     return -np.log(-np.log(p))
 
 
@@ -132,13 +128,14 @@ def _validate_sample(maxima, key="maxima", min_n=3) -> np.ndarray:
     if x.ndim != 1:
         x = np.squeeze(x)
     if x.ndim != 1:
-        raise _bad(key, "a 1-D sample (one value per seed)", f"shape {x.shape}")
+        raise argument_error(key, "a 1-D sample (one value per seed)", f"shape {x.shape}")
     if x.size < min_n:
-        raise _bad(key, f"at least {min_n} values", x.size)
+        raise argument_error(key, f"at least {min_n} values", x.size)
     if not np.all(np.isfinite(x)):
-        raise _bad(key, "finite values", "NaN or inf in the sample")
+        raise argument_error(key, "finite values", "NaN or inf in the sample")
     if np.ptp(x) <= 1e-12 * max(1.0, float(np.max(np.abs(x)))):
-        raise _bad(key, "values that differ (a Gumbel fit needs spread)", "identical values")
+        raise argument_error(key,
+                             "values that differ (a Gumbel fit needs spread)", "identical values")
     return x
 
 
@@ -183,7 +180,7 @@ class GumbelFit:
 
     @property
     def p90(self) -> float:
-        """90 % fractile (seed 002, section 5.4.4)."""
+        """90 % fractile (Wang (2016), section 5.4.4)."""
         return float(self.fractile(0.9))
 
     @property
@@ -233,9 +230,9 @@ class GumbelFit:
             Interval limits in the unit of the data.
         """
         if not (0 < level < 1):
-            raise _bad("level", "a confidence level between 0 and 1", level)
+            raise argument_error("level", "a confidence level between 0 and 1", level)
         if int(n_boot) != n_boot or n_boot < 50:
-            raise _bad("n_boot", "an integer >= 50", n_boot)
+            raise argument_error("n_boot", "an integer >= 50", n_boot)
         y = gumbel_reduced_variate(p)
         rng = np.random.default_rng(seed)
         n = self.n
@@ -245,7 +242,7 @@ class GumbelFit:
         elif kind == "nonparametric":
             sample = self.data[rng.integers(0, n, size=(int(n_boot), n))]
         else:
-            raise _bad("kind", "'parametric' or 'nonparametric'", kind)
+            raise argument_error("kind", "'parametric' or 'nonparametric'", kind)
         spread = np.ptp(sample, axis=1) > 0
         sample = sample[spread]
         fit = _fit_mle if self.method == "mle" else _fit_moments
@@ -278,7 +275,8 @@ class GumbelFit:
         elif plotting_position == "weibull":
             pp = i / (x.size + 1.0)
         else:
-            raise _bad("plotting_position", "'gringorten' or 'weibull'", plotting_position)
+            raise argument_error("plotting_position",
+                                 "'gringorten' or 'weibull'", plotting_position)
         y = -np.log(-np.log(pp))
         ly = np.linspace(min(y.min(), -1.0) - 0.3, max(y.max(), gumbel_reduced_variate(0.9)) + 0.3,
                          50)
@@ -326,12 +324,12 @@ def gumbel_fit(maxima, method: str = "mle") -> GumbelFit:
     GumbelFit
     """
     if method not in _METHODS:
-        raise _bad("method", "one of: " + ", ".join(_METHODS), method)
+        raise argument_error("method", "one of: " + ", ".join(_METHODS), method)
     x = _validate_sample(maxima)
     if x.size < 10:
         import warnings
         warnings.warn(f"Gumbel fit to only {x.size} maxima: the fractiles are very uncertain "
-                      "(the seed uses 20 seeds)", FloatmoorWarning, stacklevel=2)
+                      "(Wang (2016) uses 20 seeds)", FloatmoorWarning, stacklevel=2)
     if method == "mle":
         loc, scale = _fit_mle(x[None, :])
         cov_unit = _MLE_COV
@@ -365,7 +363,7 @@ class WeibullFit:
 
     def _check_n(self, n_peaks):
         if not (np.all(np.isfinite(n_peaks)) and np.all(np.asarray(n_peaks) > 1)):
-            raise _bad("n_peaks", "a number of peaks > 1", n_peaks)
+            raise argument_error("n_peaks", "a number of peaks > 1", n_peaks)
 
     def mpm(self, n_peaks):
         """Most probable largest of ``n_peaks`` independent peaks (asymptotic):
@@ -409,10 +407,10 @@ def weibull_fit(peaks, *, loc: float | None = 0.0, threshold: float | None = Non
     if threshold is not None:
         x = x[x > threshold]
         if x.size < 10:
-            raise _bad("threshold", "a threshold leaving at least 10 peaks", threshold)
+            raise argument_error("threshold", "a threshold leaving at least 10 peaks", threshold)
     if loc is not None:
         if np.any(x <= loc):
-            raise _bad("loc", "a location below every peak", loc)
+            raise argument_error("loc", "a location below every peak", loc)
         shape, floc, scale = stats.weibull_min.fit(x, floc=float(loc))
     else:
         shape, floc, scale = stats.weibull_min.fit(x)
@@ -432,7 +430,7 @@ def rayleigh_max(sigma, n, kind: str = "mpm", p: float = 0.9):
     n : float or array_like
         Number of peaks (cycles) in the duration, e.g. :func:`n_cycles`.
     kind : str
-        ``"mpm"`` most probable maximum ``sigma sqrt(2 ln N)`` (seed eq. 2.43 / 2.48);
+        ``"mpm"`` most probable maximum ``sigma sqrt(2 ln N)`` (Wang (2016) eq. 2.43 / 2.48);
         ``"expected"`` ``sigma (sqrt(2 ln N) + gamma / sqrt(2 ln N))``;
         ``"fractile"`` exact fractile ``p`` of the largest, ``sigma sqrt(-2 ln(1 - p^(1/N)))``.
     p : float
@@ -446,9 +444,9 @@ def rayleigh_max(sigma, n, kind: str = "mpm", p: float = 0.9):
     s = np.asarray(sigma, dtype=float)
     nn = np.asarray(n, dtype=float)
     if np.any(~np.isfinite(s)) or np.any(s < 0):
-        raise _bad("sigma", "a standard deviation >= 0", sigma)
+        raise argument_error("sigma", "a standard deviation >= 0", sigma)
     if np.any(~np.isfinite(nn)) or np.any(nn <= 1):
-        raise _bad("n", "a number of peaks > 1", n)
+        raise argument_error("n", "a number of peaks > 1", n)
     if kind == "mpm":
         out = s * np.sqrt(2.0 * np.log(nn))
     elif kind == "expected":
@@ -458,16 +456,16 @@ def rayleigh_max(sigma, n, kind: str = "mpm", p: float = 0.9):
         gumbel_reduced_variate(p)  # validates p
         out = s * np.sqrt(-2.0 * np.log(-np.expm1(np.log(p) / nn)))
     else:
-        raise _bad("kind", "one of: mpm, expected, fractile", kind)
+        raise argument_error("kind", "one of: mpm, expected, fractile", kind)
     return float(out) if out.ndim == 0 else out
 
 
 def significant_value(sigma):
-    """Significant value ``2 sigma`` (seed eq. 2.42 / 2.47; mean of the highest third of
-    Rayleigh peaks, exactly 2.0027 sigma, rounded to 2 sigma as MIMOSA and the seed do)."""
+    """Significant value ``2 sigma`` (Wang (2016) eq. 2.42 / 2.47; mean of the highest third of
+    Rayleigh peaks, exactly 2.0027 sigma, rounded to 2 sigma as MIMOSA and Wang (2016) do)."""
     s = np.asarray(sigma, dtype=float)
     if np.any(~np.isfinite(s)) or np.any(s < 0):
-        raise _bad("sigma", "a standard deviation >= 0", sigma)
+        raise argument_error("sigma", "a standard deviation >= 0", sigma)
     out = 2.0 * s
     return float(out) if out.ndim == 0 else out
 
@@ -485,8 +483,8 @@ def n_cycles(duration, tz):
     d = np.asarray(duration, dtype=float)
     t = np.asarray(tz, dtype=float)
     if np.any(~np.isfinite(d)) or np.any(d <= 0):
-        raise _bad("duration", "a duration > 0 in s", duration)
+        raise argument_error("duration", "a duration > 0 in s", duration)
     if np.any(~np.isfinite(t)) or np.any(t <= 0):
-        raise _bad("tz", "a mean up-crossing period > 0 in s", tz)
+        raise argument_error("tz", "a mean up-crossing period > 0 in s", tz)
     out = d / t
     return float(out) if out.ndim == 0 else out

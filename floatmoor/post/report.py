@@ -15,10 +15,11 @@ governing line highlighted, offsets and motions, and, with ``fd=``, the frequenc
 and safety factors beside the time-domain Gumbel values.  Plots: governing-line time series (the
 seed with its largest maximum), Gumbel plot, tension per line, offset.
 
-Method (seed ``002_783d33d2c304eef8.txt`` section 5.4.4 and chapter 3): per seed, statistics in
+Method (Wang (2016) section 5.4.4 and chapter 3): per seed, statistics in
 the window (default: from the results' ``transient`` attribute); per line, a Gumbel fit of the
 seed maxima; the characteristic tension is its 90 %
-fractile; the design check is DNV-OS-E301 eq. 3.4 with the partial factors of
+fractile; the design check is the DNV-OS-E301 design equation (DNV (2008); Wang (2016)
+eq. 3.4) with the partial factors of
 :mod:`floatmoor.post.dnv_os_e301`.  Plots need matplotlib (optional); without it the report has
 tables only and says so.
 """
@@ -36,7 +37,7 @@ from typing import Sequence
 import numpy as np
 import xarray as xr
 
-from ..core.errors import SceneError
+from ..core.errors import SceneError, argument_error
 from . import dnv_os_e301 as dnv
 from .extremes import gumbel_fit
 from .timeseries import DEFAULT_CUTOFF_HZ, per_seed_statistics, window
@@ -44,10 +45,6 @@ from .timeseries import DEFAULT_CUTOFF_HZ, per_seed_statistics, window
 __all__ = ["ReportFiles", "build_report", "summarise"]
 
 _KN = 1e-3
-
-
-def _bad(key, expected, found):
-    return SceneError(None, key, expected, found)
 
 
 @dataclass(frozen=True)
@@ -74,19 +71,20 @@ def _version() -> str:
 def _check_results(results, key):
     results = list(results)
     if not results:
-        raise _bad(key, "at least one per-seed result Dataset", "none")
+        raise argument_error(key, "at least one per-seed result Dataset", "none")
     for i, ds in enumerate(results):
         if not isinstance(ds, xr.Dataset):
-            raise _bad(f"{key}[{i}]", "an xarray Dataset", type(ds).__name__)
+            raise argument_error(f"{key}[{i}]", "an xarray Dataset", type(ds).__name__)
         if "line_tension" not in ds:
-            raise _bad(f"{key}[{i}]", "a 'line_tension(time, line)' variable",
-                       list(map(str, ds.data_vars)))
+            raise argument_error(f"{key}[{i}]", "a 'line_tension(time, line)' variable",
+                                 list(map(str, ds.data_vars)))
         unit = ds["line_tension"].attrs.get("units", "N")
         if unit != "N":
-            raise _bad(f"{key}[{i}].line_tension.units", "'N'", unit)
+            raise argument_error(f"{key}[{i}].line_tension.units", "'N'", unit)
     if len(results) < 3:
-        raise _bad(key, "results of at least 3 seeds for a Gumbel fit (the seed uses 20)",
-                   len(results))
+        raise argument_error(key, "results of at least 3 seeds for a Gumbel fit "
+                                  "(Wang (2016) uses 20)",
+                             len(results))
     return results
 
 
@@ -191,8 +189,8 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
         astats = per_seed_statistics(als_results, start=als_start, end=end, cutoff=cutoff,
                                      variables=["line_tension"])
         if list(astats["line"].values) != lines:
-            raise _bad("als_results", f"the same lines as the intact results {lines}",
-                       list(astats["line"].values))
+            raise argument_error("als_results", f"the same lines as the intact results {lines}",
+                                 list(astats["line"].values))
         if failed_lines is None:
             attr = als_results[0].attrs.get("failed_lines")
             if attr is not None:
@@ -200,12 +198,13 @@ def summarise(results: Sequence[xr.Dataset], mbs, *, als_results: Sequence[xr.Da
             else:
                 failed_lines = detect_failed_lines(als_results)
                 if not failed_lines:
-                    raise _bad("als_results", "results with a failed line (a line whose "
-                               "tension is zero at the end of every ALS seed), or the failed "
-                               "line named (failed_lines)", "no failed line found")
+                    raise argument_error("als_results",
+                                         "results with a failed line (a line whose tension is "
+                                         "zero at the end of every ALS seed), or the failed "
+                                         "line named (failed_lines)", "no failed line found")
         failed = {str(f) for f in failed_lines}
         if not failed <= {str(ln) for ln in lines}:
-            raise _bad("failed_lines", f"names of lines among {lines}", sorted(failed))
+            raise argument_error("failed_lines", f"names of lines among {lines}", sorted(failed))
         alive = np.array([str(ln) not in failed for ln in lines])
         sub_max = astats["line_tension_max"].isel(line=np.flatnonzero(alive))
         sub_mean = astats["line_tension_mean"].isel(line=np.flatnonzero(alive))
@@ -426,7 +425,8 @@ def _motion_table(stats):
 
 
 def _fd_lines_table(fd, checks, ct, stats):
-    """Frequency-domain line tensions (seed figure 5.9 columns) beside the TD Gumbel values."""
+    """Frequency-domain line tensions (Wang (2016) figure 5.9 columns) beside the TD Gumbel
+    values."""
     c = checks.sel(limit_state="ULS")
     header = ["line", "TD mean [kN]", "FD static [kN]", "TD Gumbel MPM [kN]",
               "TD Gumbel 90% [kN]", "FD max total [kN]", "FD max / TD MPM",
@@ -448,15 +448,15 @@ def _fd_lines_table(fd, checks, ct, stats):
         rows.append(row)
         hl.append(bool(c["governing"].values[j]))
     dur = fd.attrs.get("duration", float("nan"))
-    caption = (f"Frequency domain beside time domain: per-line maximum tension (FD: eq. 2.49 "
-               f"with Rayleigh maxima over {_fmt(float(dur), 0)} s, the columns of seed figure "
-               f"5.9; TD: Gumbel fit of the seed maxima over the statistics window "
+    caption = (f"Frequency domain beside time domain: per-line maximum tension (FD: Wang (2016) "
+               f"eq. 2.49 with Rayleigh maxima over {_fmt(float(dur), 0)} s, the columns of its "
+               f"figure 5.9; TD: Gumbel fit of the seed maxima over the statistics window "
                f"{stats.attrs['window_start_s']:g} - {stats.attrs['window_end_s']:g} s)")
     return _Table("fd_lines", caption, header, rows, highlight=hl)
 
 
 def _fd_offsets_table(fd, stats):
-    """Frequency-domain motions (mean, eq. 2.49 max/min) beside the TD statistics."""
+    """Frequency-domain motions (mean, Wang (2016) eq. 2.49 max/min) beside the TD statistics."""
     if "motion_mean" not in stats:
         return None
     header = ["DOF", "unit", "TD mean", "FD mean", "TD Gumbel MPM of max", "TD Gumbel 90% of max",
@@ -475,24 +475,26 @@ def _fd_offsets_table(fd, stats):
                      _fmt(float(np.min(stats["motion_min"].values[:, j])) * f, 3),
                      _fmt(float(fd["min_total"].values[i]) * f, 3)])
     return _Table("fd_offsets", "Offsets, frequency domain beside time domain: FD mean = static "
-                  "equilibrium, FD max/min total = eq. 2.49; TD as in the offsets table",
+                  "equilibrium, FD max/min total = Wang (2016) eq. 2.49; TD as in the offsets "
+                  "table",
                   header, rows)
 
 
 def _check_fd(fd, lines):
     if not isinstance(fd, xr.Dataset):
-        raise _bad("fd", "a frequency-domain result Dataset (floatmoor fd --out)",
-                   type(fd).__name__)
+        raise argument_error("fd", "a frequency-domain result Dataset (floatmoor fd --out)",
+                             type(fd).__name__)
     need = ("tension_static", "tension_max_total", "safety_factor", "mean", "max_total",
             "min_total")
     missing = [v for v in need if v not in fd]
     if missing or "line" not in fd.dims:
-        raise _bad("fd", "a floatmoor frequency-domain result (variables "
-                   + ", ".join(need) + " over 'line' and 'dof')", f"missing {missing}")
+        raise argument_error("fd", "a floatmoor frequency-domain result (variables "
+                             + ", ".join(need) + " over 'line' and 'dof')", f"missing {missing}")
     fd_lines = sorted(map(str, fd["line"].values))
     if fd_lines != sorted(map(str, lines)):
-        raise _bad("fd.line", f"the lines of the time-domain results {list(map(str, lines))}",
-                   fd_lines)
+        raise argument_error("fd.line",
+                             f"the lines of the time-domain results {list(map(str, lines))}",
+                             fd_lines)
 
 
 def _png(fig) -> bytes:

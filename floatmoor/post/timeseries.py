@@ -1,11 +1,11 @@
 """Time-series post-processing: window, LF/WF separation, channel statistics, up-crossing peaks.
 
-The quantities follow seed ``002_783d33d2c304eef8.txt`` (Wang 2016), section 5.4.4:
+The quantities follow Wang (2016), section 5.4.4:
 
 * a *window* removes the start-up transient (SIMO's "window" filter, 1200 s to 12000 s there);
 * the low-frequency (LF) and wave-frequency (WF) parts are separated with a cut-off of
   1/30 Hz ("LF period range T > 30 s, WF period range T = 5 - 30 s");
-* ``lf_max`` is the maximum of the low-pass filtered signal **including the mean** (the seed's
+* ``lf_max`` is the maximum of the low-pass filtered signal **including the mean** (Wang's (2016)
   ``LF_max``: in its table 7.2 the wind-only case has mean 6.42 m, LF_max 11.93 m and max 12.28 m,
   so LF_max cannot exclude the mean);
 * ``wf_sig`` is the significant WF value, ``2 * std`` of the WF part (eq. 2.42: the mean of the
@@ -44,7 +44,7 @@ import numpy as np
 import xarray as xr
 from scipy import signal
 
-from ..core.errors import SceneError
+from ..core.errors import argument_error
 
 __all__ = [
     "DEFAULT_CUTOFF_HZ", "STATISTICS", "lowpass", "split_lf_wf", "window", "sample_interval",
@@ -53,7 +53,7 @@ __all__ = [
 ]
 
 DEFAULT_CUTOFF_HZ = 1.0 / 30.0
-"""LF/WF cut-off frequency in Hz (seed 002, section 5.4.4: 0.03333 1/s)."""
+"""LF/WF cut-off frequency in Hz (Wang (2016), section 5.4.4: 0.03333 1/s)."""
 
 # name -> (long-name template, unit: None = unit of the channel)
 STATISTICS: dict[str, tuple[str, str | None]] = {
@@ -65,28 +65,26 @@ STATISTICS: dict[str, tuple[str, str | None]] = {
     "lf_min": ("minimum of low-pass filtered {} (mean included)", None),
     "lf_std": ("standard deviation of the LF part of {}", None),
     "wf_std": ("standard deviation of the WF part of {}", None),
-    "wf_sig": ("significant WF value of {} (2 x WF std, seed eq. 2.42)", None),
+    "wf_sig": ("significant WF value of {} (2 x WF std, Wang (2016) eq. 2.42)", None),
     "wf_max": ("maximum of the WF part of {}", None),
     "tz": ("mean zero up-crossing period of {} about its mean", "s"),
     "n_cycles": ("number of mean up-crossings of {}", "1"),
 }
 
 
-def _bad(key, expected, found):
-    return SceneError(None, key, expected, found)
-
-
 def _check_cutoff(cutoff, dt, n):
     if not (np.isfinite(cutoff) and cutoff > 0):
-        raise _bad("cutoff", "a cut-off frequency > 0 in Hz", cutoff)
+        raise argument_error("cutoff", "a cut-off frequency > 0 in Hz", cutoff)
     nyquist = 0.5 / dt
     if cutoff >= nyquist:
-        raise _bad("cutoff", f"a cut-off frequency below the Nyquist frequency {nyquist:g} Hz "
-                   f"(dt = {dt:g} s)", cutoff)
+        raise argument_error("cutoff",
+                             f"a cut-off frequency below the Nyquist frequency {nyquist:g} Hz "
+                             f"(dt = {dt:g} s)", cutoff)
     duration = (n - 1) * dt
     if duration < 2.0 / cutoff:
-        raise _bad("cutoff", f"a record at least two cut-off periods long ({2.0 / cutoff:g} s) "
-                   f"to separate LF from WF", f"a record of {duration:g} s")
+        raise argument_error("cutoff",
+                             f"a record at least two cut-off periods long ({2.0 / cutoff:g} s) "
+                             f"to separate LF from WF", f"a record of {duration:g} s")
 
 
 def lowpass(x, dt: float, cutoff: float = DEFAULT_CUTOFF_HZ, *, order: int = 4, axis: int = -1):
@@ -112,13 +110,13 @@ def lowpass(x, dt: float, cutoff: float = DEFAULT_CUTOFF_HZ, *, order: int = 4, 
     """
     x = np.asarray(x, dtype=float)
     if not (np.isfinite(dt) and dt > 0):
-        raise _bad("dt", "a sample interval > 0 in s", dt)
+        raise argument_error("dt", "a sample interval > 0 in s", dt)
     if int(order) != order or order < 1:
-        raise _bad("order", "an integer filter order >= 1", order)
+        raise argument_error("order", "an integer filter order >= 1", order)
     n = x.shape[axis]
     _check_cutoff(cutoff, dt, n)
     if not np.all(np.isfinite(x)):
-        raise _bad("x", "finite samples", "NaN or inf in the signal")
+        raise argument_error("x", "finite samples", "NaN or inf in the signal")
     sos = signal.butter(int(order), cutoff, btype="lowpass", fs=1.0 / dt, output="sos")
     padlen = int(min(n - 1, math.ceil(3.0 / (cutoff * dt))))
     mean = x.mean(axis=axis, keepdims=True)
@@ -138,7 +136,7 @@ def split_lf_wf(x, dt: float, cutoff: float = DEFAULT_CUTOFF_HZ, *, order: int =
     dt : float
         Sample interval in s.
     cutoff : float
-        Cut-off frequency in Hz (default 1/30 Hz, seed 002 section 5.4.4).
+        Cut-off frequency in Hz (default 1/30 Hz, Wang (2016) section 5.4.4).
     order : int
         Butterworth order of one pass.
     axis : int
@@ -158,12 +156,12 @@ def sample_interval(time) -> float:
     """Uniform sample interval of a time vector in s; SceneError if it is not uniform."""
     t = np.asarray(time, dtype=float)
     if t.ndim != 1 or t.size < 3:
-        raise _bad("time", "a 1-D time vector of at least 3 samples", f"shape {t.shape}")
+        raise argument_error("time", "a 1-D time vector of at least 3 samples", f"shape {t.shape}")
     d = np.diff(t)
     dt = float(np.mean(d))
     if not (dt > 0) or np.max(np.abs(d - dt)) > 1e-6 * dt + 1e-9:
-        raise _bad("time", "uniformly increasing sample times",
-                   f"steps between {d.min():g} and {d.max():g} s")
+        raise argument_error("time", "uniformly increasing sample times",
+                             f"steps between {d.min():g} and {d.max():g} s")
     return dt
 
 
@@ -184,10 +182,10 @@ def window(obj, start: float | None = None, end: float | None = None, *, time=No
     Same type as ``obj`` (numpy input returns ``(x_windowed, time_windowed)``).
     """
     if start is not None and end is not None and end <= start:
-        raise _bad("end", f"a window end after its start ({start:g} s)", end)
+        raise argument_error("end", f"a window end after its start ({start:g} s)", end)
     if isinstance(obj, (xr.Dataset, xr.DataArray)):
         if "time" not in obj.dims:
-            raise _bad("time", "a 'time' dimension", f"dims {tuple(obj.dims)}")
+            raise argument_error("time", "a 'time' dimension", f"dims {tuple(obj.dims)}")
         t = obj["time"].values
         keep = np.ones(t.shape, bool)
         if start is not None:
@@ -195,23 +193,24 @@ def window(obj, start: float | None = None, end: float | None = None, *, time=No
         if end is not None:
             keep &= t <= end + 1e-9
         if keep.sum() < 3:
-            raise _bad("start", f"a window holding samples (record {t[0]:g} - {t[-1]:g} s)",
-                       (start, end))
+            raise argument_error("start",
+                                 f"a window holding samples (record {t[0]:g} - {t[-1]:g} s)",
+                                 (start, end))
         return obj.isel(time=np.flatnonzero(keep))
     if time is None:
-        raise _bad("time", "a time vector for numpy input", None)
+        raise argument_error("time", "a time vector for numpy input", None)
     x = np.asarray(obj)
     t = np.asarray(time, dtype=float)
     if x.shape[-1] != t.size:
-        raise _bad("time", f"{x.shape[-1]} sample times (last axis of the data)", t.size)
+        raise argument_error("time", f"{x.shape[-1]} sample times (last axis of the data)", t.size)
     keep = np.ones(t.shape, bool)
     if start is not None:
         keep &= t >= start - 1e-9
     if end is not None:
         keep &= t <= end + 1e-9
     if keep.sum() < 3:
-        raise _bad("start", f"a window holding samples (record {t[0]:g} - {t[-1]:g} s)",
-                   (start, end))
+        raise argument_error("start", f"a window holding samples (record {t[0]:g} - {t[-1]:g} s)",
+                             (start, end))
     return x[..., keep], t[keep]
 
 
@@ -262,9 +261,9 @@ def upcrossing_peaks(x, level: float | None = None) -> Peaks:
     """
     x = np.asarray(x, dtype=float)
     if x.ndim != 1:
-        raise _bad("x", "a 1-D signal", f"shape {x.shape}")
+        raise argument_error("x", "a 1-D signal", f"shape {x.shape}")
     if not np.all(np.isfinite(x)):
-        raise _bad("x", "finite samples", "NaN or inf in the signal")
+        raise argument_error("x", "finite samples", "NaN or inf in the signal")
     lev = float(x.mean()) if level is None else float(level)
     above = x >= lev
     up = np.flatnonzero(~above[:-1] & above[1:]) + 1
@@ -320,7 +319,7 @@ def channel_statistics(x, dt: float, *, cutoff: float = DEFAULT_CUTOFF_HZ, order
     xw, lfw, wfw = x2[:, sl], lf[:, sl], wf[:, sl]
     n = xw.shape[1]
     if n < 3:
-        raise _bad("start", "a window of at least 3 samples", f"{n} samples")
+        raise argument_error("start", "a window of at least 3 samples", f"{n} samples")
     mean = xw.mean(axis=1)
     ncross = _upcrossings_count(xw, mean[:, None])
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -351,13 +350,14 @@ def _time_variables(ds: xr.Dataset, variables):
         names = list(variables)
         for name in names:
             if name not in ds.data_vars:
-                raise _bad("variables", "names of variables in the results: "
+                raise argument_error("variables", "names of variables in the results: "
                             + ", ".join(map(str, ds.data_vars)), name)
             if "time" not in ds[name].dims:
-                raise _bad(name, "a variable with a 'time' dimension", f"dims {ds[name].dims}")
+                raise argument_error(name,
+                                     "a variable with a 'time' dimension", f"dims {ds[name].dims}")
     if not names:
-        raise _bad("variables", "at least one variable with a 'time' dimension",
-                   list(map(str, ds.data_vars)))
+        raise argument_error("variables", "at least one variable with a 'time' dimension",
+                             list(map(str, ds.data_vars)))
     return names
 
 
@@ -393,10 +393,10 @@ def statistics(data, *, start: float | None = None, end: float | None = None,
     elif isinstance(data, xr.Dataset):
         ds = data
     else:
-        raise _bad("data", "an xarray Dataset or DataArray with a 'time' dimension",
-                   type(data).__name__)
+        raise argument_error("data", "an xarray Dataset or DataArray with a 'time' dimension",
+                             type(data).__name__)
     if "time" not in ds.dims:
-        raise _bad("time", "a 'time' dimension", f"dims {tuple(ds.dims)}")
+        raise argument_error("time", "a 'time' dimension", f"dims {tuple(ds.dims)}")
     t = ds["time"].values.astype(float)
     dt = sample_interval(t)
     keep = np.ones(t.shape, bool)
@@ -406,8 +406,8 @@ def statistics(data, *, start: float | None = None, end: float | None = None,
         keep &= t <= end + 1e-9
     idx = np.flatnonzero(keep)
     if idx.size < 3:
-        raise _bad("start", f"a window holding samples (record {t[0]:g} - {t[-1]:g} s)",
-                   (start, end))
+        raise argument_error("start", f"a window holding samples (record {t[0]:g} - {t[-1]:g} s)",
+                             (start, end))
     i0, i1 = int(idx[0]), int(idx[-1]) + 1
 
     data_vars, all_coords = {}, {}
@@ -415,8 +415,8 @@ def statistics(data, *, start: float | None = None, end: float | None = None,
         da = ds[name].transpose(..., "time")
         if not np.all(np.isfinite(da.values)):
             bad = np.argwhere(~np.isfinite(da.values))[0]
-            raise _bad(name, "finite samples",
-                       f"NaN or inf at t = {t[bad[-1]]:g} s (index {tuple(bad)})")
+            raise argument_error(name, "finite samples",
+                                 f"NaN or inf at t = {t[bad[-1]]:g} s (index {tuple(bad)})")
         stats = channel_statistics(da.values, dt, cutoff=cutoff, order=order,
                                    start_index=i0, stop_index=i1)
         other = [d for d in da.dims if d != "time"]
@@ -467,9 +467,9 @@ def per_seed_statistics(datasets: Iterable, **kwargs) -> xr.Dataset:
         stats.append(s)
         seeds.append(int(ds.attrs["seed"]) if "seed" in ds.attrs else i)
     if not stats:
-        raise _bad("datasets", "at least one result Dataset", "none")
+        raise argument_error("datasets", "at least one result Dataset", "none")
     if len(set(seeds)) != len(seeds):
-        raise _bad("datasets", "results with distinct 'seed' attributes", seeds)
+        raise argument_error("datasets", "results with distinct 'seed' attributes", seeds)
     out = xr.concat(stats, dim="seed", combine_attrs="drop_conflicts")
     out = out.assign_coords(seed=("seed", np.asarray(seeds)))
     out["seed"].attrs.update({"long_name": "wave seed", "units": "1"})
@@ -496,19 +496,21 @@ def seed_maxima(datasets: Iterable, variable: str = "line_tension", **kwargs) ->
     maxima, seeds = [], []
     start, end = kwargs.pop("start", None), kwargs.pop("end", None)
     if kwargs:
-        raise _bad("kwargs", "only start and end", sorted(kwargs))
+        raise argument_error("kwargs", "only start and end", sorted(kwargs))
     for i, ds in enumerate(datasets):
         if variable not in ds:
-            raise _bad("variable", "a variable of the results: " + ", ".join(map(str, ds.data_vars)),
-                       variable)
+            raise argument_error("variable",
+                                 "a variable of the results: " + ", ".join(map(str, ds.data_vars)),
+                                 variable)
         da = window(ds[variable], start, end)
         if not np.all(np.isfinite(da.values)):
-            raise _bad(variable, "finite samples", f"NaN or inf in seed {ds.attrs.get('seed', i)}")
+            raise argument_error(variable,
+                                 "finite samples", f"NaN or inf in seed {ds.attrs.get('seed', i)}")
         m = da.max("time")
         maxima.append(m)
         seeds.append(int(ds.attrs["seed"]) if "seed" in ds.attrs else i)
     if not maxima:
-        raise _bad("datasets", "at least one result Dataset", "none")
+        raise argument_error("datasets", "at least one result Dataset", "none")
     out = xr.concat(maxima, dim="seed").assign_coords(seed=("seed", np.asarray(seeds)))
     out.name = f"{variable}_max"
     out.attrs = {"units": str(ds[variable].attrs.get("units", "1")),

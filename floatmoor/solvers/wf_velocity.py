@@ -1,7 +1,7 @@
 """The linear first-order (wave-frequency) body velocity of a run, for the wind and current
 relative velocity.
 
-Seed 002 writes the wind and current forces on the hull with the velocity of the flow relative
+Wang (2016) writes the wind and current forces on the hull with the velocity of the flow relative
 to the **low-frequency** body motion (eq. 2.24 and 2.26)::
 
     Q_wi = C_wi [(U + u(t)) - x'_LF]^2,        Q_cu = C_cu (V - x'_LF) |V - x'_LF|
@@ -13,7 +13,7 @@ holds only the total velocity, so the standard separation is used: the WF veloci
 linearly before the loop,
 
     v_WF(t) = Re sum_k i w_k H(w_k) a_k exp(i (w_k t + phi_k)),
-    H(w) = [K - w^2 (M + A(w)) + i w (B(w) + B_l + B_eq)]^-1 X(w)      (seed 002 eq. 2.40)
+    H(w) = [K - w^2 (M + A(w)) + i w (B(w) + B_l + B_eq)]^-1 X(w)      (Wang (2016) eq. 2.40)
 
 with the same excitation X and wave components as the first-order wave force, the same mass,
 damping and radiation as the time-domain model, and K the hydrostatic plus the mooring tangent

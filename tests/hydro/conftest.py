@@ -1,28 +1,30 @@
-"""Shared fixtures of the hydro tests: the public WAMIT reference files."""
+"""Shared fixtures of the hydro tests: the public WAMIT reference files.
 
-import os
+The files are part of the repository (vessels/<vessel>/source/, OpenFAST r-test, Apache-2.0; see
+the README there). A missing file is a test failure, not a skip.
+"""
+
 import warnings
 from pathlib import Path
 
 import pytest
 
-REFERENCE = Path(os.environ.get("FLOATMOOR_REFERENCE", "/work/shared/reference"))
 VESSELS = Path(__file__).resolve().parents[2] / "vessels"
 
 
 @pytest.fixture(scope="session")
 def oc3_root():
-    root = REFERENCE / "OC3_Hywind" / "Spar"
+    root = VESSELS / "oc3_hywind" / "source" / "Spar"
     if not Path(str(root) + ".1").exists():
-        pytest.skip("OC3 WAMIT reference files not available")
+        pytest.fail(f"OC3 WAMIT reference file {root}.1 missing from the repository")
     return root
 
 
 @pytest.fixture(scope="session")
 def oc4_root():
-    root = REFERENCE / "OC4_DeepCwind_semi" / "marin_semi"
+    root = VESSELS / "oc4_semi" / "source" / "marin_semi"
     if not Path(str(root) + ".1").exists():
-        pytest.skip("OC4 WAMIT reference files not available")
+        pytest.fail(f"OC4 WAMIT reference file {root}.1 missing from the repository")
     return root
 
 

@@ -85,7 +85,7 @@ def test_shipped_database_is_the_2m_model_of_the_convergence_record(db, conv):
 @pytest.mark.parametrize("dof", DOFS)
 @pytest.mark.parametrize("name", ["added_mass", "radiation_damping"])
 def test_converged_capytaine_matches_wamit_within_5_percent(conv, name, dof):
-    # Issue 4: Capytaine from the public member geometry (RAFT_OC4semi.yaml) within 5 % of
+    # Acceptance: Capytaine from the public member geometry (RAFT_OC4semi.yaml) within 5 % of
     # WAMIT's .1 file over the wave band, per diagonal DOF, in % of the largest WAMIT value in
     # the band.  Compared: the Richardson extrapolation (order 2) of the two finest column
     # panel sizes (1.5 and 1.0 m) of capytaine_mesh_convergence.nc, 0.30 .. 2.00 rad/s step
@@ -228,7 +228,7 @@ def test_far_field_drift_against_wamit_qtf_diagonal(db):
     assert err < 0.15, f"max |Capytaine - WAMIT| = {100 * err:.1f} % of max |WAMIT|"
 
 
-# --- Tube refinement and junction study (issue 4, fourth session) ---------------------------
+# --- Tube refinement and junction study -------------------------------------------------------
 # capytaine_tube_study.nc (make_database.py --tube-study): 6 radiation problems + heave
 # excitation on 0 .. 60 deg at 0.7 / 1.1 / 1.25 rad/s for pontoon/brace tubes of 8 / 12 / 16
 # panels round (1.0 / 0.67 / 0.5 m long), column panels 1.5 and 1.0 m, with and without the
@@ -385,7 +385,7 @@ def test_graded_record_reproduces_the_graded_rows_of_the_tube_study(conv_graded,
 @pytest.mark.parametrize("dof", DOFS)
 @pytest.mark.parametrize("name", ["added_mass", "radiation_damping"])
 def test_graded_capytaine_matches_wamit_within_5_percent(conv_graded, name, dof):
-    # Issue 4 acceptance (replaces the heave-B strict xfail of the uniform record): Capytaine
+    # Acceptance (replaces the heave-B strict xfail of the uniform record): Capytaine
     # from the public member geometry (RAFT_OC4semi.yaml), graded column panels, within 5 %
     # of WAMIT's marin_semi.1 over 0.30 .. 2.00 rad/s step 0.05, per diagonal DOF, in % of the
     # largest WAMIT value in the band.  Compared, as for the uniform record: the Richardson

@@ -40,7 +40,7 @@ def test_oc3_vessel():
     v = load_vessel(VESSELS / "oc3_hywind" / "vessel.yaml")
     # total mass: platform 7,466,330 + tower 249,718 + nacelle 240,000 + rotor 110,000 kg
     assert v.mass == pytest.approx(8066048.0)
-    # Independent check (reference README: MAP++ solution): buoyancy - weight equals the
+    # Independent check (MAP++ solution, docs/PUBLISHED_VALUES.md): buoyancy - weight equals the
     # vertical mooring load 3 x 535,728 N (MAP run with g = 9.81)
     buoyancy = 1025 * G * 8029.21
     assert buoyancy - v.mass * G == pytest.approx(3 * 535728.0, rel=0.005)
@@ -177,7 +177,7 @@ def test_floatel_hydrostatics_against_the_waterplane_by_hand(floatel):
     assert C[3, 3] == pytest.approx(rho_g * (ixx + v * zb), rel=0.01)
     assert C[4, 4] == pytest.approx(rho_g * (iyy + v * zb), rel=0.01)
     assert floatel.database.attrs["displaced_volume"] == pytest.approx(v, rel=1e-6)
-    # about 25,500 t (seed 002 table 5.1: 25,472 t)
+    # about 25,500 t (Wang (2016) table 5.1: 25,472 t)
     assert 1.025 * v == pytest.approx(25472, rel=0.01)
     # statics: GM > 0 in roll and pitch with the assumed KG
     assert floatel.total_restoring[3, 3] > 0 and floatel.total_restoring[4, 4] > 0
@@ -192,14 +192,14 @@ def test_floatel_panel_model_symmetry_and_damping(floatel):
     assert np.all(diag >= -1e-3 * np.abs(diag).max(axis=0))
 
 
-def test_floatel_wind_current_and_damping_match_seed_002(floatel):
-    # wind-only mean surge force about 2 MN at U10 = 36 m/s (seed 002 section 7)
+def test_floatel_wind_current_and_damping_match_wang_2016(floatel):
+    # wind-only mean surge force about 2 MN at U10 = 36 m/s (Wang (2016) section 7)
     assert floatel.wind_coefficients.at(0.0)[0] * 36.0 ** 2 == pytest.approx(2.0e6, rel=0.01)
     # current coefficient in surge 3.129e5 N s^2/m^2 (section 6.1.3)
     assert floatel.current_coefficients.at(0.0)[0] == pytest.approx(3.129e5)
     # linear damping 1.5e6 N s/m in surge and sway (section 5.4.3)
     assert floatel.linear_damping[0, 0] == 1.5e6 and floatel.linear_damping[1, 1] == 1.5e6
-    # the seed's mass in surge 2.5603e7 kg (section 5.4.3) within 1 %
+    # Wang's (2016) mass in surge 2.5603e7 kg (section 5.4.3) within 1 %
     assert floatel.mass == pytest.approx(2.5603e7, rel=0.01)
     assert floatel.slender_elements["elements"][0]["name"] == "column_1"
 
@@ -223,7 +223,7 @@ def test_oc4_vessel_mass_balances_buoyancy_and_mooring():
     # platform incl. ballast 1.3473e7 kg (published) + tower, nacelle, rotor as for OC3
     assert v.mass == pytest.approx(1.3473e7 + 249718 + 240000 + 110000)
     # buoyancy (PtfmVol0 = 13,917 m^3) - weight = vertical mooring load: 3 x 631.1 kN from the
-    # static catenary of the MoorDyn data (reference README cross-check; the published 613 kN
+    # static catenary of the MoorDyn data (docs/PUBLISHED_VALUES.md; the published 613 kN
     # per line is marked uncertain there)
     assert 1025 * G * 13917 - v.mass * G == pytest.approx(3 * 631.1e3, rel=0.01)
     assert v.fairleads["FL2"][0] == pytest.approx(-40.868)

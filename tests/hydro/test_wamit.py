@@ -1,4 +1,5 @@
-"""WAMIT reader against the raw OC3-Hywind and OC4-DeepCwind files (reference/README.txt)."""
+"""WAMIT reader against the raw OC3-Hywind and OC4-DeepCwind files (vessels/*/source/; expected
+values in docs/PUBLISHED_VALUES.md, "Values computed from the source files")."""
 
 import shutil
 import warnings
@@ -39,8 +40,8 @@ def test_oc3_heave_added_mass_at_low_frequency_by_hand(oc3_db, oc3_root):
     assert float(b) == pytest.approx(RHO * w * row[4], rel=1e-12)
 
 
-def test_oc3_limits_and_hydrostatics_match_readme(oc3_db):
-    # reference/README.txt: PER=0 (infinite frequency) A11=7.759E6 kg, A33=2.413E5 kg,
+def test_oc3_limits_and_hydrostatics_match_computed_values(oc3_db):
+    # docs/PUBLISHED_VALUES.md: PER=0 (infinite frequency) A11=7.759E6 kg, A33=2.413E5 kg,
     # A55=3.7936E10 kg m^2, A15=-4.831E8 kg m; PER=-1: A11=7.983E6 kg, A55=3.8020E10 kg m^2;
     # C33 = 332,941 N/m; C44 = C55 = -4.99918E9 N m/rad.
     ainf = oc3_db.infinite_frequency_added_mass.values
@@ -119,11 +120,11 @@ def test_oc4_qtf_hermitian_and_mean_drift_is_its_diagonal(oc4_db, oc4_root):
     md = oc4_db.mean_drift_force.isel(omega=k, wave_direction=0).sel(influenced_dof="surge")
     assert float(md) == pytest.approx(RHO * G * 0.427149, rel=1e-4)
     assert np.isnan(oc4_db.mean_drift_force.values[0, 0, 0])  # omega = 0.01: outside the QTF
-    # OC4 hydrostatics (README): C33 = 3.8203E6 N/m, C44 = -3.8072E8 N m/rad
+    # OC4 hydrostatics (docs/PUBLISHED_VALUES.md): C33 = 3.8203E6 N/m, C44 = -3.8072E8 N m/rad
     C = oc4_db.hydrostatic_stiffness.values
     assert C[2, 2] == pytest.approx(3.8203e6, rel=1e-4)
     assert C[3, 3] == pytest.approx(-3.8072e8, rel=1e-4)
-    ainf = oc4_db.infinite_frequency_added_mass.values  # README: 6.487E6, 1.470E7, 7.211E9
+    ainf = oc4_db.infinite_frequency_added_mass.values  # 6.487E6, 1.470E7, 7.211E9
     assert ainf[0, 0] == pytest.approx(6.487e6, rel=1e-3)
     assert ainf[2, 2] == pytest.approx(1.470e7, rel=1e-3)
     assert ainf[4, 4] == pytest.approx(7.211e9, rel=1e-3)

@@ -9,7 +9,7 @@ import yaml
 
 DELETE = object()
 
-# The 100-year design sea state of seed 002 (Hs 16 m, Tp 18.2 s JONSWAP, wind 36 m/s NPD,
+# The 100-year design sea state of Wang (2016) (Hs 16 m, Tp 18.2 s JONSWAP, wind 36 m/s NPD,
 # current 0.94 m/s to 50 m, all heading 0): a local copy in the format of metocean/*.yaml.
 ENVIRONMENT = {
     "name": "heidrun-100yr",

@@ -51,7 +51,7 @@ def test_heidrun_scenes_hold_the_design_environment(name):
     scene = _load_without_warnings(REPO / "scenes" / name)
     assert scene.environment.name == "heidrun-100yr"
     w = scene.environment.waves
-    # seed 002 section 5.2: Hs 16 m, Tp 18.2 s JONSWAP; wind 36 m/s; current 0.94 m/s; head seas
+    # Wang (2016) section 5.2: Hs 16 m, Tp 18.2 s JONSWAP; wind 36 m/s; current 0.94 m/s; head seas
     assert (w.spectrum, w.hs, w.tp, w.heading) == ("jonswap", 16.0, 18.2, 0.0)
     assert scene.environment.wind.u10 == 36.0
     assert scene.environment.current.speed[0] == 0.94
@@ -59,7 +59,8 @@ def test_heidrun_scenes_hold_the_design_environment(name):
 
 
 def test_oc3_scene_is_the_openfast_sea_state():
-    # shared/reference/OC3_Hywind/SeaState.dat: WaveHs 6, WaveTp 10, WaveDir 0, depth 320 m
+    # OpenFAST r-test 5MW_OC3Spar_DLL_WTurb_WavesIrr/SeaState.dat: WaveHs 6, WaveTp 10,
+    # WaveDir 0, depth 320 m
     scene = _load_without_warnings(REPO / "scenes" / "oc3_hywind.yaml")
     w = scene.environment.waves
     assert (w.hs, w.tp, w.heading, w.random_amplitudes) == (6.0, 10.0, 0.0, True)
@@ -79,6 +80,6 @@ def test_floatel_scene_with_a_local_environment_copy(tmp_path):
     (tmp_path / "metocean" / "heidrun_100yr.yaml").write_text(yaml.safe_dump(ENVIRONMENT))
     scene = load_scene(scene_file)
     a = scene.analysis
-    # 12000 s with a 1200 s transient leaves the 3-hour window of seed 002 (SIMO runs of 12000 s)
+    # 12000 s with a 1200 s transient leaves the 3-hour window of Wang (2016) (SIMO runs of 12000 s)
     assert (a.duration, a.transient, a.duration - a.transient) == (12000.0, 1200.0, 10800.0)
     assert a.seeds == tuple(range(1, 21))

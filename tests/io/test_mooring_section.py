@@ -54,8 +54,8 @@ def test_oc3_file_reproduces_map_and_published_stiffness():
 
 def test_floatel_file_level_and_symmetry():
     """vessels/floatel_like/mooring.yaml.  The anchor radius was calibrated to 9,500 kN at
-    30 m (seed 002 sec. 5.4.2), so the level is a regression check; the slope at 30 m is compared
-    with the seed's 307 kN/m (sec. 5.4.3, within 15 %), the pretension with its ~1,000 kN."""
+    30 m (Wang (2016) sec. 5.4.2), so the level is a regression check; the slope at 30 m is compared
+    with Wang's (2016) 307 kN/m (sec. 5.4.3, within 15 %), the pretension with its ~1,000 kN."""
     ms = parse_mooring(Node.load(FLOATEL), water_depth=150.0)
     assert ms.n_lines == 12
     f30 = ms.force([30.0, 0, 0, 0, 0, 0])
@@ -67,7 +67,7 @@ def test_floatel_file_level_and_symmetry():
     # symmetric about the heading (surge, heading 0): line k and line 13-k carry the same tension
     t = ms.tensions([20.0, 0, 0, 0, 0, 0])["fairlead_tension"].values
     np.testing.assert_allclose(t, t[::-1], rtol=1e-9)
-    # loaded lines are those anchored towards -x (4-9), most loaded 6 and 7 (seed fig. 5.9)
+    # loaded lines are those anchored towards -x (4-9), most loaded 6 and 7 (Wang (2016) fig. 5.9)
     assert set(np.argsort(t)[-2:]) == {5, 6}
     # diagonal heading 45 deg: mirror about the diagonal maps line k of group 1 onto 4 - k etc.
     d = 20.0 / math.sqrt(2)

@@ -259,7 +259,7 @@ def test_load_scene_is_exported_at_the_top_level():
 
 
 def test_scene_pickles_for_worker_processes(tmp_path):
-    # `floatmoor run` sends scenes to worker processes (issue 5): a round trip keeps it equal.
+    # `floatmoor run` sends scenes to worker processes: a round trip keeps it equal.
     import pickle
     scene_path, _ = write_case(tmp_path, {"mooring": {"lines": []}})
     scene = load_quietly(scene_path)

@@ -1,6 +1,6 @@
 """Every mistake a user can make in a scene is a SceneError naming file, key, expected, found.
 
-Each case changes one key of a valid scene (the 100-year Floatel-like scene of seed 002) or of
+Each case changes one key of a valid scene (the 100-year Floatel-like scene of Wang (2016)) or of
 its referenced environment file and checks the four parts of the error.
 """
 

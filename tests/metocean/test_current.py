@@ -11,7 +11,7 @@ HEIDRUN = CurrentSpec(z=(0.0, -25.0, -50.0), speed=(0.94, 0.94, 0.94))
 
 
 def test_heidrun_constant_to_50m_and_below():
-    # seed 002 table 5.5: 0.94 m/s at 0, -25, -50 m; constant below the deepest level given
+    # Wang (2016) table 5.5: 0.94 m/s at 0, -25, -50 m; constant below the deepest level given
     z = np.array([5.0, 0.0, -10.0, -50.0, -51.0, -300.0])
     np.testing.assert_array_equal(current_speed(HEIDRUN, z, 320.0), 0.94)
 

@@ -10,7 +10,7 @@ from floatmoor.core.errors import SceneError
 from floatmoor.metocean import (WaveSpec, WindSpec, cosine_sum_uniform_into, jonswap,
                                 npd_wind_spectrum, realise_waves, realise_wind)
 
-HEIDRUN = WaveSpec(hs=16.0, tp=18.2)  # seed 002 sec. 5.2
+HEIDRUN = WaveSpec(hs=16.0, tp=18.2)  # Wang (2016) sec. 5.2
 DUR, DT = 10800.0, 0.1
 N = int(DUR / DT)
 SEEDS = (1, 2, 3, 4, 5)
@@ -180,7 +180,7 @@ def test_bad_realisation_input(kwargs):
 # --------------------------------------------------------------------------- wind
 
 def test_wind_realisation_statistics():
-    spec = WindSpec(u10=36.0)  # seed 002 table 5.3
+    spec = WindSpec(u10=36.0)  # Wang (2016) table 5.3
     var, psd = [], []
     for seed in range(1, 5):
         r = realise_wind(spec, duration=DUR, seed=seed)

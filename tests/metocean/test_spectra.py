@@ -26,7 +26,7 @@ SEA_STATES = [(16.0, 18.2), (15.5, 15.5), (15.5, 19.8), (4.0, 7.0), (2.0, 10.0),
 @pytest.mark.parametrize("hs,tp", SEA_STATES)
 @pytest.mark.parametrize("name", ["jonswap", "pierson_moskowitz", "torsethaugen"])
 def test_hm0_equals_hs(name, hs, tp):
-    # DESIGN.md / issue 2: Hm0 = 4 sqrt(m0) within 0.5 % for every spectrum.
+    # DESIGN.md: Hm0 = 4 sqrt(m0) within 0.5 % for every spectrum.
     s = wave_spectrum(WaveSpec(spectrum=name, hs=hs, tp=tp), W)
     assert hm0(s) == pytest.approx(hs, rel=5e-3)
 

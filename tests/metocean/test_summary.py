@@ -70,10 +70,10 @@ def test_summary_of_partial_environment():
 
 # --------------------------------------------------------------------------- data files
 
-def test_heidrun_100yr_file_matches_seed_002():
-    # seed 002 sec. 5.2, tables 5.3-5.5
+def test_heidrun_100yr_file_matches_wang_2016():
+    # Wang (2016) sec. 5.2, tables 5.3-5.5
     d = yaml.safe_load((ROOT / "metocean" / "heidrun_100yr.yaml").read_text())
-    assert d["name"] == "heidrun-100yr" and "seed 002" in d["description"]
+    assert d["name"] == "heidrun-100yr" and "Wang (2016)" in d["description"]
     assert d["waves"] == {"spectrum": "jonswap", "hs": 16.0, "tp": 18.2, "gamma": None,
                           "heading_deg": 0.0}
     assert d["wind"] == {"spectrum": "npd", "u10": 36.0, "heading_deg": 0.0}
@@ -87,14 +87,14 @@ def test_contour_file():
     d = yaml.safe_load((ROOT / "metocean" / "heidrun_contour.yaml").read_text())
     assert set(d) == {"name", "description", "sea_states"}
     pts = {(s["hs"], s["tp"]) for s in d["sea_states"]}
-    assert {(16.0, 18.2), (15.5, 15.5), (15.5, 19.8)} <= pts  # seed 002 sec. 5.3
+    assert {(16.0, 18.2), (15.5, 15.5), (15.5, 19.8)} <= pts  # Wang (2016) sec. 5.3
     names = [s["name"] for s in d["sea_states"]]
     assert len(set(names)) == len(names)
     for s in d["sea_states"]:
         assert set(s) <= {"name", "hs", "tp", "gamma"}
         assert s["hs"] > 0 and s["tp"] > 0
         assert 2 * np.pi * s["hs"] / (9.80665 * s["tp"] ** 2) < 1.0 / 15.0  # not breaking-steep
-        assert s["hs"] <= 16.0  # the seed's peak point is the contour's maximum Hs
+        assert s["hs"] <= 16.0  # Wang's (2016) peak point is the contour's maximum Hs
 
 
 def test_heidrun_file_reads_through_scene_parser():

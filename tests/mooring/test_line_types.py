@@ -33,7 +33,7 @@ def test_chain_mass_ea_and_submerged_weight():
 
 def test_wire_and_polyester():
     p = polyester(0.185)
-    assert p.mbs == pytest.approx(8556e3, rel=1e-3)  # seed 002 table 5.2 gives 8,500 kN
+    assert p.mbs == pytest.approx(8556e3, rel=1e-3)  # Wang (2016) table 5.2 gives 8,500 kN
     assert p.ea_dynamic > p.ea
     assert 0 < p.submerged_weight() < 0.3 * p.mass_per_length * 9.80665
     w6, ws = wire_rope(0.08), wire_rope(0.08, "spiral_strand")

@@ -10,7 +10,7 @@ import pytest
 from floatmoor.core.errors import ConvergenceError
 from floatmoor.mooring import catenary, solve_line
 
-# chain - polyester - chain in the style of seed 002 table 5.2 (submerged weights assumed)
+# chain - polyester - chain in the style of Wang (2016) table 5.2 (submerged weights assumed)
 CPC = dict(lengths=[1200.0, 1200.0, 250.0], ea=[332.7e6, 172.8e6, 332.7e6],
            w=[1350.0, 60.0, 1350.0])
 

@@ -1,6 +1,6 @@
-"""DNV-OS-E301 design checks against hand computations and the seed's figure 5.9.
+"""DNV-OS-E301 design checks against hand computations and Wang's (2016) figure 5.9.
 
-Factors: seed 002_783d33d2c304eef8.txt (Wang 2016) tables 3.1 (ULS) and 3.2 (ALS), eq. 3.4 and
+Factors: Wang (2016) tables 3.1 (ULS) and 3.2 (ALS), eq. 3.4 and
 the remarks under table 3.1.  Every expected number below is worked out by hand in the comment
 next to it.
 """
@@ -17,7 +17,8 @@ from floatmoor.post import dnv_os_e301 as dnv
 from floatmoor.post.extremes import gumbel_fit
 
 DATA = Path(__file__).parent / "data" / "floatel_fig59.yaml"
-SHARED = Path("/work/shared/reference/floatel_superior.yaml")
+WANG2016 = (Path(__file__).resolve().parents[2] / "vessels" / "floatel_like" / "source"
+            / "floatel_superior.yaml")
 kN = 1e3
 
 
@@ -31,11 +32,11 @@ def fig59():
 # -- table values -------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("ls, cc, an, gm, gd", [
-    ("ULS", 1, "dynamic", 1.10, 1.50),        # seed table 3.1 row 1
+    ("ULS", 1, "dynamic", 1.10, 1.50),        # Wang (2016) table 3.1 row 1
     ("ULS", 2, "dynamic", 1.40, 2.10),        # row 2
     ("ULS", 1, "quasi-static", 1.70, 1.70),   # row 3 (one value for both components)
     ("ULS", 2, "quasi-static", 2.50, 2.50),   # row 4
-    ("ALS", 1, "dynamic", 1.00, 1.10),        # seed table 3.2 row 1
+    ("ALS", 1, "dynamic", 1.00, 1.10),        # Wang (2016) table 3.2 row 1
     ("ALS", 2, "dynamic", 1.00, 1.25),        # row 2
     ("ALS", 1, "quasi-static", 1.10, 1.10),   # row 3
     ("ALS", 2, "quasi-static", 1.35, 1.35),   # row 4
@@ -178,10 +179,10 @@ def test_bad_tensions_raise():
         dnv.line_check(np.nan, 2e6, 8.5e6)
 
 
-# -- the seed's figure 5.9 ----------------------------------------------------------------------
+# -- Wang's (2016) figure 5.9 ----------------------------------------------------------------------
 
 def test_figure_5_9_safety_factor_column_reproduced():
-    """SF = MBS / max_tot (seed eq. 3.3) to the 2 decimals MIMOSA prints, for all 12 lines,
+    """SF = MBS / max_tot (Wang (2016) eq. 3.3) to the 2 decimals MIMOSA prints, for all 12 lines,
     e.g. line 7: 8500 / 4762.9 = 1.7846 -> 1.78."""
     mbs, rows = fig59()
     assert len(rows) == 12
@@ -189,13 +190,11 @@ def test_figure_5_9_safety_factor_column_reproduced():
         max_tot, sf = row[6], row[7]
         assert round(dnv.simple_safety_factor(mbs, max_tot), 2) == pytest.approx(sf, abs=1e-9), name
     sfs = dnv.simple_safety_factor(mbs, np.array([r[6] for r in rows.values()]))
-    assert list(rows)[int(np.argmin(sfs))] == "line_7"       # the seed: line 7, lowest SF 1.78
+    assert list(rows)[int(np.argmin(sfs))] == "line_7"       # Wang (2016): line 7, lowest SF 1.78
 
 
-def test_figure_5_9_copy_matches_shared_reference():
-    if not SHARED.exists():
-        pytest.skip("shared reference folder not present (only in the development sandbox)")
-    ref = Node.load(SHARED).child("results").child("mimosa_fd_0deg")
+def test_figure_5_9_copy_matches_floatel_source_data():
+    ref = Node.load(WANG2016).child("results").child("mimosa_fd_0deg")
     _, rows = fig59()
     for name, row in rows.items():
         assert ref.list(name) == row

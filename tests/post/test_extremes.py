@@ -174,7 +174,7 @@ def test_rayleigh_max_against_monte_carlo():
 
 def test_n_cycles_and_significant_value():
     assert n_cycles(10800.0, 10.0) == pytest.approx(1080.0)         # 3 h of 10 s waves
-    assert ex.significant_value(1.635) == pytest.approx(3.27)      # seed eq. 2.42
+    assert ex.significant_value(1.635) == pytest.approx(3.27)      # Wang (2016) eq. 2.42
     with pytest.raises(SceneError, match="tz"):
         n_cycles(10800.0, 0.0)
     with pytest.raises(SceneError, match="n"):

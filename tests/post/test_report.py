@@ -20,7 +20,7 @@ DOFS = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
 
 
 def seed_result(seed, failed=None):
-    """Synthetic per-seed result in the simulator's format (issue 5)."""
+    """Synthetic per-seed result in the simulator's format."""
     rng = np.random.default_rng(seed)
     t = np.arange(0.0, DURATION + DT / 2, DT)
     f = rng.uniform(0.05, 0.15, 20)

@@ -79,7 +79,7 @@ def test_filter_input_errors():
 # -- statistics -----------------------------------------------------------------------------------
 
 def results(duration=3600.0, seed=1):
-    """A synthetic result Dataset shaped like the simulator's (issue 5)."""
+    """A synthetic result Dataset shaped like the simulator's."""
     t = np.arange(0.0, duration + DT / 2, DT)
     dofs = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     motion = np.zeros((t.size, 6))
@@ -186,7 +186,7 @@ def test_upcrossing_peaks_hand_example():
 def test_peaks_of_narrow_band_process_are_rayleigh():
     """Gaussian narrow-band process (JONSWAP-like band 0.095 - 0.105 Hz, 400 random-phase
     components, sigma known in closed form).  The peak heights above the mean then follow the
-    Rayleigh distribution P(A > a) = exp(-a^2 / (2 sigma^2)) (seed section 2.2.2), with mean
+    Rayleigh distribution P(A > a) = exp(-a^2 / (2 sigma^2)) (Wang (2016) section 2.2.2), with mean
     sigma sqrt(pi/2) and a mean of the highest third of 2.0027 sigma (the 'significant value')."""
     rng = np.random.default_rng(2026)
     f = np.linspace(0.095, 0.105, 400)

@@ -1,6 +1,6 @@
 """Build database.nc of the Floatel-like semi-submersible with Capytaine (optional dependency).
 
-Geometry (parametric, survival draft 13 m), from seed 002 (Wang 2016) table 5.1, table 6.1 and
+Geometry (parametric, survival draft 13 m), from Wang (2016) table 5.1, table 6.1 and
 the drag widths of table 6.3 (D = C2 / (0.5 rho C_D)):
 
 * two pontoons along y, centred at x = +-25.25 m, width 14.0 m (x), height 8.625 m

@@ -1,11 +1,11 @@
 """Convert the public OC3-Hywind WAMIT files (Spar.1, Spar.3, Spar.hst) to database.nc.
 
-Source: OpenFAST r-test, glue-codes/openfast/5MW_Baseline/HydroData/Spar.* (public data, see
-the reference README).  Redimensionalised with ULEN = 1 m (HydroDyn WAMITULEN), rho = 1025
+Source: OpenFAST r-test, glue-codes/openfast/5MW_Baseline/HydroData/Spar.* (public data,
+Apache-2.0, copied into source/; see source/README.md).  Redimensionalised with ULEN = 1 m (HydroDyn WAMITULEN), rho = 1025
 kg/m^3, g = 9.80665 m/s^2 (the OpenFAST driver values); water depth 320 m (metadata: the WAMIT
 run itself used infinite depth in the OC3 definition).
 
-Usage: python make_database.py [/path/to/reference/OC3_Hywind]
+Usage: python make_database.py [folder holding Spar.1, Spar.3, Spar.hst; default source/]
 """
 
 import sys
@@ -16,7 +16,7 @@ import numpy as np
 from floatmoor.hydro import read_wamit, save_database
 
 here = Path(__file__).resolve().parent
-ref = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/work/shared/reference/OC3_Hywind")
+ref = Path(sys.argv[1]) if len(sys.argv) > 1 else here / "source"
 ds = read_wamit(ref / "Spar", ulen=1.0, rho=1025.0, g=9.80665, water_depth=320.0)
 # WAMIT writes headings -180 and +180: identical data, keep one (-180 .. 170 deg)
 keep = ds.wave_direction.values < np.pi - 1e-9

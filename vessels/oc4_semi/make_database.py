@@ -215,6 +215,8 @@ Usage (OMP_NUM_THREADS=1 recommended):
   python make_database.py [reference_dir] --haskind                  capytaine_haskind_check.nc
   python make_database.py [reference_dir] 1.0 1.1,1.2 --haskind      ..._check_h1.0.nc
   python make_database.py [reference_dir] --tube-study               capytaine_tube_study.nc
+reference_dir is the folder holding marin_semi.1, .hst, .12d and RAFT_OC4semi.yaml; default
+source/ beside this script (public files, Apache-2.0; see source/README.md).
 """
 
 from __future__ import annotations
@@ -810,7 +812,7 @@ def haskind_heave_d3(omega, headings, X3):
 
 def tube_study(ref: Path, configs=TUBE_CONFIGS, omegas=TUBE_OMEGAS,
                out=HERE / "capytaine_tube_study.nc"):
-    """Targeted study of the pontoon / brace tubes (issue 4, fourth session): tube panels round
+    """Targeted study of the pontoon / brace tubes: tube panels round
     and long, column panel size, and the junction trimming (build_mesh trim_inside), at a few
     frequencies; 6 radiation problems + heave excitation on 0 .. 60 deg (Haskind check, D3
     symmetry), one process per (mesh, frequency) (``--tube-study-one``).  Writes diagonal
@@ -1056,7 +1058,7 @@ def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = Fa
 if __name__ == "__main__":
     flags = {a for a in sys.argv[1:] if a.startswith("--")}
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    ref = Path(args[0]) if len(args) > 0 else Path("/work/shared/reference/OC4_DeepCwind_semi")
+    ref = Path(args[0]) if len(args) > 0 else HERE / "source"
     if "--tube-study-one" in flags:  # worker of tube_study: one mesh, one frequency
         h, nt, hs, trim, w = float(args[1]), int(args[2]), float(args[3]), args[4] == "1", \
             float(args[5])
