@@ -1,0 +1,546 @@
+"""``floatmoor fatigue SCENE.yaml --scatter FILE``: fatigue limit state (FLS) of the lines.
+
+For every sea state of the scatter diagram the frequency domain (:mod:`floatmoor.frequency_domain`)
+gives the LF and WF tension spectra; the spectral damage (dual narrow band by default, DNV 2008
+Ch.2 Sec.2 D) is summed with the cell probabilities into the annual damage of every line at its
+fatigue locations; the time domain (:func:`floatmoor.simulate`, rainflow counting) is run on the
+cells that carry most of the damage and its damage is compared with the frequency domain's.  The
+fatigue life per line and location and the DNV (2008) design check are printed.
+
+Fatigue locations of each line (quasi-static line, seabed without friction)
+--------------------------------------------------------------------------
+* ``fairlead``: the top segment at the fairlead (fairlead tension);
+* ``segN_top``: the top end of the N-th segment from the anchor (below the fairlead segment),
+  ``T = sqrt(H^2 + max(V_f - W_above, 0)^2)`` with ``W_above`` the submerged weight (and point
+  loads) of the segments above (vertical equilibrium of the suspended line);
+* ``touchdown``: the segment at the touchdown point, ``T = H`` (the anchor tension when no line
+  lies on the seabed).
+
+WF tension spectra: ``|H_x(w) . g|^2 S(w)`` with ``g`` the location tension's gradient with respect
+to the pose (central differences of the catenary at the FD mean pose, as the FD does for the
+fairlead) and ``H_x`` the FD motion RAOs (exact in the linear FD model).  LF tension spectra: the
+FD's LF spectrum of the fairlead motion along the line times ``(dT/du)^2`` (``u`` the fairlead
+displacement along the line), scaled per line so that the fairlead's LF variance equals the FD's
+``tension_std_lf^2`` (the FD result holds the LF spectra of the motions, not their LF
+cross-spectra; the scaling factor is kept as ``lf_shape_scale``).  Time domain: the fairlead
+tension of the run, and for the other locations the quasi-static relation between the fairlead
+tension and the location tension along the line's direction (a table at the mean pose).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+import warnings
+from dataclasses import replace
+
+import numpy as np
+
+from .argtypes import positive_float
+
+HELP = "fatigue limit state: annual damage, fatigue life and DNV check per line and location"
+
+DEFAULT_METHOD = "dual_narrow_band"
+METHOD_CHOICES = ("combined_spectrum", "dual_narrow_band", "dirlik", "simple_summation")
+"""The spectral methods (:data:`floatmoor.post.fatigue.spectral.METHODS`, repeated here so that
+building the parser imports nothing heavy)."""
+_POSE_STEPS = np.array([0.01, 0.01, 0.01, 1e-5, 1e-5, 1e-5])
+
+
+# -- fatigue locations ---------------------------------------------------------------------------
+def fatigue_locations(mooring) -> list[str]:
+    """Location names of a mooring: ``fairlead``, ``segN_top`` of the segments below the top
+    one (N from the anchor, the most segments of any line) and ``touchdown``."""
+    nseg = max(len(line.segments) for line in mooring.lines)
+    return ["fairlead"] + [f"seg{k + 1}_top" for k in range(nseg - 2, -1, -1)] + ["touchdown"]
+
+
+def location_segments(mooring, locations, pose=None) -> np.ndarray:
+    """(n_locations, n_lines) index of the segment (in the line, from the anchor) at each
+    location; -1 where the line has no such location.  The touchdown segment is taken at
+    ``pose`` (default: zero pose)."""
+    t = mooring.tensions(np.zeros(6) if pose is None else pose)
+    grounded = t["grounded_length"].values
+    out = np.full((len(locations), mooring.n_lines), -1, int)
+    for i, line in enumerate(mooring.lines):
+        n = len(line.segments)
+        cum = np.cumsum([s.length for s in line.segments])
+        for j, loc in enumerate(locations):
+            if loc == "fairlead":
+                out[j, i] = n - 1
+            elif loc == "touchdown":
+                g = grounded[i] if np.isfinite(grounded[i]) else 0.0
+                out[j, i] = int(min(np.searchsorted(cum, g), n - 1)) if g > 0 else 0
+            else:
+                k = int(loc[3:-4]) - 1
+                out[j, i] = k if k < n - 1 else -1
+    return out
+
+
+def location_tensions(mooring, pose, locations) -> np.ndarray:
+    """(n_locations, n_lines) tension (N) at the fatigue locations at ``pose``."""
+    t = mooring.tensions(pose)
+    hf = t["horizontal_fairlead"].values
+    vf = t["vertical_fairlead"].values
+    tf = t["fairlead_tension"].values
+    ta = t["anchor_tension"].values
+    grounded = t["grounded_length"].values
+    out = np.full((len(locations), mooring.n_lines), np.nan)
+    for i, line in enumerate(mooring.lines):
+        segs = line.segments
+        n = len(segs)
+        for j, loc in enumerate(locations):
+            if loc == "fairlead":
+                out[j, i] = tf[i]
+            elif loc == "touchdown":
+                out[j, i] = hf[i] if grounded[i] > 0 else ta[i]
+            else:
+                k = int(loc[3:-4]) - 1
+                if k >= n - 1:
+                    continue
+                w_above = sum(s.w * s.length for s in segs[k + 1:])
+                w_above += sum(s.point_load for s in segs[k:n - 1])
+                out[j, i] = math.hypot(hf[i], max(vf[i] - w_above, 0.0))
+    return out
+
+
+def _gradients(mooring, pose, locations) -> np.ndarray:
+    """(n_locations, n_lines, 6) d T_location / d pose by central differences."""
+    g = np.zeros((len(locations), mooring.n_lines, 6))
+    for k in range(6):
+        dp = np.zeros(6)
+        dp[k] = _POSE_STEPS[k]
+        g[:, :, k] = (location_tensions(mooring, pose + dp, locations)
+                      - location_tensions(mooring, pose - dp, locations)) / (2 * _POSE_STEPS[k])
+    mooring.tensions(pose)
+    return g
+
+
+def _line_directions(mooring, pose) -> np.ndarray:
+    fl = mooring.fairlead_positions(pose)
+    d = fl[:, :2] - mooring.anchors[:, :2]
+    e = np.zeros((mooring.n_lines, 3))
+    e[:, :2] = d / np.linalg.norm(d, axis=1)[:, None]
+    return e
+
+
+def tension_spectra(ds, mooring, locations):
+    """WF and LF tension spectra of every location from one FD result ``ds``.
+
+    Returns ``(wf, lf, mean, scale)``: ``wf`` (n_omega, n_loc, n_lines), ``lf`` (n_mu, n_loc,
+    n_lines) in N^2 s/rad, the mean tensions (n_loc, n_lines) and the per-line LF shape scale."""
+    pose = np.asarray(ds["mean"].values, float)
+    g = np.nan_to_num(_gradients(mooring, pose, locations))
+    rao = ds["rao"].values[..., 0] + 1j * ds["rao"].values[..., 1]  # (n_w, 6)
+    S = ds["wave_spectrum"].values
+    h = np.einsum("wk,lik->wli", rao, g)
+    wf = np.abs(h) ** 2 * S[:, None, None]
+    e = _line_directions(mooring, pose)
+    tangent = np.einsum("lik,ik->li", g[:, :, :3], e)  # dT/du along the line
+    fm = ds["fairlead_motion_lf_spectrum"].values  # (n_mu, n_lines)
+    mu = ds["mu"].values
+    approx = tangent[0] ** 2 * np.trapezoid(fm, mu, axis=0)
+    exact = np.nan_to_num(ds["tension_std_lf"].values) ** 2
+    scale = np.where(approx > 0, exact / np.where(approx > 0, approx, 1.0), 0.0)
+    lf = fm[:, None, :] * (tangent ** 2)[None] * scale[None, None, :]
+    mean = location_tensions(mooring, pose, locations)
+    return wf, lf, mean, scale
+
+
+def _cell_scene(scene, scatter, i):
+    """The scene with the environment of scatter cell ``i`` (waves, optional wind, no current)."""
+    from ..metocean.config import Environment, WaveSpec, WindSpec
+    waves = WaveSpec(spectrum=scatter.spectrum, hs=float(scatter.hs[i]), tp=float(scatter.tp[i]),
+                     gamma=scatter.gamma, heading=float(scatter.heading[i]))
+    wind = None
+    u10 = float(scatter.u10[i])
+    if math.isfinite(u10) and u10 > 0:
+        wind = WindSpec(spectrum="npd", u10=u10, heading=float(scatter.heading[i]))
+    env = Environment(waves=waves, wind=wind, current=None, name=scatter.label(i),
+                      source=str(scatter.file) if scatter.file else None)
+    return replace(scene, environment=env)
+
+
+def _curves(mooring, locations, segments, *, design_life, corrosion):
+    """T-N curves (objects), RBS (N) and segment type names per (location, line)."""
+    from ..post.fatigue.tn_curves import curve_for, reference_breaking_strength
+    n_loc, n_l = segments.shape
+    curves = np.empty((n_loc, n_l), object)
+    rbs = np.full((n_loc, n_l), np.nan)
+    types = np.full((n_loc, n_l), "", object)
+    for j, loc in enumerate(locations):
+        zone = "bottom" if loc == "touchdown" else "catenary"
+        for i, line in enumerate(mooring.lines):
+            k = segments[j, i]
+            if k < 0:
+                continue
+            seg = line.segments[k]
+            lt = mooring.line_types.get(seg.line_type)
+            if lt is None:
+                from ..core.errors import SceneError
+                raise SceneError(mooring.source or None, f"lines.{line.name}.segments[{k}].type",
+                                 "a named line type (the fatigue analysis takes its T-N curve "
+                                 "from the line type)", seg.line_type or "none")
+            c = curve_for(lt, file=mooring.source or None)
+            curves[j, i] = c
+            rbs[j, i] = reference_breaking_strength(
+                seg.mbs, lt.diameter, c, rate_mm_per_year=corrosion.get(zone, 0.0),
+                design_life_years=design_life)
+            types[j, i] = seg.line_type
+    return curves, rbs, types
+
+
+def _moment_stack(omega, spectra):
+    from ..post.fatigue.spectral import moments
+    return moments(omega, spectra)  # (4, n_loc, n_lines)
+
+
+def _rates(mom_l, mom_w, curves, rbs):
+    """(n_methods, n_loc, n_lines) damage per second for every spectral method."""
+    from ..post.fatigue.spectral import METHODS, bimodal_damage
+    out = np.full((len(METHODS),) + rbs.shape, np.nan)
+    for j in range(rbs.shape[0]):
+        for i in range(rbs.shape[1]):
+            c = curves[j, i]
+            if c is None:
+                continue
+            r2 = rbs[j, i] ** 2
+            ml, mw = mom_l[:, j, i] / r2, mom_w[:, j, i] / r2
+            for k, meth in enumerate(METHODS):
+                out[k, j, i] = bimodal_damage(meth, ml, mw, 1.0, c.a_d, c.m)
+    return out
+
+
+def _td_rates(built_cell, ds, mooring, locations, curves, rbs, *, seed, duration, transient,
+              dt):
+    """Rainflow damage per second of one TD run of a cell, (n_loc, n_lines)."""
+    import floatmoor
+
+    from ..post.fatigue.rainflow import rainflow
+    r = floatmoor.simulate(built_cell, seed=seed, duration=transient + duration,
+                           transient=transient, dt=dt)
+    t = r["time"].values
+    keep = t >= transient
+    tf = r["line_tension"].values[keep]  # (n_t, n_lines)
+    pose = np.asarray(ds["mean"].values, float)
+    e = _line_directions(mooring, pose)
+    s_grid = np.linspace(-80.0, 80.0, 81)
+    out = np.full(rbs.shape, np.nan)
+    for i in range(mooring.n_lines):
+        tab = np.empty((s_grid.size, len(locations)))
+        for n, s in enumerate(s_grid):
+            p = pose.copy()
+            p[:3] += s * e[i]
+            tab[n] = location_tensions(mooring, p, locations)[:, i]
+        order = np.argsort(tab[:, 0])
+        for j in range(len(locations)):
+            c = curves[j, i]
+            if c is None:
+                continue
+            x = tf[:, i] if j == 0 else np.interp(tf[:, i], tab[order, 0], tab[order, j])
+            rng, _, cnt = rainflow(x)
+            out[j, i] = c.damage(rng, cnt, rbs[j, i]) / duration
+    mooring.tensions(pose)
+    return out, float(r.attrs.get("run_time_s", np.nan))
+
+
+def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_life: float = 20.0,
+                     corrosion: dict | None = None, td_cells: int = 3, td_fraction: float = 0.5,
+                     td_duration: float = 10800.0, td_transient: float = 600.0,
+                     td_dt: float | None = None, seed: int = 1, progress=None):
+    """Long-term fatigue of the lines of ``scene`` over the sea states of ``scatter``.
+
+    Parameters
+    ----------
+    scene : scene file path or :class:`~floatmoor.io.scene.Scene` (vessel and mooring needed)
+    scatter : scatter file path or :class:`~floatmoor.post.fatigue.longterm.Scatter`
+    method : spectral method for the FD damage, one of
+        :data:`floatmoor.post.fatigue.spectral.METHODS` (all are computed and stored)
+    design_life : years
+    corrosion : allowance rates (mm/year) by zone ``catenary`` (fairlead and segment tops) and
+        ``bottom`` (touchdown); default DNV (2008) table B1 with regular inspection
+    td_cells, td_fraction : the time domain runs the cells that carry ``td_fraction`` of the
+        annual damage of the governing location, at most ``td_cells`` (0: no time domain)
+    td_duration, td_transient, td_dt : length of each TD storm after the transient, s
+    seed : TD realisation seed
+
+    Returns
+    -------
+    xarray.Dataset (see :func:`format_fatigue`): per cell, location and line the damage rates of
+    every method, the annual damage, fatigue life and DNV (2008) check, the TD/FD comparison.
+    """
+    import xarray as xr
+
+    import floatmoor
+
+    from ..io.build import build
+    from ..post.fatigue.longterm import (
+        Scatter,
+        adjacent_ratio,
+        annual_damage,
+        dominant_cells,
+        load_scatter,
+    )
+    from ..post.fatigue.spectral import METHODS
+    from ..post.fatigue.tn_curves import (
+        CORROSION_RATES_MM_PER_YEAR,
+        design_check,
+        fatigue_safety_factor,
+    )
+
+    t0 = time.perf_counter()
+    if method not in METHODS:
+        raise KeyError(f"unknown spectral method {method!r}; methods: {', '.join(METHODS)}")
+    corrosion = dict(CORROSION_RATES_MM_PER_YEAR if corrosion is None else corrosion)
+    sc = scene if not isinstance(scene, (str, bytes)) and hasattr(scene, "environment") \
+        else floatmoor.load_scene(scene)
+    sct = scatter if isinstance(scatter, Scatter) else load_scatter(scatter)
+    built = build(sc)
+    if built.mooring is None or built.vessel is None:
+        from ..core.errors import SceneError
+        raise SceneError(sc.file, "mooring" if built.mooring is None else "vessel",
+                         "a vessel and a mooring (the fatigue analysis runs the frequency "
+                         "domain on them)")
+    mooring = built.mooring
+    locations = fatigue_locations(mooring)
+    segments = location_segments(mooring, locations)
+    curves, rbs, types = _curves(mooring, locations, segments, design_life=design_life,
+                                 corrosion=corrosion)
+    n_c, n_loc, n_l = sct.n_cells, len(locations), mooring.n_lines
+    rates = np.full((len(METHODS), n_c, n_loc, n_l), np.nan)
+    t_mean = np.full((n_c, n_loc, n_l), np.nan)
+    std_lf = np.full((n_c, n_loc, n_l), np.nan)
+    std_wf = np.full((n_c, n_loc, n_l), np.nan)
+    tz_lf = np.full((n_c, n_loc, n_l), np.nan)
+    tz_wf = np.full((n_c, n_loc, n_l), np.nan)
+    lf_scale = np.full((n_c, n_l), np.nan)
+    notes: set[str] = set()
+    fd_results = {}
+    for c in range(n_c):
+        cell = replace(built, scene=_cell_scene(sc, sct, c))
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            ds = floatmoor.frequency_domain(cell)
+            wf, lf, mean, scale = tension_spectra(ds, mooring, locations)
+        for w in caught:
+            notes.add(str(w.message).split(":")[0][:120])
+        mw = _moment_stack(ds["omega"].values, wf)
+        ml = _moment_stack(ds["mu"].values, lf)
+        rates[:, c] = _rates(ml, mw, curves, rbs)
+        t_mean[c], lf_scale[c] = mean, scale
+        std_lf[c], std_wf[c] = np.sqrt(ml[0]), np.sqrt(mw[0])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tz_lf[c] = 2 * math.pi * np.sqrt(ml[0] / ml[2])
+            tz_wf[c] = 2 * math.pi * np.sqrt(mw[0] / mw[2])
+        fd_results[c] = ds
+        if progress is not None:
+            progress(c + 1, n_c)
+    k_m = METHODS.index(method)
+    annual = annual_damage(np.moveaxis(rates, 1, 0), sct.probability)  # (method, loc, line)
+    contrib = sct.probability[:, None, None] * rates[k_m] * 86400 * 365.25  # (cell, loc, line)
+    # azimuths of the lines (anchor direction from the fairlead) for the adjacent-line ratio
+    fl0 = mooring.fairlead_positions(np.zeros(6))
+    az = np.arctan2(mooring.anchors[:, 1] - fl0[:, 1], mooring.anchors[:, 0] - fl0[:, 0])
+    d_f = np.full(n_loc, np.nan)
+    gamma = np.full(n_loc, 5.0)
+    exposed = np.full(n_loc, -1)
+    adjacent = np.full(n_loc, -1)
+    for j in range(n_loc):
+        d_f[j], exposed[j], adjacent[j] = adjacent_ratio(annual[k_m, j], az)
+        gamma[j] = fatigue_safety_factor(d_f[j])
+    life = np.where(annual[k_m] > 0, 1.0 / np.where(annual[k_m] > 0, annual[k_m], 1.0), np.inf)
+    util = gamma[:, None] * annual[k_m] * design_life
+    ok = np.array([[design_check(annual[k_m, j, i], design_life, gamma[j])["ok"]
+                    if np.isfinite(annual[k_m, j, i]) else True for i in range(n_l)]
+                   for j in range(n_loc)])
+    # governing location and line, and the cells that dominate its damage
+    jg, ig = np.unravel_index(np.nanargmax(util), util.shape)
+    dom = dominant_cells(contrib[:, jg, ig], fraction=td_fraction, max_cells=td_cells)
+    td = np.full((dom.size, n_loc, n_l), np.nan)
+    td_time = np.full(dom.size, np.nan)
+    for n, c in enumerate(dom):
+        cell = replace(built, scene=_cell_scene(sc, sct, c))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            td[n], td_time[n] = _td_rates(
+                cell, fd_results[c], mooring, locations, curves, rbs, seed=seed,
+                duration=td_duration, transient=td_transient,
+                dt=td_dt if td_dt is not None else sc.analysis.dt)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = rates[:, dom] / td[None]
+
+    def v(dims, x, units, long_name, **kw):
+        return (dims, np.asarray(x), {"units": units, "long_name": long_name, **kw})
+
+    names = list(mooring.names)
+    out = xr.Dataset(
+        {
+            "hs": v("cell", sct.hs, "m", "significant wave height"),
+            "tp": v("cell", sct.tp, "s", "peak period"),
+            "heading_deg": v("cell", np.degrees(sct.heading), "deg",
+                             "wave (and wind) direction of travel from +x towards +y"),
+            "u10": v("cell", sct.u10, "m/s", "1-hour mean wind at 10 m (NaN: no wind)"),
+            "probability": v("cell", sct.probability, "1", "probability of the sea state"),
+            "damage_rate": v(("method", "cell", "location", "line"), rates, "1/s",
+                             "spectral fatigue damage per second of the sea state"),
+            "annual_damage": v(("method", "location", "line"), annual, "1/year",
+                               "annual fatigue damage sum_i p_i d_i T_year"),
+            "contribution": v(("cell", "location", "line"), contrib, "1/year",
+                              f"annual damage contributed by each cell ({method})"),
+            "fatigue_life": v(("location", "line"), life, "year",
+                              f"fatigue life 1 / annual damage ({method})"),
+            "gamma_f": v("location", gamma, "1", "DNV (2008) fatigue safety factor"),
+            "d_f": v("location", d_f, "1", "damage of the adjacent line / damage of the most "
+                     "exposed line"),
+            "most_exposed_line": v("location", exposed, "1", "index of the most exposed line"),
+            "adjacent_line": v("location", adjacent, "1", "index of its adjacent line"),
+            "utilisation": v(("location", "line"), util, "1",
+                             "gamma_F d_C (d_C the damage over the design life); <= 1 passes"),
+            "check_ok": v(("location", "line"), ok, "1", "DNV (2008) 1 - gamma_F d_C >= 0"),
+            "rbs": v(("location", "line"), rbs, "N",
+                     "reference breaking strength (MBS on the corroded diameter)"),
+            "tn_a_d": v(("location", "line"), [[getattr(c, "a_d", np.nan) for c in row]
+                                               for row in curves], "1", "T-N constant a_D"),
+            "tn_m": v(("location", "line"), [[getattr(c, "m", np.nan) for c in row]
+                                             for row in curves], "1", "T-N slope m"),
+            "tn_curve": v(("location", "line"), [[getattr(c, "name", "") for c in row]
+                                                 for row in curves], "", "T-N curve"),
+            "segment_type": v(("location", "line"), types.astype(str), "",
+                              "line type of the segment at the location"),
+            "tension_mean": v(("cell", "location", "line"), t_mean, "N", "mean tension (FD)"),
+            "tension_std_lf": v(("cell", "location", "line"), std_lf, "N", "LF tension std"),
+            "tension_std_wf": v(("cell", "location", "line"), std_wf, "N", "WF tension std"),
+            "tension_tz_lf": v(("cell", "location", "line"), tz_lf, "s", "LF tension Tz"),
+            "tension_tz_wf": v(("cell", "location", "line"), tz_wf, "s", "WF tension Tz"),
+            "lf_shape_scale": v(("cell", "line"), lf_scale, "1",
+                                "FD LF tension variance / variance of the along-line "
+                                "approximation (1: the approximation is exact)"),
+            "td_cell": v("td", dom, "1", "index of the cells run in the time domain"),
+            "td_damage_rate": v(("td", "location", "line"), td, "1/s",
+                                "rainflow damage per second of the TD run"),
+            "fd_td_ratio": v(("method", "td", "location", "line"), ratio, "1",
+                             "FD spectral damage / TD rainflow damage"),
+            "td_run_time": v("td", td_time, "s", "TD time loop wall time"),
+        },
+        coords={"method": list(METHODS), "location": locations, "line": names,
+                "cell": np.arange(n_c), "td": np.arange(dom.size)})
+    out.attrs.update({
+        "title": "floatmoor fatigue limit state (FLS)",
+        "scene": str(sc.file) if sc.file else sc.name, "scene_name": sc.name,
+        "scatter": sct.name, "scatter_source": sct.source,
+        "method": method, "design_life_years": design_life,
+        "corrosion_mm_per_year": repr(corrosion),
+        "td_duration": td_duration, "td_transient": td_transient, "td_seed": seed,
+        "governing_location": locations[jg], "governing_line": names[ig],
+        "notes": "; ".join(sorted(notes)),
+        "run_time_s": time.perf_counter() - t0,
+    })
+    return out
+
+
+# -- text ----------------------------------------------------------------------------------------
+def format_fatigue(ds) -> str:
+    """Text tables of a :func:`fatigue_analysis` result: life and check per line and location,
+    the dominant cells, FD against TD."""
+    method = ds.attrs["method"]
+    locs = list(ds["location"].values)
+    life_y = ds.attrs["design_life_years"]
+    out = [f"Fatigue limit state: {ds.attrs.get('scene_name', '')}",
+           (f"  scatter {ds.attrs['scatter']} ({ds.sizes['cell']} sea states; "
+           f"{ds.attrs['scatter_source']})"),
+           (f"  FD method {method}, design life {life_y:g} years, corrosion "
+           f"{ds.attrs['corrosion_mm_per_year']} mm/year"), "",
+           "* FATIGUE LIFE (years) AND DNV-OS-E301 CHECK gamma_F d_C <= 1 *",
+           "  Line     " + "".join(f"{loc:>22s}" for loc in locs)]
+    for i, name in enumerate(ds["line"].values):
+        cells = []
+        for j in range(len(locs)):
+            lf = float(ds["fatigue_life"].values[j, i])
+            u = float(ds["utilisation"].values[j, i])
+            if not np.isfinite(u):
+                cells.append(f"{'-':>22s}")
+                continue
+            flag = "ok" if bool(ds["check_ok"].values[j, i]) else "FAIL"
+            cells.append(f"{lf:11.3g} {u:6.3f} {flag:>3s}")
+        out.append(f"  {name!s:9s}" + "".join(cells))
+    out.append("  (per location: fatigue life in years, utilisation gamma_F d_C, check)")
+    out.append("  gamma_F per location: " + ", ".join(
+        f"{loc} {g:.2f} (d_F {d:.2f})" for loc, g, d in
+        zip(locs, ds["gamma_f"].values, ds["d_f"].values)))
+    out.append("  T-N curves: " + ", ".join(sorted({
+        f"{c} (a_D {a:g}, m {m:g})" for c, a, m in zip(
+            ds["tn_curve"].values.ravel(), ds["tn_a_d"].values.ravel(),
+            ds["tn_m"].values.ravel()) if c})))
+    jg = locs.index(ds.attrs["governing_location"])
+    ig = list(ds["line"].values).index(ds.attrs["governing_line"])
+    contrib = ds["contribution"].values[:, jg, ig]
+    total = np.nansum(contrib)
+    order = np.argsort(np.nan_to_num(contrib))[::-1][:8]
+    out += ["", (f"* CELLS THAT DOMINATE ({ds.attrs['governing_line']} "
+            f"{ds.attrs['governing_location']}) *"),
+            "   Hs (m)  Tp (s)  dir (deg)  probability  share of annual damage"]
+    for c in order:
+        out.append(f"  {ds['hs'].values[c]:7.2f} {ds['tp'].values[c]:7.2f} "
+                   f"{ds['heading_deg'].values[c]:9.1f} {ds['probability'].values[c]:12.5f}"
+                   f"  {100 * contrib[c] / total:6.1f} %")
+    if ds.sizes.get("td", 0):
+        meths = list(ds["method"].values)
+        out += ["", "* FD AGAINST TD (rainflow), damage ratio FD / TD, governing location *",
+                "   Hs (m)  Tp (s)  dir (deg)  line     " + "".join(f"{m:>18s}" for m in meths)]
+        for n, c in enumerate(ds["td_cell"].values):
+            r = ds["fd_td_ratio"].values[:, n, jg, ig]
+            out.append(f"  {ds['hs'].values[c]:7.2f} {ds['tp'].values[c]:7.2f} "
+                       f"{ds['heading_deg'].values[c]:9.1f}  {ds.attrs['governing_line']:8s}"
+                       + "".join(f"{x:18.3f}" for x in r))
+        out.append(f"  (TD: {ds.attrs['td_duration']:g} s per storm after "
+                   f"{ds.attrs['td_transient']:g} s, seed {ds.attrs['td_seed']})")
+    if ds.attrs.get("notes"):
+        out += ["", "notes: " + ds.attrs["notes"]]
+    return "\n".join(out)
+
+
+# -- command -------------------------------------------------------------------------------------
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """Arguments of ``floatmoor fatigue``."""
+    p.add_argument("scene", metavar="SCENE.yaml", help="the scene file (vessel and mooring)")
+    p.add_argument("--scatter", required=True, metavar="FILE",
+                   help="metocean scatter file (Hs, Tp, directions, probabilities)")
+    p.add_argument("--method", choices=METHOD_CHOICES, default=DEFAULT_METHOD,
+                   help="spectral method of the FD damage (default dual_narrow_band)")
+    p.add_argument("--design-life", type=positive_float, default=20.0, metavar="YEARS",
+                   help="design life, years (default 20)")
+    p.add_argument("--corrosion", type=float, nargs=2, default=None,
+                   metavar=("CATENARY", "BOTTOM"),
+                   help="corrosion/wear allowance, mm/year, catenary and bottom "
+                   "(default DNV-OS-E301 0.3 and 0.4; 0 0 for none)")
+    p.add_argument("--td-cells", type=int, default=3, metavar="N",
+                   help="time-domain runs on at most N dominant cells (0: none; default 3)")
+    p.add_argument("--td-duration", type=positive_float, default=10800.0, metavar="S",
+                   help="length of each time-domain storm after the transient (default 10800)")
+    p.add_argument("--seed", type=int, default=1, help="time-domain seed (default 1)")
+    p.add_argument("--out", metavar="FILE", default=None, help="write the result as netCDF")
+    p.add_argument("--quiet", action="store_true", help="no progress line")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the analysis and print the tables; returns the exit status."""
+    import sys
+    corrosion = None
+    if args.corrosion is not None:
+        corrosion = {"catenary": args.corrosion[0], "bottom": args.corrosion[1]}
+
+    def progress(i, n):
+        if not args.quiet and sys.stderr.isatty():
+            print(f"\r  frequency domain: sea state {i}/{n}", end="" if i < n else "\n",
+                  file=sys.stderr)
+
+    ds = fatigue_analysis(args.scene, args.scatter, method=args.method,
+                          design_life=args.design_life, corrosion=corrosion,
+                          td_cells=args.td_cells, td_duration=args.td_duration, seed=args.seed,
+                          progress=progress)
+    print(format_fatigue(ds))
+    if args.out:
+        from .fd import to_netcdf
+        print(f"written: {to_netcdf(ds, args.out)}")
+    return 0
