@@ -214,3 +214,42 @@ def test_narrow_band_long_realisation():
     d_td, _ = _td_damage(S, T, seed=11)
     closed = T * (2 * math.sqrt(2) * 0.05) ** 3 * math.gamma(2.5)
     assert d_td == pytest.approx(closed, rel=0.01)
+
+
+# -- T-N curves from the line-type library ---------------------------------------------------------
+def test_curves_from_the_line_type_library(tmp_path):
+    from floatmoor.core.errors import SceneError
+    from floatmoor.mooring.line_types import default_library
+    from floatmoor.post.fatigue import curve_for
+
+    lib = default_library()
+    lt, _ = lib.get("chain_studlink_R4", diameter=0.084)
+    assert curve_for(lt).name == "chain_studlink"
+    lt, _ = lib.get("wire_spiral_strand", diameter=0.1)
+    assert (curve_for(lt).a_d, curve_for(lt).m) == (166.0, 5.05)
+    f = tmp_path / "types.yaml"
+    f.write_text(
+        "line_types:\n"
+        "  kenter: {family: chain_studless, grade: R4, tn_curve: connecting_link}\n"
+        "  my_chain: {material: chain, diameter: 0.1, mass_per_length: 200.0, density: 7850.0,\n"
+        "             ea: 8.0e+8, mbs: 9.0e+6, tn_a_d: 500.0, tn_m: 3.2}\n"
+        "  plain: {material: chain, diameter: 0.1, mass_per_length: 200.0, density: 7850.0,\n"
+        "          ea: 8.0e+8, mbs: 9.0e+6}\n"
+        "  half: {material: chain, diameter: 0.1, mass_per_length: 200.0, density: 7850.0,\n"
+        "         ea: 8.0e+8, mbs: 9.0e+6, tn_a_d: 500.0}\n"
+        "  odd: {material: chain, diameter: 0.1, mass_per_length: 200.0, density: 7850.0,\n"
+        "        ea: 8.0e+8, mbs: 9.0e+6, tn_curve: nylon}\n"
+        "  steel_user: {material: user, diameter: 0.1, mass_per_length: 200.0, density: 7850.0,\n"
+        "               ea: 8.0e+8, mbs: 9.0e+6}\n")
+    lib = lib.extended_from_file(f)
+    c = curve_for(lib.get("kenter", diameter=0.084)[0])
+    assert (c.a_d, c.m) == (178.0, 3.0)
+    c = curve_for(lib.get("my_chain")[0])
+    assert (c.a_d, c.m, c.corrodes) == (500.0, 3.2, True) and "user" in c.source
+    assert curve_for(lib.get("plain")[0]).name == "chain_studless"
+    with pytest.raises(SceneError, match="tn_m"):
+        lib.get("half")
+    with pytest.raises(SceneError, match="T-N curve"):
+        curve_for(lib.get("odd")[0])
+    with pytest.raises(SceneError, match="T-N curve"):
+        curve_for(lib.get("steel_user")[0])
