@@ -148,6 +148,23 @@ def tension_spectra(ds, mooring, locations):
     return wf, lf, mean, scale
 
 
+def undamped_lf_notes(ds) -> list[str]:
+    """Notes for the horizontal DOFs (surge, sway, yaw) that the FD result excites at low
+    frequency without any LF damping: their LF response is bounded only by the LF frequency
+    grid, so the LF tension and its damage are not reliable."""
+    out = []
+    b = np.asarray(ds["lf_damping"].values)
+    for k in (0, 1, 5):
+        dof = str(ds["dof"].values[k])
+        if b[k, k] <= 0.0 and float(ds["lf_std"].values[k]) > 0.0:
+            out.append(f"the frequency domain has no LF {dof} damping (lf_damping 0: no linear, "
+                       f"quadratic, wind or current damping in {dof}): its LF {dof} resonance "
+                       "is bounded only by the LF frequency grid and the FD damage of the sea "
+                       f"states that excite it is not reliable (see FD against TD); give the "
+                       f"vessel a {dof} damping")
+    return out
+
+
 def _cell_scene(scene, scatter, i):
     """The scene with the environment of scatter cell ``i`` (waves, optional wind, no current)."""
     from ..metocean.config import Environment, WaveSpec, WindSpec
@@ -196,23 +213,27 @@ def _moment_stack(omega, spectra):
     return moments(omega, spectra)  # (4, n_loc, n_lines)
 
 
-def _rates(mom_l, mom_w, curves, rbs):
-    """(n_methods, n_loc, n_lines) damage per second for every spectral method."""
+def damage_rates(mom_l, mom_w, curves, rbs):
+    """(n_methods, ...) damage per second for every spectral method, from the LF and WF moment
+    stacks ``(4, ...)`` (orders 0, 1, 2, 4, in N^2; any trailing shape, e.g. cells x locations x
+    lines) on the T-N curves ``curves`` (object array of the trailing shape, None: no location)
+    with the RBS ``rbs`` (N).  Vectorised per distinct curve."""
     from ..post.fatigue.spectral import METHODS, bimodal_damage
-    out = np.full((len(METHODS),) + rbs.shape, np.nan)
-    for j in range(rbs.shape[0]):
-        for i in range(rbs.shape[1]):
-            c = curves[j, i]
-            if c is None:
-                continue
-            r2 = rbs[j, i] ** 2
-            ml, mw = mom_l[:, j, i] / r2, mom_w[:, j, i] / r2
+    mom_l, mom_w = np.asarray(mom_l, float), np.asarray(mom_w, float)
+    rbs = np.broadcast_to(np.asarray(rbs, float), mom_l.shape[1:])
+    curves = np.broadcast_to(np.asarray(curves, object), mom_l.shape[1:])
+    out = np.full((len(METHODS),) + mom_l.shape[1:], np.nan)
+    for c in {c for c in curves.ravel() if c is not None}:
+        sel = np.vectorize(lambda x, c=c: x is c, otypes=[bool])(curves)
+        r2 = rbs[sel] ** 2
+        ml, mw = mom_l[:, sel] / r2, mom_w[:, sel] / r2
+        with np.errstate(divide="ignore", invalid="ignore"):
             for k, meth in enumerate(METHODS):
-                out[k, j, i] = bimodal_damage(meth, ml, mw, 1.0, c.a_d, c.m)
+                out[k][sel] = np.nan_to_num(bimodal_damage(meth, ml, mw, 1.0, c.a_d, c.m))
     return out
 
 
-def _td_rates(built_cell, ds, mooring, locations, curves, rbs, *, seed, duration, transient,
+def _td_rates(built_cell, pose, mooring, locations, curves, rbs, *, seed, duration, transient,
               dt):
     """Rainflow damage per second of one TD run of a cell, (n_loc, n_lines)."""
     import floatmoor
@@ -223,7 +244,7 @@ def _td_rates(built_cell, ds, mooring, locations, curves, rbs, *, seed, duration
     t = r["time"].values
     keep = t >= transient
     tf = r["line_tension"].values[keep]  # (n_t, n_lines)
-    pose = np.asarray(ds["mean"].values, float)
+    pose = np.asarray(pose, float)  # the FD mean pose of the cell
     e = _line_directions(mooring, pose)
     s_grid = np.linspace(-80.0, 80.0, 81)
     out = np.full(rbs.shape, np.nan)
@@ -308,7 +329,8 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
     curves, rbs, types = _curves(mooring, locations, segments, design_life=design_life,
                                  corrosion=corrosion)
     n_c, n_loc, n_l = sct.n_cells, len(locations), mooring.n_lines
-    rates = np.full((len(METHODS), n_c, n_loc, n_l), np.nan)
+    mom_lf = np.full((4, n_c, n_loc, n_l), np.nan)
+    mom_wf = np.full((4, n_c, n_loc, n_l), np.nan)
     t_mean = np.full((n_c, n_loc, n_l), np.nan)
     std_lf = np.full((n_c, n_loc, n_l), np.nan)
     std_wf = np.full((n_c, n_loc, n_l), np.nan)
@@ -316,7 +338,7 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
     tz_wf = np.full((n_c, n_loc, n_l), np.nan)
     lf_scale = np.full((n_c, n_l), np.nan)
     notes: set[str] = set()
-    fd_results = {}
+    mean_pose = np.zeros((n_c, 6))
     for c in range(n_c):
         cell = replace(built, scene=_cell_scene(sc, sct, c))
         with warnings.catch_warnings(record=True) as caught:
@@ -325,17 +347,19 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
             wf, lf, mean, scale = tension_spectra(ds, mooring, locations)
         for w in caught:
             notes.add(str(w.message).split(":")[0][:120])
+        notes.update(undamped_lf_notes(ds))
         mw = _moment_stack(ds["omega"].values, wf)
         ml = _moment_stack(ds["mu"].values, lf)
-        rates[:, c] = _rates(ml, mw, curves, rbs)
+        mom_lf[:, c], mom_wf[:, c] = ml, mw
         t_mean[c], lf_scale[c] = mean, scale
         std_lf[c], std_wf[c] = np.sqrt(ml[0]), np.sqrt(mw[0])
         with np.errstate(divide="ignore", invalid="ignore"):
             tz_lf[c] = 2 * math.pi * np.sqrt(ml[0] / ml[2])
             tz_wf[c] = 2 * math.pi * np.sqrt(mw[0] / mw[2])
-        fd_results[c] = ds
+        mean_pose[c] = ds["mean"].values
         if progress is not None:
             progress(c + 1, n_c)
+    rates = damage_rates(mom_lf, mom_wf, curves[None], rbs[None])  # (method, cell, loc, line)
     k_m = METHODS.index(method)
     annual = annual_damage(np.moveaxis(rates, 1, 0), sct.probability)  # (method, loc, line)
     contrib = sct.probability[:, None, None] * rates[k_m] * 86400 * 365.25  # (cell, loc, line)
@@ -364,7 +388,7 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             td[n], td_time[n] = _td_rates(
-                cell, fd_results[c], mooring, locations, curves, rbs, seed=seed,
+                cell, mean_pose[c], mooring, locations, curves, rbs, seed=seed,
                 duration=td_duration, transient=td_transient,
                 dt=td_dt if td_dt is not None else sc.analysis.dt)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -519,7 +543,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--td-duration", type=positive_float, default=10800.0, metavar="S",
                    help="length of each time-domain storm after the transient (default 10800)")
     p.add_argument("--seed", type=int, default=1, help="time-domain seed (default 1)")
-    p.add_argument("--out", metavar="FILE", default=None, help="write the result as netCDF")
+    p.add_argument("--out", metavar="FILE", default=None, help="write the result as netCDF "
+                   "(floatmoor report --fatigue FILE adds it to the design report)")
+    p.add_argument("--report", metavar="DIR", default=None,
+                   help="write the FLS report section alone (fls.md, fls.html) in DIR")
     p.add_argument("--quiet", action="store_true", help="no progress line")
 
 
@@ -543,4 +570,8 @@ def run(args: argparse.Namespace) -> int:
     if args.out:
         from .fd import to_netcdf
         print(f"written: {to_netcdf(ds, args.out)}")
+    if args.report:
+        from ..post.fatigue_report import write_fls_report
+        files = write_fls_report(ds, args.report)
+        print(f"written: {files['markdown']}, {files['html']}")
     return 0

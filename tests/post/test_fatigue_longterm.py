@@ -142,20 +142,22 @@ def test_tension_spectra_reproduce_the_fd_statistics(floatel):
     np.testing.assert_allclose(mw[0, 3], var_h, rtol=1e-6)  # catenary solver tolerance
 
 
-def test_fatigue_analysis_floatel_short_storm(tmp_path):
-    from floatmoor.commands.fatigue import (
-        METHOD_CHOICES,
-        fatigue_analysis,
-        format_fatigue,
-    )
-    from floatmoor.post.fatigue.spectral import METHODS
-    from floatmoor.post.fatigue.tn_curves import design_check, fatigue_safety_factor
-    assert METHOD_CHOICES == METHODS
-    f = tmp_path / "s.yaml"
+@pytest.fixture(scope="module")
+def two_cells(tmp_path_factory):
+    from floatmoor.commands.fatigue import fatigue_analysis
+    f = tmp_path_factory.mktemp("scatter") / "s.yaml"
     f.write_text("name: two-cells\nsource: test\ncells:\n"
                  "  - {hs: 5.0, tp: 11.0, heading_deg: 0.0, probability: 0.7}\n"
                  "  - {hs: 3.0, tp: 9.0, heading_deg: 90.0, probability: 0.3}\n")
-    ds = fatigue_analysis(SCENE, f, td_cells=1, td_duration=1800.0, td_transient=300.0)
+    return fatigue_analysis(SCENE, f, td_cells=1, td_duration=1800.0, td_transient=300.0)
+
+
+def test_fatigue_analysis_floatel_short_storm(two_cells):
+    from floatmoor.commands.fatigue import METHOD_CHOICES, format_fatigue
+    from floatmoor.post.fatigue.spectral import METHODS
+    from floatmoor.post.fatigue.tn_curves import design_check, fatigue_safety_factor
+    assert METHOD_CHOICES == METHODS
+    ds = two_cells
     k = list(ds["method"].values).index("dual_narrow_band")
     rate = ds["damage_rate"].values[k]  # (cell, loc, line)
     hand = (0.7 * rate[0] + 0.3 * rate[1]) * 365.25 * 86400
@@ -176,6 +178,38 @@ def test_fatigue_analysis_floatel_short_storm(tmp_path):
     assert np.all((r[0] > 0.5) & (r[0] < 2.0)), r[0]
     text = format_fatigue(ds)
     assert "FATIGUE LIFE" in text and "FD AGAINST TD" in text and "line7" in text
+
+
+def test_fls_report_section(two_cells, tmp_path):
+    import sys
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_report import _Parser, seed_result
+
+    from floatmoor.commands.fd import to_netcdf
+    from floatmoor.post.fatigue_report import write_fls_report
+    from floatmoor.post.report import build_report
+    # the FLS section in the design report (synthetic TD seeds, the Floatel-like FLS result)
+    runs = [seed_result(s) for s in range(1, 4)]
+    files = build_report(runs, 8.5e6, tmp_path / "r", start=200.0, plots=False,
+                         fatigue=two_cells)
+    p = _Parser()
+    p.feed(files.html.read_text())
+    for tid in ("fls_lines", "fls_cells", "fls_methods", "fls_fd_td"):
+        assert tid in p.tables, tid
+    rows = [r for r in p.tables["fls_lines"] if r["class"] == "governing"]
+    gov = (two_cells.attrs["governing_line"], two_cells.attrs["governing_location"])
+    assert len(rows) == 1 and tuple(rows[0]["cells"][:2]) == gov
+    # 12 lines x 4 locations
+    assert sum(1 for r in p.tables["fls_lines"] if r["cells"][0][4:].isdigit()) == 48
+    md = files.markdown.read_text()
+    assert "FLS fatigue life and check" in md and "FLS dominant sea states" in md
+    # the netCDF round trip (floatmoor fatigue --out, floatmoor report --fatigue) and the
+    # stand-alone section
+    nc = to_netcdf(two_cells, tmp_path / "f.nc")
+    import xarray as xr
+    with xr.open_dataset(nc) as back:
+        out = write_fls_report(back.load(), tmp_path / "fls")
+    assert "FLS frequency domain against time domain" in out["markdown"].read_text()
 
 
 def test_cli_fatigue(tmp_path, capsys):
