@@ -43,6 +43,16 @@ def bench_rainflow():
         times.append(time.perf_counter() - t0)
     print(f"rainflow, {x.size} samples: best {1e3 * min(times):.2f} ms, median "
           f"{1e3 * float(np.median(times)):.2f} ms ({r.size} cycles and half cycles)")
+    # worst case: every sample a turning point (white noise), 108,000 reversals
+    y = np.random.default_rng(2).standard_normal(x.size)
+    times = []
+    for _ in range(20):
+        t0 = time.perf_counter()
+        r2, _, _ = rainflow(y)
+        times.append(time.perf_counter() - t0)
+    print(f"rainflow, {y.size} samples of white noise (every sample a reversal): best "
+          f"{1e3 * min(times):.2f} ms, median {1e3 * float(np.median(times)):.2f} ms "
+          f"({r2.size} cycles and half cycles)")
     try:
         import rainflow as rf
         t0 = time.perf_counter()

@@ -181,13 +181,10 @@ def test_fatigue_analysis_floatel_short_storm(two_cells):
 
 
 def test_fls_report_section(two_cells, tmp_path):
-    import sys
-    sys.path.insert(0, str(Path(__file__).parent))
-    from test_report import _Parser, seed_result
-
     from floatmoor.commands.fd import to_netcdf
     from floatmoor.post.fatigue_report import write_fls_report
     from floatmoor.post.report import build_report
+    from tests.post.test_report import _Parser, seed_result
     # the FLS section in the design report (synthetic TD seeds, the Floatel-like FLS result)
     runs = [seed_result(s) for s in range(1, 4)]
     files = build_report(runs, 8.5e6, tmp_path / "r", start=200.0, plots=False,

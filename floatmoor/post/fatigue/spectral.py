@@ -18,7 +18,7 @@ Methods
   damage times ``rho = nu_P/nu_y [lambda_L^(m/2+2) (1 - sqrt(lambda_W/lambda_L)) +
   sqrt(pi lambda_L lambda_W) m Gamma(m/2 + 1/2) / Gamma(m/2 + 1)] + nu_W/nu_y lambda_W^(m/2)``
   with ``nu_P = sqrt(lambda_L^2 nu_L^2 + lambda_L lambda_W nu_W^2 delta_W^2)`` and the WF
-  bandwidth ``delta_W = sqrt(1 - m1^2/(m0 m2))`` (Vanmarcke).
+  bandwidth ``delta_W = sqrt(1 - m1^2/(m0 m2))`` (Vanmarcke 1972).
 * :func:`dirlik` (Dirlik 1985): the empirical range density from ``m0, m1, m2, m4``, integrated
   in closed form, at the rate of peaks ``nu_p = sqrt(m4/m2) / 2 pi``.
 * :func:`simple_summation`: ``D_L + D_W`` (narrow band on each; non-conservative, for reference).
