@@ -154,13 +154,13 @@ def undamped_lf_notes(ds) -> list[str]:
     grid, so the LF tension and its damage are not reliable."""
     out = []
     b = np.asarray(ds["lf_damping"].values)
-    for k in (0, 1, 5):
+    for k, small in ((0, 1e-4), (1, 1e-4), (5, 1e-6)):  # m, m, rad: below is numerical noise
         dof = str(ds["dof"].values[k])
-        if b[k, k] <= 0.0 and float(ds["lf_std"].values[k]) > 0.0:
+        if b[k, k] <= 0.0 and float(ds["lf_std"].values[k]) > small:
             out.append(f"the frequency domain has no LF {dof} damping (lf_damping 0: no linear, "
                        f"quadratic, wind or current damping in {dof}): its LF {dof} resonance "
                        "is bounded only by the LF frequency grid and the FD damage of the sea "
-                       f"states that excite it is not reliable (see FD against TD); give the "
+                       f"states that excite it is not reliable (see FD against TD): give the "
                        f"vessel a {dof} damping")
     return out
 
@@ -519,8 +519,13 @@ def format_fatigue(ds) -> str:
                        + "".join(f"{x:18.3f}" for x in r))
         out.append(f"  (TD: {ds.attrs['td_duration']:g} s per storm after "
                    f"{ds.attrs['td_transient']:g} s, seed {ds.attrs['td_seed']})")
-    if ds.attrs.get("notes"):
-        out += ["", "notes: " + ds.attrs["notes"]]
+    notes = [n for n in str(ds.attrs.get("notes", "")).split("; ") if n]
+    warn = [n for n in notes if "no LF" in n]
+    if warn:
+        out[8 + ds.sizes["line"]:8 + ds.sizes["line"]] = [f"  WARNING: {n}" for n in warn]
+    rest = [n for n in notes if n not in warn]
+    if rest:
+        out += ["", "notes: " + "; ".join(rest)]
     return "\n".join(out)
 
 

@@ -220,3 +220,17 @@ def test_cli_fatigue(tmp_path, capsys):
     assert "FATIGUE LIFE" in text and "touchdown" in text and out.is_file()
     f.write_text("cells:\n  - {hs: 4.0, tp: 10.0, heading_deg: 0.0, probability: 0.5}\n")
     assert main(["fatigue", str(SCENE), "--scatter", str(f), "--quiet"]) == 2
+
+
+def test_undamped_lf_note():
+    import xarray as xr
+
+    from floatmoor.commands.fatigue import undamped_lf_notes
+    dofs = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
+    b = np.diag([1e6, 1e6, 0.0, 0.0, 0.0, 0.0])
+    ds = xr.Dataset({"lf_damping": (("dof", "dof2"), b),
+                     "lf_std": ("dof", [0.5, 0.4, 0.0, 0.0, 0.0, 0.3])}, coords={"dof": dofs})
+    notes = undamped_lf_notes(ds)
+    assert len(notes) == 1 and "no LF yaw damping" in notes[0]
+    ds["lf_std"].values[5] = 1e-9  # numerical noise (head seas): no note
+    assert undamped_lf_notes(ds) == []
