@@ -18,8 +18,8 @@ import time
 
 import numpy as np
 
-from floatmoor.commands.fatigue import damage_rates
 from floatmoor.post.fatigue import DNV_CURVES, rainflow
+from floatmoor.post.fatigue.locations import damage_rates
 from floatmoor.post.fatigue.longterm import annual_damage
 from floatmoor.post.fatigue.spectral import METHODS, gaussian_realisation, moments
 

@@ -91,7 +91,7 @@ def floatel():
 
 
 def test_location_tensions_against_the_line_profile(floatel):
-    from floatmoor.commands.fatigue import fatigue_locations, location_tensions
+    from floatmoor.post.fatigue.locations import fatigue_locations, location_tensions
     built, ds = floatel
     m = built.mooring
     locs = fatigue_locations(m)
@@ -110,7 +110,7 @@ def test_location_tensions_against_the_line_profile(floatel):
 
 
 def test_tension_spectra_reproduce_the_fd_statistics(floatel):
-    from floatmoor.commands.fatigue import fatigue_locations, tension_spectra
+    from floatmoor.post.fatigue.locations import fatigue_locations, tension_spectra
     from floatmoor.post.fatigue.spectral import moments
     built, ds = floatel
     locs = fatigue_locations(built.mooring)
@@ -225,7 +225,7 @@ def test_cli_fatigue(tmp_path, capsys):
 def test_undamped_lf_note():
     import xarray as xr
 
-    from floatmoor.commands.fatigue import undamped_lf_notes
+    from floatmoor.post.fatigue.locations import undamped_lf_notes
     dofs = ["surge", "sway", "heave", "roll", "pitch", "yaw"]
     b = np.diag([1e6, 1e6, 0.0, 0.0, 0.0, 0.0])
     ds = xr.Dataset({"lf_damping": (("dof", "dof2"), b),

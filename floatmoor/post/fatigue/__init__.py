@@ -5,6 +5,8 @@
 * :mod:`.rainflow` -- ASTM E1049-85 rainflow counting (numba) and the damage of a history.
 * :mod:`.spectral` -- damage from a tension spectrum: narrow band, combined spectrum and dual
   narrow band (DNV 2008; Jiao & Moan 1990) and Dirlik (1985).
+* :mod:`.locations` -- fatigue locations of a quasi-static mooring (fairlead, segment tops,
+  touchdown), their tension spectra from a frequency-domain result, T-N curves, damage rates.
 * :mod:`.longterm` -- metocean scatter files and the long-term (annual) damage, life and check.
 """
 
