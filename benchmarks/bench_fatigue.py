@@ -104,9 +104,10 @@ def bimodal_table():
     t0 = time.perf_counter()
     rows = table()
     print(f"bimodal LF + WF, FD damage / TD rainflow damage ({time.perf_counter() - t0:.1f} s):")
-    print("| var ratio L/W | freq ratio W/L | " + " | ".join(METHODS) + " |")
-    for vr, fr, res in rows:
-        print(f"| {vr:g} | {fr:g} | " + " | ".join(f"{res[m]:.3f}" for m in METHODS) + " |")
+    print("| var ratio L/W | freq ratio W/L | WF width | " + " | ".join(METHODS) + " |")
+    for vr, fr, width, res in rows:
+        print(f"| {vr:g} | {fr:g} | {width:g} | " + " | ".join(f"{res[m]:.3f}" for m in METHODS)
+              + " |")
 
 
 if __name__ == "__main__":

@@ -172,38 +172,48 @@ def test_rbs_scaling_of_moments():
     np.testing.assert_allclose(moments(W, S, rbs=2.0e5), moments(W, S) / 4.0e10)
 
 
-# Bimodal LF + WF: variance ratio sigma_L^2/sigma_W^2 and frequency ratio f_W/f_L spanning the
-# Floatel-like tensions (FD: sigma_L/sigma_W about 0.66-0.69, Tz 97 s / 16.5 s = 5.9).
-BIMODAL = [(0.25, 5.0), (0.45, 6.0), (1.0, 5.0), (1.0, 10.0), (4.0, 5.0), (4.0, 10.0)]
+# Bimodal LF + WF: variance ratio sigma_L^2/sigma_W^2, frequency ratio f_W/f_L and relative
+# width of the WF band spanning the Floatel-like tensions (FD: sigma_L/sigma_W about 0.66-1.7,
+# Tz 97 s / 16.5 s = 5.9; the WF tension of a JONSWAP sea through the RAOs is a broad band).
+# The LF band is a Gaussian bump of 10 % relative width.
+BIMODAL = [(0.25, 5.0, 0.08), (0.45, 6.0, 0.08), (1.0, 5.0, 0.08), (1.0, 10.0, 0.08),
+           (4.0, 5.0, 0.08), (4.0, 10.0, 0.08),
+           (0.45, 6.0, 0.2), (2.8, 6.0, 0.2), (0.45, 6.0, 0.3), (2.8, 6.0, 0.3)]
 
 
 def bimodal_table(cases=BIMODAL, lf_cycles=4000, m=3.0, seed=2):
-    """(variance ratio, frequency ratio, {method: FD / TD}) for each case."""
+    """(variance ratio, frequency ratio, WF width, {method: FD / TD}) for each case."""
     rows = []
-    for k, (vr, fr) in enumerate(cases):
+    for k, (vr, fr, width) in enumerate(cases):
         w_w = 2 * math.pi
-        SL, SW = _bump(W, w_w / fr, 0.1, vr), _bump(W, w_w, 0.08, 1.0)
+        SL, SW = _bump(W, w_w / fr, 0.1, vr), _bump(W, w_w, width, 1.0)
         T = lf_cycles * fr
         d_td, _ = _td_damage(SL + SW, T, seed=seed + k, m=m)
         ml, mw = moments(W, SL), moments(W, SW)
-        rows.append((vr, fr, {meth: float(bimodal_damage(meth, ml, mw, T, 1.0, m)) / d_td
-                              for meth in METHODS}))
+        rows.append((vr, fr, width, {meth: float(bimodal_damage(meth, ml, mw, T, 1.0, m)) / d_td
+                                     for meth in METHODS}))
     return rows
 
 
 def test_bimodal_methods_against_rainflow():
     rows = bimodal_table()
-    print("\n var ratio  f ratio " + "".join(f"{m:>18s}" for m in METHODS))
-    for vr, fr, res in rows:
-        print(f"{vr:10.2f} {fr:8.1f} " + "".join(f"{res[m]:18.3f}" for m in METHODS))
-    for vr, fr, res in rows:
+    print("\n var ratio  f ratio  WF width" + "".join(f"{m:>18s}" for m in METHODS))
+    for vr, fr, width, res in rows:
+        print(f"{vr:10.2f} {fr:8.1f} {width:9.2f} " + "".join(f"{res[m]:18.3f}" for m in METHODS))
+    for vr, fr, width, res in rows:
+        case = (vr, fr, width, res)
         # combined spectrum: conservative (DNV 2008)
-        assert res["combined_spectrum"] >= 1.0, (vr, fr, res)
-        # dual narrow band and Dirlik: within 10 % of the rainflow damage
-        assert abs(res["dual_narrow_band"] - 1.0) < 0.10, (vr, fr, res)
-        assert abs(res["dirlik"] - 1.0) < 0.10, (vr, fr, res)
+        assert res["combined_spectrum"] >= 1.0, case
         # the simple summation of the two narrow-band damages is non-conservative
-        assert res["simple_summation"] < 1.0, (vr, fr, res)
+        assert res["simple_summation"] < 1.0, case
+        # Dirlik: within 12 % (slightly non-conservative for bimodal tension)
+        assert abs(res["dirlik"] - 1.0) < 0.12, case
+        if width < 0.1:
+            # dual narrow band: within 10 % for a narrow WF band (its assumption)
+            assert abs(res["dual_narrow_band"] - 1.0) < 0.10, case
+        else:
+            # broad WF band: the dual narrow band turns conservative (up to about 25 %)
+            assert 0.95 < res["dual_narrow_band"] < 1.30, case
 
 
 @pytest.mark.slow  # long realisations: 2e6 cycles of the narrow-band process (about 30 s)
