@@ -44,7 +44,7 @@ def fls_meta(ds) -> list[tuple[str, str]]:
             ("FLS method", (f"{ds.attrs.get('method', '')} (frequency domain), design life "
                            f"{float(ds.attrs.get('design_life_years', np.nan)):g} years, "
                            f"corrosion {ds.attrs.get('corrosion_mm_per_year', '')} mm/year")),
-            ("FLS governing", (f"line {ds.attrs.get('governing_line', '')} at the "
+            ("FLS governing", (f"{ds.attrs.get('governing_line', '')} at the "
                               f"{ds.attrs.get('governing_location', '')}"))] + (
         [("FLS notes", str(ds.attrs["notes"]))] if ds.attrs.get("notes") else [])
 
