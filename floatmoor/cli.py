@@ -187,6 +187,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("statics", "floatmoor.commands.statics"),
     ("run", "floatmoor.commands.run"),
     ("fd", "floatmoor.commands.fd"),
+    ("fatigue", "floatmoor.commands.fatigue"),
     ("convergence", "floatmoor.commands.convergence"),
     ("report", "floatmoor.commands.report"),
     ("lines", "floatmoor.commands.lines"),

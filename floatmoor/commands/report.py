@@ -64,6 +64,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--fd", metavar="FILE.nc", default=None,
                    help="frequency-domain result of the same scene (floatmoor fd --out FILE.nc) "
                         "to show beside the time-domain values")
+    p.add_argument("--fatigue", metavar="FILE.nc", default=None,
+                   help="fatigue result (floatmoor fatigue --out FILE.nc): adds the FLS section")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="output folder (default RESULTS_DIR/report)")
 
@@ -251,6 +253,21 @@ def _read_fd(path, td_scene):
     return fd
 
 
+def _read_fatigue(path):
+    """The ``floatmoor fatigue --out`` file (SceneError if it is not one)."""
+    import xarray as xr
+
+    from ..post.fatigue_report import check_fatigue_result
+    try:
+        with xr.open_dataset(path) as ds:
+            ds = ds.load()
+        check_fatigue_result(ds)
+    except (OSError, ValueError) as exc:
+        raise _scene_error(path, "--fatigue", "a fatigue result (floatmoor fatigue --out "
+                           "FILE.nc)", str(exc)) from None
+    return ds
+
+
 def run(args: argparse.Namespace) -> int:
     """Run ``floatmoor report``; returns the exit status (0 pass, 1 a line fails)."""
     from ..cli import UsageError
@@ -278,6 +295,7 @@ def run(args: argparse.Namespace) -> int:
     mbs, mbs_source = mbs_of(results)
     scene = scene_name(results[0])
     fd = _read_fd(args.fd, scene) if args.fd else None
+    fatigue = _read_fatigue(args.fatigue) if args.fatigue else None
     out = Path(args.out) if args.out else Path(args.results_dir) / "report"
     extra = [("results folder", str(Path(args.results_dir).resolve())), ("MBS from", mbs_source)]
     if als is not None:
@@ -291,7 +309,7 @@ def run(args: argparse.Namespace) -> int:
         warnings.simplefilter("always")
         files = build_report(results, mbs, out, als_results=als, failed_lines=args.failed_line,
                              consequence_class=args.consequence_class, analysis=args.analysis,
-                             fd=fd, failed_seeds=failed, extra_meta=extra)
+                             fd=fd, failed_seeds=failed, extra_meta=extra, fatigue=fatigue)
     seen = set()
     for w in caught:                       # one line per distinct warning (not one per line)
         key = (w.category, str(w.message))

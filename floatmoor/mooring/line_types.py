@@ -85,6 +85,12 @@ class LineType:
         Normal/tangential drag and added-mass coefficients on the nominal diameter.
     source : str
         Where the numbers come from.
+    tn_curve : str
+        Name of the fatigue T-N curve (:data:`floatmoor.post.fatigue.tn_curves.DNV_CURVES`);
+        empty: chosen from the family or material.
+    tn_a_d, tn_m : float or None
+        User-defined T-N constants ``n = a_D s^-m`` (``s`` the tension range over the
+        reference breaking strength); both or neither.
     """
 
     name: str
@@ -100,6 +106,9 @@ class LineType:
     can: float = 1.0
     cat: float = 0.0
     source: str = ""
+    tn_curve: str = ""
+    tn_a_d: float | None = None
+    tn_m: float | None = None
 
     def submerged_weight(self, water_density: float = RHO_WATER, gravity: float = GRAVITY) -> float:
         """Submerged weight per unit length, N/m: ``(mass - rho V) g``."""
@@ -168,9 +177,24 @@ FAMILIES = {
 
 _USER_KEYS = {"material", "diameter", "mass_per_length", "displaced_volume", "density",
               "volumetric_diameter", "submerged_weight", "ea", "ea_dynamic", "elastic_modulus",
-              "mbs", "cdn", "cdt", "can", "cat", "source"}
+              "mbs", "cdn", "cdt", "can", "cat", "source", "tn_curve", "tn_a_d", "tn_m"}
 _FAMILY_KEYS = {"family", "grade", "diameter", "source", "mbs", "ea", "ea_dynamic", "cdn", "cdt",
-                "can", "cat"}
+                "can", "cat", "tn_curve", "tn_a_d", "tn_m"}
+
+
+def _tn_fields(e: Node) -> dict:
+    """The optional fatigue T-N keys of a library entry (``tn_curve``; ``tn_a_d`` with
+    ``tn_m``)."""
+    out = {}
+    if "tn_curve" in e:
+        out["tn_curve"] = e.str("tn_curve")
+    if ("tn_a_d" in e) != ("tn_m" in e):
+        missing = "tn_m" if "tn_a_d" in e else "tn_a_d"
+        raise e.error(missing, "both tn_a_d and tn_m (a user T-N curve n = a_D s^-m)")
+    if "tn_a_d" in e:
+        out["tn_a_d"] = e.float("tn_a_d", gt=0.0)
+        out["tn_m"] = e.float("tn_m", gt=0.0)
+    return out
 
 
 class LineTypeLibrary:
@@ -245,6 +269,7 @@ class LineTypeLibrary:
                 over["ea_dynamic"] = over["ea"]
             if "source" in e:
                 over["source"] = e.str("source")
+            over.update(_tn_fields(e))
             return (replace(lt, **over) if over else lt), None
         e.reject_unknown(_USER_KEYS | {"area_factor"})
         d = e.float("diameter", gt=0.0, unit="m")
@@ -280,7 +305,7 @@ class LineTypeLibrary:
         kw = {k: e.float(k, ge=0.0) for k in ("cdn", "cdt", "can", "cat") if k in e}
         lt = LineType(name=name, material=material, diameter=d, mass_per_length=mass,
                       displaced_volume=vol, ea=ea, ea_dynamic=ead, mbs=mbs,
-                      source=e.str("source", f"user-defined in {e.file}"), **kw)
+                      source=e.str("source", f"user-defined in {e.file}"), **kw, **_tn_fields(e))
         return lt, w_override
 
 

@@ -588,8 +588,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
                  analysis: str = "dynamic", start: float | None = None, end: float | None = None,
                  cutoff: float = DEFAULT_CUTOFF_HZ, p: float = 0.9, method: str = "mle",
                  title: str | None = None, plots: bool = True, fd: xr.Dataset | None = None,
-                 failed_seeds: Sequence[str] = (), extra_meta: Sequence[tuple] = ()
-                 ) -> ReportFiles:
+                 failed_seeds: Sequence[str] = (), extra_meta: Sequence[tuple] = (),
+                 fatigue: xr.Dataset | None = None) -> ReportFiles:
     """Write the DNV-OS-E301 report of a set of seeds (HTML, Markdown, CSV, netCDF).
 
     Parameters
@@ -614,6 +614,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         Seeds that failed and were left out (listed in the report).
     extra_meta : sequence of (str, str)
         More rows for the report's header table (e.g. the results folder).
+    fatigue : xarray.Dataset, optional
+        A ``floatmoor fatigue`` result: adds the FLS section (:mod:`.fatigue_report`).
 
     Returns
     -------
@@ -684,6 +686,10 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         ft = _fd_offsets_table(fd, stats)
         if ft is not None:
             tables.append(ft)
+    if fatigue is not None:  # the FLS section
+        from .fatigue_report import fls_meta, fls_tables
+        meta += fls_meta(fatigue)
+        tables += fls_tables(fatigue)
     figs = _plots(results, checks, ct, stats, plot_start, end) if plots else []
 
     # HTML

@@ -1,0 +1,153 @@
+"""The fatigue limit state (FLS) section of the design report.
+
+:func:`fls_tables` turns the result of ``floatmoor fatigue`` (:func:`floatmoor.commands.fatigue.
+fatigue_analysis`, or its ``--out`` netCDF file) into report tables: the damage, fatigue life and
+DNV (2008) check per line and location, the sea states that dominate the damage, the spectral
+methods against each other and the frequency domain against the time domain (rainflow).
+:func:`build_report` includes them when given ``fatigue=``; :func:`write_fls_report` writes the
+section alone (Markdown and HTML).
+"""
+
+from __future__ import annotations
+
+import html
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+__all__ = ["check_fatigue_result", "fls_meta", "fls_tables", "write_fls_report"]
+
+_NEED = ("annual_damage", "fatigue_life", "utilisation", "check_ok", "gamma_f", "contribution",
+         "damage_rate", "hs", "tp", "heading_deg", "probability")
+
+
+def check_fatigue_result(ds) -> None:
+    """ValueError unless ``ds`` is a ``floatmoor fatigue`` result."""
+    if not isinstance(ds, xr.Dataset) or any(v not in ds for v in _NEED):
+        missing = [v for v in _NEED if not isinstance(ds, xr.Dataset) or v not in ds]
+        raise ValueError("expected a floatmoor fatigue result (floatmoor fatigue --out FILE.nc); "
+                         f"missing {', '.join(missing)}")
+
+
+def _f(x, fmt="{:.3g}"):
+    x = float(x)
+    if not np.isfinite(x):
+        return "-" if np.isnan(x) else "inf"
+    return fmt.format(x)
+
+
+def fls_meta(ds) -> list[tuple[str, str]]:
+    """Header rows of the FLS section."""
+    return [("FLS scatter", (f"{ds.attrs.get('scatter', '')} ({ds.sizes['cell']} sea states; "
+                            f"{ds.attrs.get('scatter_source', '')})")),
+            ("FLS method", (f"{ds.attrs.get('method', '')} (frequency domain), design life "
+                           f"{float(ds.attrs.get('design_life_years', np.nan)):g} years, "
+                           f"corrosion {ds.attrs.get('corrosion_mm_per_year', '')} mm/year")),
+            ("FLS governing", (f"{ds.attrs.get('governing_line', '')} at the "
+                              f"{ds.attrs.get('governing_location', '')}"))] + (
+        [("FLS notes", str(ds.attrs["notes"]))] if ds.attrs.get("notes") else [])
+
+
+def fls_tables(ds) -> list:
+    """The FLS tables (objects with ``caption``, ``html()`` and ``markdown()``)."""
+    from .report import _Table
+    check_fatigue_result(ds)
+    meths = [str(m) for m in ds["method"].values]
+    method = ds.attrs.get("method", meths[0])
+    k = meths.index(method)
+    locs = [str(x) for x in ds["location"].values]
+    lines = [str(x) for x in ds["line"].values]
+    gov = (ds.attrs.get("governing_location"), ds.attrs.get("governing_line"))
+    life = float(ds.attrs.get("design_life_years", np.nan))
+    rows, hl = [], []
+    for i, ln in enumerate(lines):
+        for j, loc in enumerate(locs):
+            u = float(ds["utilisation"].values[j, i])
+            if not np.isfinite(u):
+                continue
+            seg = str(ds["segment_type"].values[j, i]) if "segment_type" in ds else ""
+            curve = (f"{ds['tn_curve'].values[j, i]} ({_f(ds['tn_a_d'].values[j, i], '{:g}')}, "
+                     f"{_f(ds['tn_m'].values[j, i], '{:g}')})" if "tn_curve" in ds else "")
+            rows.append([ln, loc, seg, curve,
+                         _f(float(ds["rbs"].values[j, i]) / 1e3, "{:.0f}") if "rbs" in ds else "",
+                         _f(ds["annual_damage"].values[k, j, i], "{:.3e}"),
+                         _f(ds["fatigue_life"].values[j, i], "{:.4g}"),
+                         _f(ds["gamma_f"].values[j], "{:.2f}"), _f(u, "{:.3f}"),
+                         "PASS" if bool(ds["check_ok"].values[j, i]) else "FAIL"])
+            hl.append((loc, ln) == gov)
+    t1 = _Table("fls_lines", f"FLS fatigue life and check: fatigue damage, life and DNV-OS-E301 check per line and "
+                f"location ({method}, design life {life:g} years; check 1 - gamma_F d_C >= 0, "
+                "gamma_F from the adjacent-line damage ratio d_F)",
+                ["line", "location", "segment", "T-N curve (a_D, m)", "RBS (kN)",
+                 "annual damage", "life (years)", "gamma_F", "gamma_F d_C", "status"],
+                rows, highlight=hl, status_col=9)
+    jg, ig = locs.index(gov[0]), lines.index(gov[1])
+    contrib = ds["contribution"].values[:, jg, ig]
+    total = np.nansum(contrib)
+    order = np.argsort(np.nan_to_num(contrib))[::-1][:10]
+    acc = 0.0
+    rows2 = []
+    for c in order:
+        acc += contrib[c]
+        rows2.append([_f(ds["hs"].values[c], "{:.2f}"), _f(ds["tp"].values[c], "{:.2f}"),
+                      _f(ds["heading_deg"].values[c], "{:.0f}"),
+                      _f(ds["probability"].values[c], "{:.5f}"),
+                      _f(100 * contrib[c] / total, "{:.1f}"), _f(100 * acc / total, "{:.1f}")])
+    t2 = _Table("fls_cells", f"FLS dominant sea states: the sea states that dominate the damage of {gov[1]} at the "
+                f"{gov[0]} (the ten largest of {ds.sizes['cell']})",
+                ["Hs (m)", "Tp (s)", "direction (deg)", "probability", "share (%)",
+                 "cumulative (%)"], rows2)
+    rows3 = []
+    for j, loc in enumerate(locs):
+        a = ds["annual_damage"].values[:, j, ig]
+        if np.all(np.isnan(a)):
+            continue
+        rows3.append([loc] + [_f(x, "{:.3e}") for x in a]
+                     + [_f(a[m] / a[k], "{:.3f}") for m in range(len(meths))])
+    t3 = _Table("fls_methods", f"FLS spectral methods: annual damage of {gov[1]} by spectral method (and the "
+                f"ratio to {method})", ["location"] + meths + [f"{m} / {method}" for m in meths],
+                rows3)
+    tables = [t1, t2, t3]
+    if ds.sizes.get("td", 0):
+        rows4 = []
+        for n, c in enumerate(ds["td_cell"].values):
+            for j, loc in enumerate(locs):
+                td = float(ds["td_damage_rate"].values[n, j, ig])
+                if not np.isfinite(td):
+                    continue
+                rows4.append([(f"Hs {_f(ds['hs'].values[c], '{:g}')} Tp "
+                              f"{_f(ds['tp'].values[c], '{:g}')} dir "
+                              f"{_f(ds['heading_deg'].values[c], '{:.0f}')}"), loc,
+                              _f(td * 3600.0, "{:.3e}")]
+                             + [_f(ds["fd_td_ratio"].values[m, n, j, ig], "{:.3f}")
+                                for m in range(len(meths))])
+        t4 = _Table("fls_fd_td", f"FLS frequency domain against time domain: rainflow of one "
+                    f"{float(ds.attrs.get('td_duration', np.nan)):g} s storm per sea state, seed "
+                    f"{ds.attrs.get('td_seed', '')}, {gov[1]}, FD damage / TD damage",
+                    ["sea state", "location", "TD damage per hour"] + meths, rows4)
+        tables.append(t4)
+    return tables
+
+
+def write_fls_report(ds, out_dir, *, title: str | None = None) -> dict:
+    """Write the FLS section alone as ``fls.md`` and ``fls.html`` in ``out_dir``."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    tables = fls_tables(ds)
+    title = title or f"Fatigue limit state: {ds.attrs.get('scene_name', '')}"
+    meta = fls_meta(ds)
+    md = [f"# {title}", ""] + [f"- **{a}**: {b}" for a, b in meta] + [""]
+    md += [t.markdown() for t in tables]
+    md_path = out / "fls.md"
+    md_path.write_text("\n".join(md) + "\n", encoding="utf-8")
+    parts = ["<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+             f"<title>{html.escape(title)}</title></head><body><h1>{html.escape(title)}</h1><ul>"]
+    parts += [f"<li><b>{html.escape(a)}</b>: {html.escape(b)}</li>" for a, b in meta]
+    parts.append("</ul>")
+    for t in tables:
+        parts += [f"<h2>{html.escape(t.caption.split(':')[0])}</h2>", t.html()]
+    parts.append("</body></html>")
+    html_path = out / "fls.html"
+    html_path.write_text("".join(parts), encoding="utf-8")
+    return {"markdown": md_path, "html": html_path}
