@@ -17,8 +17,10 @@ iteration that still converges quadratically for the dominant axial stiffness).
 Every kernel writes into preallocated arrays; none allocates.
 
 Very stiff elements (strain under their weight below ``E0_STIFF``) get a tension estimate in the
-generalised-alpha Newton iteration (see :func:`gen_alpha_step`); scratch for it: ``BX[6, :, 0,
-0]`` (tridiagonal solver) or ``W[:, 0, 0]`` (band solver with bending), so no signature changed.
+generalised-alpha Newton iteration (see :func:`gen_alpha_step`), kept in ``LineWork.act``.
+
+The kernels take their arrays in a few bundles (:mod:`.bundles`): the line parameters
+``par``, node states (``LineState``) and the scratch ``w`` (``LineWork``).
 """
 
 from __future__ import annotations
@@ -238,39 +240,50 @@ def _dq_g(u, vR, up, fp):
 
 
 @njit(cache=True)
-def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
-                BX):
+def line_forces(r, v, fs, par, want_jac, cK, cC, f, w):
     """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
 
     Parameters
     ----------
     r, v : (n, 3) node positions (m) and velocities (m/s), earth axes.
-    P : (n, N_NP) node parameters; E : (n-1, N_EL) element parameters; S : (N_S,) scalars.
-    cur_z, cur_u : current profile (levels increasing, speeds m/s); direction in S.
-    wk : (n, 6) wave particle velocity (m/s) and acceleration (m/s^2) at the nodes (zeros
-        without waves); the velocity enters the drag, the acceleration the fluid inertia.
-    fric : int friction code; fs : (n, N_FS) friction state of the last accepted step (read
-        only; :func:`friction_decide` and :func:`friction_commit` update it).
-    q : (n, 3) scratch, node tangents on return.
+    fs : (n, N_FS) friction state of the last accepted step (read only;
+        :func:`friction_decide` and :func:`friction_commit` update it).
+    par : :class:`~.bundles.LineParams`: node parameters ``P``, element parameters ``E``,
+        scalars ``S``, current profile ``cur_z, cur_u`` (levels increasing, speeds m/s;
+        direction in ``S``), wave particle velocity (m/s) and acceleration (m/s^2) at the nodes
+        ``wk`` (n, 6) (zeros without waves; the velocity enters the drag, the acceleration the
+        fluid inertia), friction code ``fric``.
+    want_jac : bool; cK, cC : weights of the tangent.
     f : (n, 3) output, total force on every node (N).
-    tens : (n-1,) output, element tensions (N).
-    want_jac : bool; cK, cC : weights; Dg : (n, 3, 3), Of : (n-1, 3, 3) outputs (overwritten):
-        diagonal and upper off-diagonal blocks of ``cK K + cC C`` (element blocks: the lower
-        block equals the upper one).  BX : (7, n, 3, 3): with bending (``S[S_BEND] > 0``)
-        ``BX[0]`` lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]``
-        the upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
+    w : :class:`~.bundles.LineWork`: ``q`` node tangents on return, ``tens`` (n-1,) element
+        tensions (N); ``Dg`` (n, 3, 3), ``Of`` (n-1, 3, 3) outputs (overwritten): diagonal and
+        upper off-diagonal blocks of ``cK K + cC C`` (element blocks: the lower block equals
+        the upper one); ``BX`` (7, n, 3, 3): with bending (``S[S_BEND] > 0``) ``BX[0]``
+        lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]`` the
+        upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
     """
-    _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
-                 BX, tens, False)
+    _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, False)
 
 
 @njit(cache=True)
-def _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
-                 BX, act, use_act):
-    """:func:`line_forces`; with ``use_act``, ``act`` (n-1,) holds a tension estimate of every
-    element (N, see :func:`gen_alpha_step`): an element in compression with a positive estimate
-    acts as a bar, ``T = c1 eps`` (negative) with its axial tangent, instead of ``T = 0``, and
-    the geometric stiffness of every element is ``max(act, 0) / l``."""
+def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
+    """:func:`line_forces`; with ``use_act``, ``w.act`` (n-1,) holds a tension estimate of
+    every element (N, see :func:`gen_alpha_step`): an element in compression with a positive
+    estimate acts as a bar, ``T = c1 eps`` (negative) with its axial tangent, instead of
+    ``T = 0``, and the geometric stiffness of every element is ``max(act, 0) / l``."""
+    P = par.P
+    E = par.E
+    S = par.S
+    cur_z = par.cur_z
+    cur_u = par.cur_u
+    wk = par.wk
+    fric = par.fric
+    q = w.q
+    tens = w.tens
+    Dg = w.Dg
+    Of = w.Of
+    BX = w.BX
+    act = w.act
     n = r.shape[0]
     node_tangents(r, q)
     for i in range(n):
@@ -911,10 +924,12 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
 # statics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
-def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, tens, Dg, Of,
-                  BX, W, Y, T1, dx, rtry, info):
+def static_newton(r, v0, fs, par, f, w):
     """Damped Newton (Levenberg-Marquardt) for the static equilibrium of the free nodes
-    (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3).
+    (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3); ``fs``
+    friction state, ``par`` (:class:`~.bundles.LineParams`: static axial law in ``E``,
+    friction code ``fric``, tolerance ``tol`` (N) and ``maxit``), nodal forces into ``f``,
+    scratch ``w`` (:class:`~.bundles.LineWork`, element tensions ``w.tens``).
 
     A step ``(K + lam I) dx = f`` is accepted when it lowers the 2-norm of the nodal residual;
     ``lam`` (N/m) starts at 0 (pure Newton), grows by 10 from the weight of a node over its
@@ -924,12 +939,26 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
     largest residual.  Returns 0 when converged (max nodal residual < ``tol`` N), -1 when not,
     -2 singular tangent (``info[2]`` = node).
     """
+    P = par.P
+    E = par.E
+    S = par.S
+    tol = par.tol
+    maxit = par.maxit
+    Dg = w.Dg
+    Of = w.Of
+    BX = w.BX
+    W = w.W
+    Y = w.Y
+    T1 = w.T1
+    dx = w.dx
+    rtry = w.rtry
+    info = w.info
     n = r.shape[0]
     lam_min = 0.0
     for i in range(n):
         lam_min = max(lam_min, abs(P[i, NP_W]))
     lam_min /= max(E[0, EL_L0], 1e-12)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of, BX)
+    line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
     res2 = _res2(f, n)
     lam = 0.0
     it = 0
@@ -947,16 +976,14 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
         if bad >= 0:
             if lam == 0.0:
                 lam = lam_min
-                line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                            Dg, Of, BX)
+                line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
                 continue
             info[2] = bad
             return -2
         for i in range(n):
             for a in range(3):
                 rtry[i, a] = r[i, a] + (dx[i, a] if 0 < i < n - 1 else 0.0)
-        line_forces(rtry, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                    Dg, Of, BX)
+        line_forces(rtry, v0, fs, par, True, 1.0, 0.0, f, w)
         r2 = _res2(f, n)
         if r2 < res2 or _max_res(f, n) < tol:
             for i in range(n):
@@ -968,9 +995,8 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
             lam = lam_min if lam == 0.0 else 10.0 * lam
             if lam > 1e30:
                 break
-            line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                        Dg, Of, BX)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of, BX)
+            line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
+    line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
     info[0] = it
     info[1] = _max_res(f, n)
     worst = 1
@@ -1007,15 +1033,18 @@ def _max_res(f, n):
 # dynamics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
-def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, coef, tol,
-                   maxit, r1, v1, a1, f1, q, tens, Mb, Dg, Of, BX, Rr, W, Y, T1, da, info):
+def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     """One generalised-alpha step (Chung & Hulbert 1993) of the free nodes with Newton
     iterations on the accelerations.
 
-    State at ``t1 - dt``: ``r, v, a`` (n, 3) and the nodal force ``fn``; fairlead (node n-1)
-    position ``rf1`` and velocity ``vf1`` at ``t1``.  ``coef = (alpha_m, alpha_f, beta,
-    gamma)``.  Trial state at ``t1`` into ``r1, v1, a1, f1`` (the caller accepts it).
-    Residual ``M ((1-am) a1 + am a) - (1-af) f(r1, v1) - af fn``; mass blocks from ``r``.
+    State at ``t1 - dt``: ``s0`` (:class:`~.bundles.LineState`: ``r, v, a`` (n, 3), the nodal
+    force ``f``, the friction state ``fs``, whose sliding branch this step decides); fairlead
+    (node n-1) position ``rf1`` and velocity ``vf1`` at ``t1``.  ``par``
+    (:class:`~.bundles.LineParams`, ``coef = (alpha_m, alpha_f, beta, gamma)``, ``tol`` m,
+    ``maxit``); ``w`` (:class:`~.bundles.LineWork`) scratch, element tensions ``w.tens`` and
+    ``w.info``.  Trial state at ``t1`` into ``s1.r, s1.v, s1.a, s1.f`` (the caller accepts it;
+    ``s1.fs`` is not used).  Residual ``M ((1-am) a1 + am a) - (1-af) f(r1, v1) - af fn``;
+    mass blocks from ``r``.
 
     Stiff elements (:func:`_stiff`, e.g. the OC3 chain at EA = 3.84e14 N, EA / L0 = 2e13 N/m)
     are handled as in a mixed displacement-tension Newton: every stiff element carries a
@@ -1033,15 +1062,38 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
     Returns the number of Newton iterations (> 0), or -1 (no convergence: ``info[1]`` = node
     with the largest correction), -2 (singular iteration matrix at node ``info[1]``), -3 (NaN).
     """
+    r, v, a, fn, fs = s0
+    r1 = s1.r
+    v1 = s1.v
+    a1 = s1.a
+    f1 = s1.f
+    P = par.P
+    E = par.E
+    S = par.S
+    fric = par.fric
+    coef = par.coef
+    tol = par.tol
+    maxit = par.maxit
+    q = w.q
+    tens = w.tens
+    Mb = w.Mb
+    Dg = w.Dg
+    Of = w.Of
+    BX = w.BX
+    Rr = w.R
+    W = w.W
+    Y = w.Y
+    T1 = w.T1
+    da = w.dx
+    info = w.info
+    # element activity (> 0: taut by the tension estimate of the iteration)
+    act = w.act
     am = coef[0]
     af = coef[1]
     beta = coef[2]
     gamma = coef[3]
     n = r.shape[0]
     bend = S[S_BEND] > 0.0
-    # element activity (> 0: taut by the tension estimate of the iteration) in solver scratch
-    # that this step does not otherwise use (the band solver uses BX[3:7], the tridiagonal W)
-    act = W[:, 0, 0] if bend else BX[6, :, 0, 0]
     # force scale: the largest node weight (in air if the net weight vanishes), but not below
     # the round-off of the axial forces: an element tension c1 (l / L0 - 1) carries the
     # relative error of l / L0 (~ 1 ulp, plus the coordinates' round-off |r| eps / L0), which
@@ -1101,8 +1153,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
                 r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
                                                                + beta * a1[i, k])
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-        _line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg,
-                     Of, BX, act, True)
+        _line_forces(r1, v1, fs, par, True, cK, cC, f1, w, True)
         # largest push of an element held as a bar in compression (the converged state must
         # not rely on it: the cable law has no compression)
         fbar = 0.0
@@ -1212,8 +1263,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
             v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
     # forces of the accepted state with the law of the converged iteration (a held element
     # keeps its damping; a bar push is below the tolerance): consistent with the residual
-    _line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of,
-                 BX, act, True)
+    _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, True)
     for j in range(n - 1):
         if act[j] > 0.0 and tens[j] < 0.0:
             tens[j] = 0.0
@@ -1226,17 +1276,25 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
 
 
 @njit(cache=True)
-def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, Mb, Dg,
-                  Of, BX, W):
+def explicit_step(t1, dt, rf1, vf1, s, par, w):
     """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the
-    fairlead node follows ``rf1, vf1``.  Updates ``r, v`` in place.  Returns -1, or the first
-    node with a singular mass block / NaN."""
+    fairlead node follows ``rf1, vf1``.  Updates ``s.r, s.v`` in place (``s`` a
+    :class:`~.bundles.LineState`), the forces at the start of the step into ``s.f``, the
+    sliding branch into ``s.fs``.  Returns -1, or the first node with a singular mass block /
+    NaN."""
+    r = s.r
+    v = s.v
+    f = s.f
+    fs = s.fs
+    P = par.P
+    S = par.S
+    W = w.W
     n = r.shape[0]
-    node_mass(r, P, q, Mb)
-    friction_decide(r, v, fric, fs, S[S_ZC])
-    line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of, BX)
+    node_mass(r, P, w.q, w.Mb)
+    friction_decide(r, v, par.fric, fs, S[S_ZC])
+    line_forces(r, v, fs, par, False, 0.0, 0.0, f, w)
     for i in range(1, n - 1):
-        if not _inv3(Mb[i], W[i]):
+        if not _inv3(w.Mb[i], W[i]):
             return i
         for k in range(3):
             acc = W[i, k, 0] * f[i, 0] + W[i, k, 1] * f[i, 1] + W[i, k, 2] * f[i, 2]
@@ -1296,18 +1354,29 @@ def record_into(r, f, tens, zc, s_nodes, out):
 
 
 @njit(cache=True)
-def ga_advance(t1, dt, nsub, max_split, r, v, a, fn, fs, rf1, vf1, rA, vA, aA, fnA, fs1, rB, vB,
-               aB, fA, rf, vf, P, E, S, cur_z, cur_u, wk, fric, coef, tol, maxit, q, tens, Mb,
-               Dg, Of, BX, Rk, W, Yk, T1, da, info, stats):
-    """Trial advance of a line from its accepted state (``r, v, a, fn, fs`` at ``t1 - dt``) to
-    ``t1`` in ``nsub`` generalised-alpha steps with the fairlead moving linearly to ``rf1`` /
-    ``vf1``; a step whose Newton iteration fails is halved (down to 1/2^max_split of a
-    sub-step) and the step size grows back after each completed pair.  Trial state into
-    ``rA, vA, aA, fnA, fs1``; ``stats[0]`` += Newton iterations, ``stats[1]`` += halvings.
+def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
+    """Trial advance of a line from its accepted state ``now`` (:class:`~.bundles.LineState`
+    at ``t1 - dt``) to ``t1`` in ``nsub`` generalised-alpha steps with the fairlead moving
+    linearly to ``rf1`` / ``vf1``; a step whose Newton iteration fails is halved (down to
+    1/2^max_split of a sub-step) and the step size grows back after each completed pair.
+    Trial state into ``trial``; ``step`` holds each sub-step's result; ``w``
+    (:class:`~.bundles.LineWork`): ``w.stats[0]`` += Newton iterations, ``w.stats[1]`` +=
+    halvings, ``w.rf, w.vf`` the sub-step's fairlead.
 
-    Returns 0, or the failing status of :func:`gen_alpha_step` with ``info[0]`` the time (s)
-    and ``info[1]`` the node.
+    Returns 0, or the failing status of :func:`gen_alpha_step` with ``w.info[0]`` the time (s)
+    and ``w.info[1]`` the node.
     """
+    r, v, a, fn, fs = now
+    rA, vA, aA, fnA, fs1 = trial
+    rB, vB, aB, fA, _ = step
+    rf = w.rf
+    vf = w.vf
+    info = w.info
+    stats = w.stats
+    fric = par.fric
+    P = par.P
+    S = par.S
+    q = w.q
     n = r.shape[0]
     for i in range(n):
         for k in range(3):
@@ -1333,9 +1402,7 @@ def ga_advance(t1, dt, nsub, max_split, r, v, a, fn, fs, rf1, vf1, rA, vA, aA, f
             rf[k] = r[n - 1, k] + s * (rf1[k] - r[n - 1, k])
             vf[k] = v[n - 1, k] + s * (vf1[k] - v[n - 1, k])
         tk = t0 + (pos + sz) * hmin
-        it = gen_alpha_step(tk, sz * hmin, rA, vA, aA, fnA, rf, vf, P, E, S, cur_z, cur_u, wk,
-                            fric, fs1, coef, tol, maxit, rB, vB, aB, fA, q, tens, Mb, Dg, Of, BX,
-                            Rk, W, Yk, T1, da, info)
+        it = gen_alpha_step(tk, sz * hmin, rf, vf, trial, step, par, w)
         if it < 0:
             if sz > 1:
                 sz //= 2

@@ -130,7 +130,7 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
 
     def record(k, t, f):
         times[k] = t
-        K.record_into(line.r, f, line._tens, zc, line.s_nodes, rec)
+        K.record_into(line.r, f, tens, zc, line.s_nodes, rec)
         Ff[k] = rec[0:3]
         Fa[k] = rec[3:6]
         tmax[k] = rec[6]
@@ -142,14 +142,14 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
         if tracked.size:
             pos_tr[k] = line.r[tracked]
 
-    K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk,
-                  line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
-                  line._Dg, line._Of, line._BX)
-    record(0, t0, line._f1)
+    b = line.bundle
+    tens = b.work.tens      # element tensions of the last force evaluation (read only here)
+    K.line_forces(line.r, line.v, line.fs, b.par, False, 0.0, 0.0, b.step.f, b.work)
+    record(0, t0, b.step.f)
     si = 0
     if snap_steps and snap_steps[0] == 0:
         snaps_r[0] = line.r
-        snaps_t[0] = line._tens
+        snaps_t[0] = tens
         si = 1
     for k in range(1, n + 1):
         t = t0 + k * dt
@@ -159,7 +159,7 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
             record(k // record_every, t, line.fn)
         if si < len(snap_steps) and snap_steps[si] == k:
             snaps_r[si] = line.r
-            snaps_t[si] = line._tens
+            snaps_t[si] = tens
             si += 1
     name = line.spec.name
     ds = xr.Dataset(
