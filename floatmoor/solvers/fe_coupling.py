@@ -1,4 +1,4 @@
-"""Finite-element mooring lines coupled to the 6-DOF time-domain solver (issue 9, coupling a).
+"""Finite-element mooring lines coupled to the 6-DOF time-domain solver.
 
 A scene selects FE lines with ``mooring: {model: finite-element}`` (all lines) or per line
 ``lines[i].model`` (:mod:`floatmoor.mooring.fe.options`).  :func:`setup` builds them

@@ -42,13 +42,13 @@ N_S = 8
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
 FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
-# branch_axial, branch_lateral (seed-000 model: 0 stick, +-1 sliding direction in this step).
+# branch_axial, branch_lateral (model of Lu 2012: 0 stick, +-1 sliding direction in this step).
 # The double-quadratic velocity ramp (FR_VDQ) keeps the horizontal speed (m/s) and the
 # transition factor f of the last accepted step in columns FS_UPREV and FS_FPREV.
 N_FS = 8
 FS_UPREV, FS_FPREV = 0, 1
-V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
-D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
+V_MEANINGFUL = 1e-8     # Lu (2012): below this a node is at rest (m/s)
+D_MEANINGFUL = 1e-4     # Lu (2012): displacement ramp active beyond this (m)
 V_SB = 0.01             # seabed damping switches off between -V_SB and +V_SB (m/s)
 EPS_MACH = 2.220446049250313e-16
 # An element is "stiff" when its strain under its own weight (in air plus submerged) is below
@@ -124,23 +124,32 @@ def _elem_tension(r, v, P, E, j):
 
 
 @njit(cache=True)
+def _direction_sum(r, i):
+    """Sum of the unit directions of the elements adjacent to node ``i`` (not normalised;
+    zero-length elements left out)."""
+    n = r.shape[0]
+    qx = 0.0
+    qy = 0.0
+    qz = 0.0
+    for j in (i - 1, i):
+        if 0 <= j < n - 1:
+            dx = r[j + 1, 0] - r[j, 0]
+            dy = r[j + 1, 1] - r[j, 1]
+            dz = r[j + 1, 2] - r[j, 2]
+            ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+            if ll > 0.0:
+                qx += dx / ll
+                qy += dy / ll
+                qz += dz / ll
+    return qx, qy, qz
+
+
+@njit(cache=True)
 def node_tangents(r, q):
     """Unit tangent at every node (average of the adjacent element directions)."""
     n = r.shape[0]
     for i in range(n):
-        qx = 0.0
-        qy = 0.0
-        qz = 0.0
-        for j in (i - 1, i):
-            if 0 <= j < n - 1:
-                dx = r[j + 1, 0] - r[j, 0]
-                dy = r[j + 1, 1] - r[j, 1]
-                dz = r[j + 1, 2] - r[j, 2]
-                ll = math.sqrt(dx * dx + dy * dy + dz * dz)
-                if ll > 0.0:
-                    qx += dx / ll
-                    qy += dy / ll
-                    qz += dz / ll
+        qx, qy, qz = _direction_sum(r, i)
         nq = math.sqrt(qx * qx + qy * qy + qz * qz)
         if nq > 0.0:
             q[i, 0] = qx / nq
@@ -182,7 +191,7 @@ def _friction_dirs(qx, qy):
 
 @njit(cache=True)
 def dq_transition(x, xp, fp):
-    """Double-quadratic transition factor (seed 001 sec. 9.x, eq. 9-62/9-64/9-65 as
+    """Double-quadratic transition factor (ANSYS 2013 sec. 9.x, eq. 9-62/9-64/9-65 as
     reconstructed in :mod:`floatmoor.mooring.fe.config`) and its slope ``df/dx``.
 
     ``x = u / v_R`` (current speed over the ramp velocity), ``xp, fp``: the same and the factor
@@ -565,7 +574,7 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
 
 @njit(cache=True)
 def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
-    """Seed 000 combined displacement and velocity ramp (sec. 2.2.2, figure 8) for one
+    """Lu (2012) combined displacement and velocity ramp (sec. 2.2.2, figure 8) for one
     direction, with the branch frozen for the time step.
 
     ``branch`` 0 (the node was at rest, |v| < 1e-8 m/s, at the start of the step: the previous
@@ -607,23 +616,13 @@ def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
 
 @njit(cache=True)
 def friction_decide(r, v, fric, fs, zc):
-    """Start of a time step: freeze the branch of the seed-000 model from the predicted
+    """Start of a time step: freeze the branch of the Lu (2012) model from the predicted
     velocities (stick below 1e-8 m/s, else the sliding direction)."""
     if fric != FR_DISPVEL:
         return
     n = r.shape[0]
     for i in range(n):
-        qx = 0.0
-        qy = 0.0
-        for j in (i - 1, i):
-            if 0 <= j < n - 1:
-                dx = r[j + 1, 0] - r[j, 0]
-                dy = r[j + 1, 1] - r[j, 1]
-                dz = r[j + 1, 2] - r[j, 2]
-                ll = math.sqrt(dx * dx + dy * dy + dz * dz)
-                if ll > 0.0:
-                    qx += dx / ll
-                    qy += dy / ll
+        qx, qy, _ = _direction_sum(r, i)
         ax, ay, bx, by = _friction_dirs(qx, qy)
         for k in range(2):
             if k == 0:
@@ -638,7 +637,7 @@ def friction_decide(r, v, fric, fs, zc):
 
 @njit(cache=True)
 def friction_commit(r, v, q, fric, fs, P, S, zc):
-    """End of an accepted time step: store the seed-000 friction coefficients and the last
+    """End of an accepted time step: store the Lu (2012) friction coefficients and the last
     sliding velocities; a reversal of the sliding direction resets the reference position.
     Double-quadratic ramp: store the horizontal speed and the transition factor of the step
     (zero for nodes off the seabed: a node touching down starts from rest, eq. 9-67)."""
@@ -704,7 +703,7 @@ def _bending(r, P, f, want_jac, cK, Dg, Of, BX):
     """Bending at the interior nodes from the discrete elastica energy
     ``U_i = c_i (1 - e_a . e_b)``, ``c_i = EI / L_mean`` (``U ~ EI kappa^2 L / 2`` for small
     angles), ``e_a, e_b`` the directions of the elements before and after node i; the ends are
-    pinned (seed 001 eq. 9-47).  Forces ``-dU/dx`` and the exact Hessian (block bandwidth 2:
+    pinned (ANSYS 2013 eq. 9-47).  Forces ``-dU/dx`` and the exact Hessian (block bandwidth 2:
     blocks (i-1, i+1) go to ``BX[1]`` / ``BX[2]``).  No allocation."""
     n = r.shape[0]
     if want_jac:

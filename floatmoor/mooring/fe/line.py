@@ -283,7 +283,7 @@ class FELine:
         hence the generous ``maxit`` (an iteration costs ~10-20 us for 100 elements).  When
         Newton fails the axial stiffness is ramped up (continuation) and the fairlead move is
         split in halves.  Seabed
-        friction in statics is the displacement ramp (seed 000 sec. 2.2.1) measured from
+        friction in statics is the displacement ramp (Lu 2012, sec. 2.2.1) measured from
         ``reference`` node positions (default: the positions before this call) when the
         line's friction model is not ``none`` and ``friction`` is true.
 
@@ -382,13 +382,9 @@ class FELine:
             raise ValueError("integrator must be 'generalized_alpha' or 'explicit'")
         self.integrator = integrator
         self.coef = gen_alpha_coefficients(rho_inf)
-        self.tol = float(tol)
-        self.maxit = int(maxit)
-        self._par = LineParams(self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u, self.wk,
-                               int(self.fric_code), self.coef, self.tol, self.maxit,
-                               self.s_nodes)
-        self._bundle = LineBundle(self._par, self._now, self._trial_state, self._step_state,
-                                  self.work)
+        self._tol = float(tol)
+        self._maxit = int(maxit)
+        self._set_params()
         self.v[:] = 0.0
         self.a[:] = 0.0
         self.fs[:] = 0.0
@@ -400,6 +396,36 @@ class FELine:
         self._started = True
         self.newton_iterations = 0
         self.substeps_taken = 0
+
+    def _set_params(self):
+        self._par = LineParams(self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u, self.wk,
+                               int(self.fric_code), self.coef, self._tol, self._maxit,
+                               self.s_nodes)
+        self._bundle = LineBundle(self._par, self._now, self._trial_state, self._step_state,
+                                  self.work)
+
+    @property
+    def tol(self) -> float:
+        """Newton tolerance in dynamics (m, :meth:`start`)."""
+        return self._tol
+
+    @tol.setter
+    def tol(self, value: float):
+        self._tol = float(value)
+        if self._par is not None:
+            self._set_params()
+
+    @property
+    def maxit(self) -> int:
+        """Newton iteration limit in dynamics (:meth:`start`).  Setting it (or :attr:`tol`)
+        after :meth:`start` renews :attr:`bundle`; typed lists built before keep the old one."""
+        return self._maxit
+
+    @maxit.setter
+    def maxit(self, value: int):
+        self._maxit = int(value)
+        if self._par is not None:
+            self._set_params()
 
     def params(self, *, static: bool = False, fric: int | None = None, wk=None,
                tol: float | None = None, maxit: int | None = None) -> LineParams:

@@ -1,8 +1,8 @@
 """Decoupled FE line runs: fairlead motion prescribed as a harmonic or a time series (for
-example the fairlead track of a previous floater run, seed 002 chapter 8 workflow), results as
+example the fairlead track of a previous floater run, Wang (2016) chapter 8 workflow), results as
 an xarray Dataset with units, and the dynamic amplification factor
 
-    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (seed 002, eq. 8.1)
+    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (Wang 2016, eq. 8.1)
 
 with the quasi-static tension from the elastic catenary for the same fairlead track.
 """
@@ -223,8 +223,8 @@ def quasi_static_tension(line: FELine, motion, times) -> np.ndarray:
 
 
 def daf(t_fe, t_qs) -> float:
-    """Dynamic amplification factor ``(T_max - T_mean)_FE / (T_max - T_mean)_QS`` (seed 002
-    eq. 8.1) from two tension histories over the same (steady) interval."""
+    """Dynamic amplification factor ``(T_max - T_mean)_FE / (T_max - T_mean)_QS`` (Wang
+    2016, eq. 8.1) from two tension histories over the same (steady) interval."""
     t_fe = np.asarray(t_fe, float)
     t_qs = np.asarray(t_qs, float)
     den = t_qs.max() - t_qs.mean()
@@ -237,7 +237,7 @@ def decoupled_analysis(system, t, poses, *, dt: float | None = None, discard: fl
                        lines=None, element_length: float = 20.0, line_kw=None,
                        **spec_kw) -> xr.Dataset:
     """Decoupled FE analysis of mooring lines driven by the body motion of a previous floater
-    run (seed 002 chapter 8: SIMO motions into RIFLEX), with the DAF per line.
+    run (Wang (2016) chapter 8: SIMO motions into RIFLEX), with the DAF per line.
 
     Parameters
     ----------

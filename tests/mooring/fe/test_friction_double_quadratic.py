@@ -1,4 +1,4 @@
-"""Double-quadratic velocity-ramp friction (seed 001, Aqwa eq. 9-62 to 9-65, figure 9.10;
+"""Double-quadratic velocity-ramp friction (ANSYS 2013, Aqwa eq. 9-62 to 9-65, figure 9.10;
 reconstructed form, see floatmoor.mooring.fe.config): the transition function against its
 defining properties and hand values, a grounded line dragged on the seabed against the Coulomb
 closed form ``mu N x grounded length`` with the unloading branch on a speed decrease, the energy
@@ -236,7 +236,7 @@ def test_energy_per_cycle_of_harmonic_lateral_sliding(grounded):
 # the full FE line in the time domain
 # ---------------------------------------------------------------------------------------------
 def test_oc3_line_harmonic_sway_with_the_three_regularisations():
-    """Sway 3 m at 15 s (seed 000 excitation 2), OC3 line, generalised-alpha at 0.1 s: with each
+    """Sway 3 m at 15 s (Lu 2012, excitation 2), OC3 line, generalised-alpha at 0.1 s: with each
     regularisation the work per cycle exceeds the frictionless one, the first grounded node
     slides much less, and the three agree within 1 % (the ramp velocity D / T_z = 9 mm/s is far
     below the sliding speeds, so all tend to the same Coulomb limit).  Measured 2026-11-21:
