@@ -5,7 +5,7 @@ Coupling interface (for the body solver): ::
 
     line = FELine(spec)
     line.solve_static()                 # equilibrium at the initial fairlead position
-    line.start(dt=0.1)                  # generalised-alpha, rho_inf = 0.7
+    line.start()                        # generalised-alpha, rho_inf = 0.7
     for each body step t -> t + dt:
         F = line.advance(t + dt, dt, r_fair(t + dt), v_fair(t + dt))   # trial, N (3,)
         ... (the body solver may call advance again with new fairlead kinematics: every call
@@ -18,6 +18,11 @@ the accepted and the new position when the body step is larger than the line can
 splits a step by itself (up to 2^5 times) where Newton does not converge.  For several lines on
 one body, :class:`floatmoor.mooring.fe.body.FEMooring` takes the body pose and velocity and
 returns the 6-DOF generalised force.
+
+The trial state is changed only through the line's methods: :meth:`FELine.advance` (or
+:meth:`FELine.trial` after a kernel that advanced several lines' :attr:`FELine.bundle` at
+once), :meth:`FELine.accept` and :meth:`FELine.reject`; :attr:`FELine.failure` and
+:meth:`FELine.step_error` describe a failed step.
 """
 
 from __future__ import annotations
