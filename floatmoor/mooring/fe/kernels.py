@@ -1364,20 +1364,29 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     (:class:`~.bundles.LineWork`): ``w.stats[0]`` += Newton iterations, ``w.stats[1]`` +=
     halvings, ``w.rf, w.vf`` the sub-step's fairlead.
 
+    The bundles may also be plain tuples in the same field order: the entry point for one line
+    called from Python (numba types a plain tuple of arrays from its C fingerprint, a named
+    tuple through Python, ~0.3 us per field, 15 us per call for the ~50 arrays of a line).
+
     Returns 0, or the failing status of :func:`gen_alpha_step` with ``w.info[0]`` the time (s)
     and ``w.info[1]`` the node.
     """
-    r, v, a, fn, fs = now
-    rA, vA, aA, fnA, fs1 = trial
-    rB, vB, aB, fA, _ = step
-    rf = w.rf
-    vf = w.vf
-    info = w.info
-    stats = w.stats
-    fric = par.fric
-    P = par.P
-    S = par.S
-    q = w.q
+    s0 = LineState(*now)
+    s1 = LineState(*trial)
+    s2 = LineState(*step)
+    lp = LineParams(*par)
+    lw = LineWork(*w)
+    r, v, a, fn, fs = s0
+    rA, vA, aA, fnA, fs1 = s1
+    rB, vB, aB, fA, _ = s2
+    rf = lw.rf
+    vf = lw.vf
+    info = lw.info
+    stats = lw.stats
+    fric = lp.fric
+    P = lp.P
+    S = lp.S
+    q = lw.q
     n = r.shape[0]
     for i in range(n):
         for k in range(3):
@@ -1403,7 +1412,7 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
             rf[k] = r[n - 1, k] + s * (rf1[k] - r[n - 1, k])
             vf[k] = v[n - 1, k] + s * (vf1[k] - v[n - 1, k])
         tk = t0 + (pos + sz) * hmin
-        it = gen_alpha_step(tk, sz * hmin, rf, vf, trial, step, par, w)
+        it = gen_alpha_step(tk, sz * hmin, rf, vf, s1, s2, lp, lw)
         if it < 0:
             if sz > 1:
                 sz //= 2
@@ -1425,12 +1434,3 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
             sz *= 2
     return 0
 
-
-@njit(cache=True)
-def ga_advance_tuples(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
-    """:func:`ga_advance` with the bundles given as plain tuples (same field order): the entry
-    point for one line called from Python.  Numba types a plain tuple of arrays from its C
-    fingerprint, a named tuple through Python (~0.3 us per field, 15 us for the ~50 arrays of
-    a line); inside, the named tuples are rebuilt at no cost."""
-    return ga_advance(t1, dt, nsub, max_split, rf1, vf1, LineState(*now), LineState(*trial),
-                      LineState(*step), LineParams(*par), LineWork(*w))

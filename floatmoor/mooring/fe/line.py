@@ -408,7 +408,7 @@ class FELine:
                                self.s_nodes)
         self._bundle = LineBundle(self._par, self._now, self._trial_state, self._step_state,
                                   self.work)
-        # the same as plain tuples, for the one-line entry point (fast dispatch)
+        # the same as plain tuples, for the entry from Python (fast dispatch, see ga_advance)
         self._tuples = tuple(tuple(b) for b in self._bundle[1:4]) + (tuple(self._par),
                                                                      tuple(self.work))
 
@@ -486,7 +486,7 @@ class FELine:
             self.wk[:, 3:6] = self._kin_a
         if self.integrator == "generalized_alpha":
             w.stats[:] = 0.0
-            st = K.ga_advance_tuples(t1, dt, substeps, self.MAX_SPLIT, rf1, vf1, *self._tuples)
+            st = K.ga_advance(t1, dt, substeps, self.MAX_SPLIT, rf1, vf1, *self._tuples)
             self.newton_iterations += int(w.stats[0])
             self.substeps_taken += int(w.stats[1])
             if st < 0:
