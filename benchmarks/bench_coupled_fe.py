@@ -1,4 +1,4 @@
-"""Coupled FE mooring benchmark (issue 9): the 3-hour storm of the Floatel-like semi with 12 FE
+"""Coupled FE mooring benchmark: the 3-hour storm of the Floatel-like semi with 12 FE
 lines (scenes/floatel_100yr_fe.yaml, 50 elements per line) coupled to the body.
 
 Prints, per body time step (default 0.1 and 0.2 s): setup time (scene build, FE statics and

@@ -154,8 +154,8 @@ def main(quick=False):
 
 def storm_projection(n_lines=12, n_el=50, dt=0.1, n_steps=1000, fast=True):
     """Time of FEMooring.advance/accept for 12 OC3-like lines of 50 elements around a body in
-    harmonic surge/sway/yaw, projected to a 3-hour run (the coupled solver is not part of this
-    issue's work yet: body dynamics excluded)."""
+    harmonic surge/sway/yaw, projected to a 3-hour run (lines only: body dynamics excluded;
+    the coupled run is ``bench_coupled_fe.py``)."""
     from floatmoor.mooring.fe import FELineSpec
     from floatmoor.mooring.fe.body import FEMooring
     base = oc3_spec(n=n_el, damping=BA_TOTAL / n_el)

@@ -1,4 +1,4 @@
-"""Finite-element mooring lines coupled to the 6-DOF time-domain solver (issue 9, coupling a).
+"""Finite-element mooring lines coupled to the 6-DOF time-domain solver.
 
 A scene selects FE lines with ``mooring: {model: finite-element}`` (all lines) or per line
 ``lines[i].model`` (:mod:`floatmoor.mooring.fe.options`).  :func:`setup` builds them
@@ -65,6 +65,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -74,17 +75,37 @@ from ..core.frames import rotation_matrix_into
 from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
-from ..mooring.fe.multi import add_line_wrench, body_accept, body_advance, typed_lists
+from ..mooring.fe.multi import FEBody, add_line_wrench, body_accept, body_advance, line_list
 from ..mooring.system import system_force_kernel
 from .td_kernel import _pose_rate, start_state, td_scratch, td_steps
 
-__all__ = ["FECoupling", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
+__all__ = ["FECoupling", "FERun", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
 
 STATUS_FE = 5
 """Status code of :func:`td_fe_kernel` when a FE line step failed (status[2] the FE line,
 status[3] the code of :func:`floatmoor.mooring.fe.kernels.ga_advance`)."""
 
 FE_RECORDS = ("max_tension_along_line", "grounded_length", "touchdown_tension")
+
+
+class FERun(NamedTuple):
+    """The FE lines' place in a coupled run (:func:`td_fe_kernel`), beside the body side
+    (:class:`~floatmoor.mooring.fe.multi.FEBody`) and the lines' typed list of
+    :class:`~floatmoor.mooring.fe.bundles.LineBundle`."""
+
+    index: np.ndarray
+    """(n_fe,) int64 positions of the FE lines among all lines."""
+    active: np.ndarray
+    """(n_lines,) bool: True for the intact FE lines (the catenary of F_QS,FE)."""
+    warm: np.ndarray
+    """(n_lines, 2) catenary warm starts of F_QS,FE."""
+    nsub: int
+    """Line steps per body step."""
+    max_split: int
+    """Step halvings allowed per line step."""
+    records: np.ndarray
+    """(3, n_steps+1, n_lines) out: max tension along the line, grounded length, touchdown
+    tension of the FE lines (NaN for the others)."""
 
 
 @dataclass(kw_only=True)
@@ -181,7 +202,9 @@ def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, exter
 
 
 @njit(cache=True)
-def _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor, fe_out):
+def _record_fe(n, fe, on, lines, rec, t_fair, t_anchor):
+    fe_index = fe.index
+    fe_out = fe.records
     for i in range(fe_index.shape[0]):
         j = fe_index[i]
         if not on[i]:  # released line: zero tensions, grounded length not modelled
@@ -191,7 +214,8 @@ def _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_a
             fe_out[1, n, j] = np.nan
             fe_out[2, n, j] = 0.0
             continue
-        K.record_into(l_r[i], l_fn[i], w_tens[i], zc[i], s_nodes[i], rec)
+        ln = lines[i]
+        K.record_into(ln.now.r, ln.now.f, ln.work.tens, ln.par.S[K.S_ZC], ln.par.s_nodes, rec)
         t_fair[n, j] = math.sqrt(rec[0] ** 2 + rec[1] ** 2 + rec[2] ** 2)
         t_anchor[n, j] = math.sqrt(rec[3] ** 2 + rec[4] ** 2 + rec[5] ** 2)
         fe_out[0, n, j] = rec[6]
@@ -200,17 +224,21 @@ def _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_a
 
 
 @njit(cache=True)
-def _release_failed(t, fe_index, fail_time, on, active_fe, arm, forces, Q):
+def _release_failed(t, fe, fail_time, body):
     """Release the FE lines whose failure time is reached at ``t`` (``t >= fail_time``, the
-    test of the quasi-static kernel): ``on`` and ``active_fe`` False, and ``Q`` summed again
-    over the remaining lines from their end ``forces`` and lever ``arm`` s (as
-    :func:`body_advance` sums it).  Returns True when a line was released."""
+    test of the quasi-static kernel): ``body.on`` and ``fe.active`` False, and ``body.Q``
+    summed again over the remaining lines from their end ``body.forces`` and lever
+    ``body.arm`` s (as :func:`body_advance` sums it).  Returns True when a line was released."""
+    fe_index = fe.index
+    on = body.on
+    forces = body.forces
+    Q = body.Q
     changed = False
     for i in range(fe_index.shape[0]):
         j = fe_index[i]
         if on[i] and t >= fail_time[j]:
             on[i] = False
-            active_fe[j] = False
+            fe.active[j] = False
             for c in range(3):
                 forces[i, c] = 0.0
             changed = True
@@ -219,7 +247,7 @@ def _release_failed(t, fe_index, fail_time, on, active_fe, arm, forces, Q):
             Q[k] = 0.0
         for i in range(fe_index.shape[0]):
             if on[i]:
-                add_line_wrench(i, arm, forces, Q)
+                add_line_wrench(i, body.arm, forces, Q)
     return changed
 
 
@@ -231,25 +259,20 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
                  sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
                  cb, seabed, active, fail_time, mbs, warm, guard, tension_guard, record_parts,
                  motion, velocity, t_fair, t_anchor, parts_out, status,
-                 fe_index, active_fe, warm_fe, Q, nsub, max_split, fair_b, R, rf_all, vf_all,
-                 arm, forces, fail, on, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA,
-                 l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk, l_vfk, l_P, l_E, l_S, l_cur_z,
-                 l_cur_u, l_wk, fric, coef_ga, tol, maxit, w_q, w_tens, w_Mb, w_Dg, w_Of, w_BX,
-                 w_Rk, w_W, w_Yk, w_T1, w_da, w_info, w_stats, zc, s_nodes, fe_out):
+                 fe, body, lines):
     """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring).
 
     Arguments up to ``status`` as for ``td_kernel`` (``status`` (4,) here; the catenary data
-    hold every line, FE lines included, ``active`` their state).  FE part: ``fe_index`` (n_fe,)
-    positions of the FE lines among all lines, ``active_fe`` (n_lines,) True for them,
-    ``warm_fe`` (n_lines, 2) catenary warm starts, ``Q`` (6,) the generalised force of the FE
-    lines in the started state (updated every step), ``nsub`` line steps per body step, then the
-    arguments of :func:`floatmoor.mooring.fe.multi.body_advance` from ``max_split`` on
-    (``arm`` and ``forces`` hold the lever arms and end forces of the started state; ``on``
-    (n_fe,) True for the intact FE lines, set False at their ``fail_time``), ``zc``
-    (n_fe,) seabed contact levels, ``s_nodes`` node arc lengths (typed list), ``fe_out`` (3,
-    n_steps+1, n_lines) max tension along the line, grounded length, touchdown tension of the
-    FE lines.  Status 5 (:data:`STATUS_FE`): FE step failed, ``status[2]`` the FE line,
-    ``status[3]`` the kernel code, the line's ``info`` the time and node.
+    hold every line, FE lines included, ``active`` their state).  FE part: ``fe``
+    (:class:`FERun`: positions of the FE lines, their catenary mask and warm starts, line
+    steps per body step, the records out), ``body``
+    (:class:`~floatmoor.mooring.fe.multi.FEBody`: ``Q`` the generalised force of the FE lines
+    in the started state, updated every step; ``arm`` and ``forces`` the lever arms and end
+    forces of the started state; ``on`` True for the intact FE lines, set False at their
+    ``fail_time``) and ``lines`` (typed list of
+    :class:`~floatmoor.mooring.fe.bundles.LineBundle`).  Status 5 (:data:`STATUS_FE`): FE
+    step failed, ``status[2]`` the FE line, ``status[3]`` the kernel code, the line's
+    ``work.info`` the time and node.
     """
     (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
      a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])
@@ -258,6 +281,10 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
     start_state(x0, v0, x, v, hist)
     for k in range(status.shape[0]):
         status[k] = 0
+    fe_index = fe.index
+    active_fe = fe.active
+    warm_fe = fe.warm
+    Q = body.Q
     n_fe = fe_index.shape[0]
     rec = np.zeros(13)
     prate = np.zeros(6)
@@ -265,7 +292,7 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
     fq = np.zeros(6)
     for n in range(n_steps + 1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
-        _release_failed(n * dt, fe_index, fail_time, on, active_fe, arm, forces, Q)
+        _release_failed(n * dt, fe, fail_time, body)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
         bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
                                   line_start, cb, seabed, active_fe, warm_fe, False, work, rot,
@@ -289,8 +316,7 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         if status[0] != 0:
             return
         # row n: the FE tensions at t_n replace the catenary's for the FE lines
-        _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor,
-                   fe_out)
+        _record_fe(n, fe, body.on, lines, rec, t_fair, t_anchor)
         for i in range(n_fe):
             j = fe_index[i]
             if t_fair[n, j] > tension_guard * mbs[j]:
@@ -312,19 +338,14 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         vel[3] = prate[3] * cps * cph - prate[4] * sps
         vel[4] = prate[3] * sps * cph + prate[4] * cps
         vel[5] = prate[5] - prate[3] * sph
-        st = body_advance((n + 1) * dt, dt, nsub, max_split, x, vel, fair_b, R, rf_all, vf_all,
-                          arm, Q, forces, fail, on, counters, l_r, l_v, l_a, l_fn, l_fs,
-                          l_rA, l_vA, l_aA, l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk,
-                          l_vfk, l_P, l_E, l_S, l_cur_z, l_cur_u, l_wk, fric, coef_ga, tol,
-                          maxit, w_q, w_tens, w_Mb, w_Dg, w_Of, w_BX, w_Rk, w_W, w_Yk, w_T1,
-                          w_da, w_info, w_stats)
+        st = body_advance((n + 1) * dt, dt, fe.nsub, fe.max_split, x, vel, body, lines)
         if st < 0:
             status[0] = STATUS_FE
             status[1] = n + 1
-            status[2] = fail[0]
+            status[2] = body.fail[0]
             status[3] = st
             return
-        body_accept(on, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA, l_fnA, l_fs1)
+        body_accept(body.on, lines)
 
 
 def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
@@ -338,7 +359,6 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
         FE statics that do not converge at the start pose.
     """
     from ..core.errors import ConvergenceError
-    from ..mooring.fe.multi import LINE_ARGS, WORK_ARGS
 
     fm = c.mooring
     try:
@@ -361,31 +381,22 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     rotation_matrix_into(x0[3], x0[4], x0[5], R)
     arm = np.ascontiguousarray(fm.fairleads_body @ R.T)
     forces = np.ascontiguousarray(ends, dtype=float)
-    on = np.ones(len(lines), np.bool_)
-    per_line = typed_lists(lines, LINE_ARGS)
-    work = typed_lists(lines, WORK_ARGS)
-    s_nodes = typed_lists(lines, ("s_nodes",))[0]
-    fric = np.array([ln.fric_code for ln in lines], dtype=np.int64)
-    coef = np.array([ln.coef for ln in lines], dtype=np.float64)
-    tol = np.array([ln.tol for ln in lines], dtype=np.float64)
-    maxit = np.array([ln.maxit for ln in lines], dtype=np.int64)
-    zc = np.array([ln.S[K.S_ZC] for ln in lines])
     nf = len(lines)
-    fe_out = np.full((3, n_steps + 1, n_lines), np.nan)
+    on = np.ones(nf, np.bool_)
     fm.counters = np.zeros((nf, 2))
-    args = td_args[:-1] + (
-        status, np.ascontiguousarray(c.index), active_fe, np.zeros((n_lines, 2)), Q,
-        int(c.substeps), int(FELine.MAX_SPLIT),
-        np.ascontiguousarray(fm.fairleads_body), np.zeros((3, 3)), np.zeros((nf, 3)),
-        np.zeros((nf, 3)), arm, forces, np.zeros(1, np.int64), on, fm.counters, *per_line,
-        fric, coef, tol, maxit, *work, zc, s_nodes, fe_out)
-    td_fe_kernel(*args)
+    body = FEBody(fair_b=np.ascontiguousarray(fm.fairleads_body), R=np.zeros((3, 3)),
+                  rf=np.zeros((nf, 3)), vf=np.zeros((nf, 3)), arm=arm, Q=Q, forces=forces,
+                  on=on, fail=np.zeros(1, np.int64), counters=fm.counters)
+    fe = FERun(index=np.ascontiguousarray(c.index), active=active_fe,
+               warm=np.zeros((n_lines, 2)), nsub=int(c.substeps),
+               max_split=int(FELine.MAX_SPLIT),
+               records=np.full((3, n_steps + 1, n_lines), np.nan))
+    td_fe_kernel(*td_args[:-1], status, fe, body, line_list(lines))
     fm.on[:] = on
     t_end = int(status[1]) * td_args[1]
     for ln in lines:
-        ln.time = t_end
-        ln._trial = False
-    return status, fe_out
+        ln.set_time(t_end)
+    return status, fe.records
 
 
 def raise_fe_status(c: FECoupling, status) -> None:
@@ -397,9 +408,10 @@ def raise_fe_status(c: FECoupling, status) -> None:
     msg = {-1: f"no Newton convergence in {ln.maxit} iterations",
            -2: "singular iteration matrix", -3: "NaN in the line state"}.get(
         code, f"line step failed (code {code})")
+    t_fail, node = ln.failure
     raise NumericalError(
-        f"FE line coupled to the body: {msg}", time=float(ln._info[0]),
-        where=f"line {ln.spec.name!r}, node {int(ln._info[1])} of {ln.n_nodes - 1}",
+        f"FE line coupled to the body: {msg}", time=t_fail,
+        where=f"line {ln.spec.name!r}, node {node} of {ln.n_nodes - 1}",
         remedy=f"reduce dt or set mooring.finite_element.dt (line steps per body step; the "
                f"step was already halved {FELine.MAX_SPLIT} times), add elements, or check "
                "for a slack line hit by a snap load")

@@ -1,6 +1,6 @@
 """Closed-form references for FE line verification.
 
-:func:`transverse_friction_static` is the static analytic solution of seed 000 (Lu 2012,
+:func:`transverse_friction_static` is the static analytic solution of Lu (2012,
 sec. 2.1, eq. 1-19) for an inextensible catenary line whose fairlead is moved slowly sideways by
 ``Y`` with Coulomb friction ``mu N`` acting only transversely on the grounded part.
 """
@@ -24,14 +24,14 @@ SEED000_CASES = {
                       (76.2, 9.759e8, 2.673e3, 2.326e3, 0.1524)),      # top chain
             pretension=3.72e6, height=1100.0, depth=1000.0),
 }
-"""Seed 000 (Lu 2012) tables 1 and 2: the shallow (1), intermediate (2, the OC3 line) and deep
+"""Lu (2012) tables 1 and 2: the shallow (1), intermediate (2, the OC3 line) and deep
 (3, chain-wire-chain from the anchor; length m, EA N, weight in air and in water N/m, diameter m)
 lines.  ``span`` is the horizontal anchor-fairlead distance, ``height`` the fairlead height above
 the seabed (m).  Table 2 prints a 1100 m fairlead height in 1000 m water depth as given."""
 
 
 def transverse_friction_static(total_length, weight, span, height, offset, mu):
-    """Seed 000 static solution (eq. 10-14 for a straight anchor piece, 15-19 when the whole
+    """Lu (2012) static solution (eq. 10-14 for a straight anchor piece, 15-19 when the whole
     grounded part has moved).
 
     Parameters
@@ -102,7 +102,7 @@ def transverse_friction_static(total_length, weight, span, height, offset, mu):
     sol, info, ier, _ = fsolve(case2, [T0, S0 - Ls0, 0.01], full_output=True, xtol=1e-13)
     T, S2, a1 = sol
     if ier != 1 or np.max(np.abs(case2(sol))) > 1e-6:
-        raise RuntimeError(f"seed 000 analytic solution did not converge for Y = {Y}")
+        raise RuntimeError(f"Lu (2012) analytic solution did not converge for Y = {Y}")
     a2 = muN * S2 / T + a1
     D0, _ = cat(T, S0 - S2)
     V = N * (S0 - S2)

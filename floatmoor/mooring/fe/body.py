@@ -188,18 +188,16 @@ class FEMooring:
         self._packed = None
         if self.fast and all(ln.integrator == "generalized_alpha" and ln.waves is None
                              for ln in self.lines):
-            from .multi import pack
+            from .multi import FEBody, line_list
 
             n = len(self.lines)
-            per_line, scalars, work = pack(self.lines)
-            self._packed = (per_line, scalars, work)
-            self._R = np.zeros((3, 3))
-            self._rf = np.zeros((n, 3))
-            self._vf = np.zeros((n, 3))
-            self._arm = np.zeros((n, 3))
-            self._fail = np.zeros(1, dtype=np.int64)
-            self._vel = np.zeros(6)
             self.counters = np.zeros((n, 2))
+            body = FEBody(fair_b=np.ascontiguousarray(self.fairleads_body), R=np.zeros((3, 3)),
+                          rf=np.zeros((n, 3)), vf=np.zeros((n, 3)), arm=np.zeros((n, 3)),
+                          Q=self._Q, forces=self._line_forces, on=self.on,
+                          fail=np.zeros(1, dtype=np.int64), counters=self.counters)
+            self._packed = (body, line_list(self.lines))
+            self._vel = np.zeros(6)
 
     def advance(self, t1, dt, pose1, velocity1, *, substeps: int = 1) -> np.ndarray:
         """Trial step of every line to ``t1`` with the body at ``pose1`` moving with
@@ -219,26 +217,17 @@ class FEMooring:
     def _advance_packed(self, t1, dt, pose1, velocity1, substeps):
         from .multi import body_advance
 
-        per_line, (fric, coef, tol, maxit), work = self._packed
+        body, lines = self._packed
         vel = self._vel
         if velocity1 is None:
             vel[:] = 0.0
         else:
             vel[:] = velocity1
-        st = body_advance(t1, dt, substeps, FELine.MAX_SPLIT, pose1, vel,
-                          self.fairleads_body, self._R, self._rf, self._vf, self._arm, self._Q,
-                          self._line_forces, self._fail, self.on, self.counters, *per_line,
-                          fric, coef, tol, maxit, *work)
+        st = body_advance(t1, dt, substeps, FELine.MAX_SPLIT, pose1, vel, body, lines)
         if st < 0:
-            ln = self.lines[int(self._fail[0])]
-            msg = {-1: f"no Newton convergence in {ln.maxit} iterations",
-                   -2: "singular iteration matrix", -3: "NaN in the line state"}[st]
-            ln._fail(float(ln._info[0]), int(ln._info[1]), msg,
-                     f"reduce dt (the step was already halved {FELine.MAX_SPLIT} times), add "
-                     "elements, or check for a slack line hit by a snap load")
+            raise self.lines[int(body.fail[0])].step_error(st)
         for ln in self.lines:
-            ln._t1 = t1
-            ln._trial = True
+            ln.trial(t1)
         return self._Q.copy()
 
     def accept(self):
@@ -250,15 +239,14 @@ class FEMooring:
             return
         from .multi import body_accept
 
-        ln0 = self.lines[0]
-        if not ln0._trial:
+        if not self.lines[0].has_trial:
             raise RuntimeError("accept() without a preceding advance()")
-        p = self._packed[0]
-        body_accept(self.on, *p[:10])
+        body_accept(self.on, self._packed[1])
         for ln, on in zip(self.lines, self.on):
             if on:
-                ln.time = ln._t1
-            ln._trial = False
+                ln.accept(copied=True)
+            else:
+                ln.reject()
 
     @property
     def newton_iterations(self) -> np.ndarray:

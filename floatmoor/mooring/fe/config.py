@@ -9,7 +9,7 @@ Friction models are registered by name in :data:`FRICTION_MODELS`:
 ``none``
     No seabed friction.
 ``velocity_ramp``
-    Coulomb friction with a quadratic transition in the sliding speed (seed 001, Aqwa theory
+    Coulomb friction with a quadratic transition in the sliding speed (ANSYS 2013, Aqwa theory
     manual sec. 9.7, eq. 9-60 to 9-66): ``F = -N f(u / v_R) (mu_a v_a a + mu_l v_l b) / u`` with
     ``u`` the horizontal speed, ``v_a, v_l`` its axial and lateral components, ``a, b`` the
     axial and lateral unit vectors on the seabed and ``f(x) = 2x - x^2`` for ``x < 1``, 1
@@ -21,7 +21,7 @@ Friction models are registered by name in :data:`FRICTION_MODELS`:
     ``f`` whether the speed grows or falls (see ``velocity_ramp_double_quadratic``).
 ``velocity_ramp_double_quadratic``
     As ``velocity_ramp`` (same force direction, axial and lateral coefficients and ``v_R``),
-    with the double-quadratic transition that seed 001 (Aqwa) introduces "to smooth the
+    with the double-quadratic transition that ANSYS (2013, Aqwa) introduces "to smooth the
     variation of friction when the magnitude of node velocity decreases compared to the
     previous time step" (eq. 9-65, figure 9.10).  RECONSTRUCTED, NOT TRANSCRIBED: eq. 9-65 is a
     figure in the seed and was not found in any public source searched (Aqwa theory manual
@@ -44,17 +44,17 @@ Friction models are registered by name in :data:`FRICTION_MODELS`:
     rule uses the speed magnitude, as the seed does: a velocity that reverses within one step
     without passing near rest keeps its friction level (use steps that resolve the reversal).
 ``displacement_velocity_ramp``
-    Seed 000 (Lu 2012, sec. 2.2.2 and figure 8): per direction (axial, lateral) a signed
+    Lu (2012, sec. 2.2.2 and figure 8): per direction (axial, lateral) a signed
     coefficient ``c`` in [-1, 1]; nodes slower than 1e-8 m/s keep the previous ``c`` (stick);
     otherwise ``c`` is the larger of the velocity ramp ``v / C_v`` and, once the displacement
     from the last reversal position exceeds 1e-4 m, the displacement ramp ``d / C_d``; ``c``
     does not fall below its previous value unless the node reverses, and a reversal resets the
     reference position.  ``F_k = -mu_k N c_k``.
 
-Statics always use the displacement ramp of seed 000 sec. 2.2.1 (``C_d``: friction grows
+Statics always use the displacement ramp of Lu (2012) sec. 2.2.1 (``C_d``: friction grows
 with the displacement from the reference (start) position up to ``mu N``) when the friction
 model is not ``none``; the ramp is the quadratic ``2x - x^2`` of ``x = d / C_d`` instead of
-seed 000's straight line, so that Newton does not stall on its kink.
+Lu's (2012) straight line, so that Newton does not stall on its kink.
 """
 
 from __future__ import annotations
@@ -160,7 +160,7 @@ class Seabed:
     ``k pen - c dz/dt`` with ``stiffness`` (N/m per m of line, e.g. MoorDyn's kbot x D) and
     ``damping`` (N s/m per m of line).
 
-    ``model="mud_layer"`` (seed 001, Aqwa eq. 9-58/9-59): an artificial mud layer of thickness
+    ``model="mud_layer"`` (ANSYS 2013, Aqwa eq. 9-58/9-59): an artificial mud layer of thickness
     ``mud_depth`` above the seabed; a node below its top gets ``m_net g pen / mud_depth`` (the
     net weight is carried when the node reaches the seabed) and critical damping
     ``2 sqrt(k M)`` with ``M`` the structural plus added mass of the node.
@@ -199,7 +199,7 @@ class Friction:
 
     ``ramp_velocity`` (m/s, velocity ramp ``v_R`` / ``C_v``): default ``D / zero_crossing_period``
     with ``D`` the largest nominal diameter of the line.  ``ramp_displacement`` (m, ``C_d``):
-    default the nominal radius ``D / 2`` (seed 000 sec. 2.2.1).
+    default the nominal radius ``D / 2`` (Lu 2012, sec. 2.2.1).
     """
 
     model: str = "none"

@@ -1,9 +1,9 @@
-"""Decoupled FE analysis of the lines of a mooring system driven by a body-motion history (seed
-002 chapter 8: the motions of a previous floater run, or a prescribed harmonic, drive dynamic
+"""Decoupled FE analysis of the lines of a mooring system driven by a body-motion history (Wang
+2016, chapter 8: the motions of a previous floater run, or a prescribed harmonic, drive dynamic
 lines), with the statistics a mooring engineer compares: mean, standard deviation and maximum of
 the fairlead tension FE vs quasi-static, the dynamic amplification factor
 
-    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (seed 002, eq. 8.1)
+    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (Wang 2016, eq. 8.1)
 
 the maximum tension along the line and the range of the grounded length.
 
@@ -205,7 +205,7 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
                         "quasi-static"),
         "qs_max": ("N", "maximum fairlead tension in the window, quasi-static"),
         "daf": ("1", "dynamic amplification factor (T_max - T_mean)_FE / (T_max - T_mean)_QS "
-                     "(seed 002 eq. 8.1)"),
+                     "(Wang 2016, eq. 8.1)"),
         "tmax_line": ("N", "maximum element tension along the line in the window, FE"),
         "tmax_s": ("m", "unstretched arc length from the anchor of that maximum"),
         "lg_min": ("m", "smallest grounded length in the window"),

@@ -17,8 +17,10 @@ iteration that still converges quadratically for the dominant axial stiffness).
 Every kernel writes into preallocated arrays; none allocates.
 
 Very stiff elements (strain under their weight below ``E0_STIFF``) get a tension estimate in the
-generalised-alpha Newton iteration (see :func:`gen_alpha_step`); scratch for it: ``BX[6, :, 0,
-0]`` (tridiagonal solver) or ``W[:, 0, 0]`` (band solver with bending), so no signature changed.
+generalised-alpha Newton iteration (see :func:`gen_alpha_step`), kept in ``LineWork.act``.
+
+The kernels take their arrays in a few bundles (:mod:`.bundles`): the line parameters
+``par``, node states (``LineState``) and the scratch ``w`` (``LineWork``).
 """
 
 from __future__ import annotations
@@ -26,6 +28,8 @@ from __future__ import annotations
 import math
 
 from numba import njit
+
+from .bundles import LineParams, LineState, LineWork
 
 # node parameter columns
 NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL, \
@@ -40,13 +44,13 @@ N_S = 8
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
 FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
-# branch_axial, branch_lateral (seed-000 model: 0 stick, +-1 sliding direction in this step).
+# branch_axial, branch_lateral (model of Lu 2012: 0 stick, +-1 sliding direction in this step).
 # The double-quadratic velocity ramp (FR_VDQ) keeps the horizontal speed (m/s) and the
 # transition factor f of the last accepted step in columns FS_UPREV and FS_FPREV.
 N_FS = 8
 FS_UPREV, FS_FPREV = 0, 1
-V_MEANINGFUL = 1e-8     # seed 000: below this a node is at rest (m/s)
-D_MEANINGFUL = 1e-4     # seed 000: displacement ramp active beyond this (m)
+V_MEANINGFUL = 1e-8     # Lu (2012): below this a node is at rest (m/s)
+D_MEANINGFUL = 1e-4     # Lu (2012): displacement ramp active beyond this (m)
 V_SB = 0.01             # seabed damping switches off between -V_SB and +V_SB (m/s)
 EPS_MACH = 2.220446049250313e-16
 # An element is "stiff" when its strain under its own weight (in air plus submerged) is below
@@ -122,23 +126,32 @@ def _elem_tension(r, v, P, E, j):
 
 
 @njit(cache=True)
+def _direction_sum(r, i):
+    """Sum of the unit directions of the elements adjacent to node ``i`` (not normalised;
+    zero-length elements left out)."""
+    n = r.shape[0]
+    qx = 0.0
+    qy = 0.0
+    qz = 0.0
+    for j in (i - 1, i):
+        if 0 <= j < n - 1:
+            dx = r[j + 1, 0] - r[j, 0]
+            dy = r[j + 1, 1] - r[j, 1]
+            dz = r[j + 1, 2] - r[j, 2]
+            ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+            if ll > 0.0:
+                qx += dx / ll
+                qy += dy / ll
+                qz += dz / ll
+    return qx, qy, qz
+
+
+@njit(cache=True)
 def node_tangents(r, q):
     """Unit tangent at every node (average of the adjacent element directions)."""
     n = r.shape[0]
     for i in range(n):
-        qx = 0.0
-        qy = 0.0
-        qz = 0.0
-        for j in (i - 1, i):
-            if 0 <= j < n - 1:
-                dx = r[j + 1, 0] - r[j, 0]
-                dy = r[j + 1, 1] - r[j, 1]
-                dz = r[j + 1, 2] - r[j, 2]
-                ll = math.sqrt(dx * dx + dy * dy + dz * dz)
-                if ll > 0.0:
-                    qx += dx / ll
-                    qy += dy / ll
-                    qz += dz / ll
+        qx, qy, qz = _direction_sum(r, i)
         nq = math.sqrt(qx * qx + qy * qy + qz * qz)
         if nq > 0.0:
             q[i, 0] = qx / nq
@@ -180,7 +193,7 @@ def _friction_dirs(qx, qy):
 
 @njit(cache=True)
 def dq_transition(x, xp, fp):
-    """Double-quadratic transition factor (seed 001 sec. 9.x, eq. 9-62/9-64/9-65 as
+    """Double-quadratic transition factor (ANSYS 2013 sec. 9.x, eq. 9-62/9-64/9-65 as
     reconstructed in :mod:`floatmoor.mooring.fe.config`) and its slope ``df/dx``.
 
     ``x = u / v_R`` (current speed over the ramp velocity), ``xp, fp``: the same and the factor
@@ -238,39 +251,50 @@ def _dq_g(u, vR, up, fp):
 
 
 @njit(cache=True)
-def line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
-                BX):
+def line_forces(r, v, fs, par, want_jac, cK, cC, f, w):
     """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
 
     Parameters
     ----------
     r, v : (n, 3) node positions (m) and velocities (m/s), earth axes.
-    P : (n, N_NP) node parameters; E : (n-1, N_EL) element parameters; S : (N_S,) scalars.
-    cur_z, cur_u : current profile (levels increasing, speeds m/s); direction in S.
-    wk : (n, 6) wave particle velocity (m/s) and acceleration (m/s^2) at the nodes (zeros
-        without waves); the velocity enters the drag, the acceleration the fluid inertia.
-    fric : int friction code; fs : (n, N_FS) friction state of the last accepted step (read
-        only; :func:`friction_decide` and :func:`friction_commit` update it).
-    q : (n, 3) scratch, node tangents on return.
+    fs : (n, N_FS) friction state of the last accepted step (read only;
+        :func:`friction_decide` and :func:`friction_commit` update it).
+    par : :class:`~.bundles.LineParams`: node parameters ``P``, element parameters ``E``,
+        scalars ``S``, current profile ``cur_z, cur_u`` (levels increasing, speeds m/s;
+        direction in ``S``), wave particle velocity (m/s) and acceleration (m/s^2) at the nodes
+        ``wk`` (n, 6) (zeros without waves; the velocity enters the drag, the acceleration the
+        fluid inertia), friction code ``fric``.
+    want_jac : bool; cK, cC : weights of the tangent.
     f : (n, 3) output, total force on every node (N).
-    tens : (n-1,) output, element tensions (N).
-    want_jac : bool; cK, cC : weights; Dg : (n, 3, 3), Of : (n-1, 3, 3) outputs (overwritten):
-        diagonal and upper off-diagonal blocks of ``cK K + cC C`` (element blocks: the lower
-        block equals the upper one).  BX : (7, n, 3, 3): with bending (``S[S_BEND] > 0``)
-        ``BX[0]`` lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]``
-        the upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
+    w : :class:`~.bundles.LineWork`: ``q`` node tangents on return, ``tens`` (n-1,) element
+        tensions (N); ``Dg`` (n, 3, 3), ``Of`` (n-1, 3, 3) outputs (overwritten): diagonal and
+        upper off-diagonal blocks of ``cK K + cC C`` (element blocks: the lower block equals
+        the upper one); ``BX`` (7, n, 3, 3): with bending (``S[S_BEND] > 0``) ``BX[0]``
+        lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]`` the
+        upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
     """
-    _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
-                 BX, tens, False)
+    _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, False)
 
 
 @njit(cache=True)
-def _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac, cK, cC, Dg, Of,
-                 BX, act, use_act):
-    """:func:`line_forces`; with ``use_act``, ``act`` (n-1,) holds a tension estimate of every
-    element (N, see :func:`gen_alpha_step`): an element in compression with a positive estimate
-    acts as a bar, ``T = c1 eps`` (negative) with its axial tangent, instead of ``T = 0``, and
-    the geometric stiffness of every element is ``max(act, 0) / l``."""
+def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
+    """:func:`line_forces`; with ``use_act``, ``w.act`` (n-1,) holds a tension estimate of
+    every element (N, see :func:`gen_alpha_step`): an element in compression with a positive
+    estimate acts as a bar, ``T = c1 eps`` (negative) with its axial tangent, instead of
+    ``T = 0``, and the geometric stiffness of every element is ``max(act, 0) / l``."""
+    P = par.P
+    E = par.E
+    S = par.S
+    cur_z = par.cur_z
+    cur_u = par.cur_u
+    wk = par.wk
+    fric = par.fric
+    q = w.q
+    tens = w.tens
+    Dg = w.Dg
+    Of = w.Of
+    BX = w.BX
+    act = w.act
     n = r.shape[0]
     node_tangents(r, q)
     for i in range(n):
@@ -552,7 +576,7 @@ def _line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, want_jac
 
 @njit(cache=True)
 def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
-    """Seed 000 combined displacement and velocity ramp (sec. 2.2.2, figure 8) for one
+    """Lu (2012) combined displacement and velocity ramp (sec. 2.2.2, figure 8) for one
     direction, with the branch frozen for the time step.
 
     ``branch`` 0 (the node was at rest, |v| < 1e-8 m/s, at the start of the step: the previous
@@ -594,23 +618,13 @@ def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
 
 @njit(cache=True)
 def friction_decide(r, v, fric, fs, zc):
-    """Start of a time step: freeze the branch of the seed-000 model from the predicted
+    """Start of a time step: freeze the branch of the Lu (2012) model from the predicted
     velocities (stick below 1e-8 m/s, else the sliding direction)."""
     if fric != FR_DISPVEL:
         return
     n = r.shape[0]
     for i in range(n):
-        qx = 0.0
-        qy = 0.0
-        for j in (i - 1, i):
-            if 0 <= j < n - 1:
-                dx = r[j + 1, 0] - r[j, 0]
-                dy = r[j + 1, 1] - r[j, 1]
-                dz = r[j + 1, 2] - r[j, 2]
-                ll = math.sqrt(dx * dx + dy * dy + dz * dz)
-                if ll > 0.0:
-                    qx += dx / ll
-                    qy += dy / ll
+        qx, qy, _ = _direction_sum(r, i)
         ax, ay, bx, by = _friction_dirs(qx, qy)
         for k in range(2):
             if k == 0:
@@ -625,7 +639,7 @@ def friction_decide(r, v, fric, fs, zc):
 
 @njit(cache=True)
 def friction_commit(r, v, q, fric, fs, P, S, zc):
-    """End of an accepted time step: store the seed-000 friction coefficients and the last
+    """End of an accepted time step: store the Lu (2012) friction coefficients and the last
     sliding velocities; a reversal of the sliding direction resets the reference position.
     Double-quadratic ramp: store the horizontal speed and the transition factor of the step
     (zero for nodes off the seabed: a node touching down starts from rest, eq. 9-67)."""
@@ -691,7 +705,7 @@ def _bending(r, P, f, want_jac, cK, Dg, Of, BX):
     """Bending at the interior nodes from the discrete elastica energy
     ``U_i = c_i (1 - e_a . e_b)``, ``c_i = EI / L_mean`` (``U ~ EI kappa^2 L / 2`` for small
     angles), ``e_a, e_b`` the directions of the elements before and after node i; the ends are
-    pinned (seed 001 eq. 9-47).  Forces ``-dU/dx`` and the exact Hessian (block bandwidth 2:
+    pinned (ANSYS 2013 eq. 9-47).  Forces ``-dU/dx`` and the exact Hessian (block bandwidth 2:
     blocks (i-1, i+1) go to ``BX[1]`` / ``BX[2]``).  No allocation."""
     n = r.shape[0]
     if want_jac:
@@ -911,10 +925,12 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
 # statics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
-def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, tens, Dg, Of,
-                  BX, W, Y, T1, dx, rtry, info):
+def static_newton(r, v0, fs, par, f, w):
     """Damped Newton (Levenberg-Marquardt) for the static equilibrium of the free nodes
-    (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3).
+    (1 .. n-2); the end nodes stay where they are.  ``v0`` zero velocities (n, 3); ``fs``
+    friction state, ``par`` (:class:`~.bundles.LineParams`: static axial law in ``E``,
+    friction code ``fric``, tolerance ``tol`` (N) and ``maxit``), nodal forces into ``f``,
+    scratch ``w`` (:class:`~.bundles.LineWork`, element tensions ``w.tens``).
 
     A step ``(K + lam I) dx = f`` is accepted when it lowers the 2-norm of the nodal residual;
     ``lam`` (N/m) starts at 0 (pure Newton), grows by 10 from the weight of a node over its
@@ -924,12 +940,26 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
     largest residual.  Returns 0 when converged (max nodal residual < ``tol`` N), -1 when not,
     -2 singular tangent (``info[2]`` = node).
     """
+    P = par.P
+    E = par.E
+    S = par.S
+    tol = par.tol
+    maxit = par.maxit
+    Dg = w.Dg
+    Of = w.Of
+    BX = w.BX
+    W = w.W
+    Y = w.Y
+    T1 = w.T1
+    dx = w.dx
+    rtry = w.rtry
+    info = w.info
     n = r.shape[0]
     lam_min = 0.0
     for i in range(n):
         lam_min = max(lam_min, abs(P[i, NP_W]))
     lam_min /= max(E[0, EL_L0], 1e-12)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of, BX)
+    line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
     res2 = _res2(f, n)
     lam = 0.0
     it = 0
@@ -947,16 +977,14 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
         if bad >= 0:
             if lam == 0.0:
                 lam = lam_min
-                line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                            Dg, Of, BX)
+                line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
                 continue
             info[2] = bad
             return -2
         for i in range(n):
             for a in range(3):
                 rtry[i, a] = r[i, a] + (dx[i, a] if 0 < i < n - 1 else 0.0)
-        line_forces(rtry, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                    Dg, Of, BX)
+        line_forces(rtry, v0, fs, par, True, 1.0, 0.0, f, w)
         r2 = _res2(f, n)
         if r2 < res2 or _max_res(f, n) < tol:
             for i in range(n):
@@ -968,9 +996,8 @@ def static_newton(r, P, E, S, cur_z, cur_u, wk, fric, fs, tol, maxit, v0, q, f, 
             lam = lam_min if lam == 0.0 else 10.0 * lam
             if lam > 1e30:
                 break
-            line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0,
-                        Dg, Of, BX)
-    line_forces(r, v0, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, True, 1.0, 0.0, Dg, Of, BX)
+            line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
+    line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
     info[0] = it
     info[1] = _max_res(f, n)
     worst = 1
@@ -1007,15 +1034,18 @@ def _max_res(f, n):
 # dynamics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
-def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, coef, tol,
-                   maxit, r1, v1, a1, f1, q, tens, Mb, Dg, Of, BX, Rr, W, Y, T1, da, info):
+def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     """One generalised-alpha step (Chung & Hulbert 1993) of the free nodes with Newton
     iterations on the accelerations.
 
-    State at ``t1 - dt``: ``r, v, a`` (n, 3) and the nodal force ``fn``; fairlead (node n-1)
-    position ``rf1`` and velocity ``vf1`` at ``t1``.  ``coef = (alpha_m, alpha_f, beta,
-    gamma)``.  Trial state at ``t1`` into ``r1, v1, a1, f1`` (the caller accepts it).
-    Residual ``M ((1-am) a1 + am a) - (1-af) f(r1, v1) - af fn``; mass blocks from ``r``.
+    State at ``t1 - dt``: ``s0`` (:class:`~.bundles.LineState`: ``r, v, a`` (n, 3), the nodal
+    force ``f``, the friction state ``fs``, whose sliding branch this step decides); fairlead
+    (node n-1) position ``rf1`` and velocity ``vf1`` at ``t1``.  ``par``
+    (:class:`~.bundles.LineParams`, ``coef = (alpha_m, alpha_f, beta, gamma)``, ``tol`` m,
+    ``maxit``); ``w`` (:class:`~.bundles.LineWork`) scratch, element tensions ``w.tens`` and
+    ``w.info``.  Trial state at ``t1`` into ``s1.r, s1.v, s1.a, s1.f`` (the caller accepts it;
+    ``s1.fs`` is not used).  Residual ``M ((1-am) a1 + am a) - (1-af) f(r1, v1) - af fn``;
+    mass blocks from ``r``.
 
     Stiff elements (:func:`_stiff`, e.g. the OC3 chain at EA = 3.84e14 N, EA / L0 = 2e13 N/m)
     are handled as in a mixed displacement-tension Newton: every stiff element carries a
@@ -1033,15 +1063,38 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
     Returns the number of Newton iterations (> 0), or -1 (no convergence: ``info[1]`` = node
     with the largest correction), -2 (singular iteration matrix at node ``info[1]``), -3 (NaN).
     """
+    r, v, a, fn, fs = s0
+    r1 = s1.r
+    v1 = s1.v
+    a1 = s1.a
+    f1 = s1.f
+    P = par.P
+    E = par.E
+    S = par.S
+    fric = par.fric
+    coef = par.coef
+    tol = par.tol
+    maxit = par.maxit
+    q = w.q
+    tens = w.tens
+    Mb = w.Mb
+    Dg = w.Dg
+    Of = w.Of
+    BX = w.BX
+    Rr = w.R
+    W = w.W
+    Y = w.Y
+    T1 = w.T1
+    da = w.dx
+    info = w.info
+    # element activity (> 0: taut by the tension estimate of the iteration)
+    act = w.act
     am = coef[0]
     af = coef[1]
     beta = coef[2]
     gamma = coef[3]
     n = r.shape[0]
     bend = S[S_BEND] > 0.0
-    # element activity (> 0: taut by the tension estimate of the iteration) in solver scratch
-    # that this step does not otherwise use (the band solver uses BX[3:7], the tridiagonal W)
-    act = W[:, 0, 0] if bend else BX[6, :, 0, 0]
     # force scale: the largest node weight (in air if the net weight vanishes), but not below
     # the round-off of the axial forces: an element tension c1 (l / L0 - 1) carries the
     # relative error of l / L0 (~ 1 ulp, plus the coordinates' round-off |r| eps / L0), which
@@ -1101,8 +1154,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
                 r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
                                                                + beta * a1[i, k])
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-        _line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, True, cK, cC, Dg,
-                     Of, BX, act, True)
+        _line_forces(r1, v1, fs, par, True, cK, cC, f1, w, True)
         # largest push of an element held as a bar in compression (the converged state must
         # not rely on it: the cable law has no compression)
         fbar = 0.0
@@ -1212,8 +1264,7 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
             v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
     # forces of the accepted state with the law of the converged iteration (a held element
     # keeps its damping; a bar push is below the tolerance): consistent with the residual
-    _line_forces(r1, v1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f1, tens, False, cK, cC, Dg, Of,
-                 BX, act, True)
+    _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, True)
     for j in range(n - 1):
         if act[j] > 0.0 and tens[j] < 0.0:
             tens[j] = 0.0
@@ -1226,17 +1277,25 @@ def gen_alpha_step(t1, dt, r, v, a, fn, rf1, vf1, P, E, S, cur_z, cur_u, wk, fri
 
 
 @njit(cache=True)
-def explicit_step(t1, dt, r, v, rf1, vf1, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, Mb, Dg,
-                  Of, BX, W):
+def explicit_step(t1, dt, rf1, vf1, s, par, w):
     """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the
-    fairlead node follows ``rf1, vf1``.  Updates ``r, v`` in place.  Returns -1, or the first
-    node with a singular mass block / NaN."""
+    fairlead node follows ``rf1, vf1``.  Updates ``s.r, s.v`` in place (``s`` a
+    :class:`~.bundles.LineState`), the forces at the start of the step into ``s.f``, the
+    sliding branch into ``s.fs``.  Returns -1, or the first node with a singular mass block /
+    NaN."""
+    r = s.r
+    v = s.v
+    f = s.f
+    fs = s.fs
+    P = par.P
+    S = par.S
+    W = w.W
     n = r.shape[0]
-    node_mass(r, P, q, Mb)
-    friction_decide(r, v, fric, fs, S[S_ZC])
-    line_forces(r, v, P, E, S, cur_z, cur_u, wk, fric, fs, q, f, tens, False, 0.0, 0.0, Dg, Of, BX)
+    node_mass(r, P, w.q, w.Mb)
+    friction_decide(r, v, par.fric, fs, S[S_ZC])
+    line_forces(r, v, fs, par, False, 0.0, 0.0, f, w)
     for i in range(1, n - 1):
-        if not _inv3(Mb[i], W[i]):
+        if not _inv3(w.Mb[i], W[i]):
             return i
         for k in range(3):
             acc = W[i, k, 0] * f[i, 0] + W[i, k, 1] * f[i, 1] + W[i, k, 2] * f[i, 2]
@@ -1296,18 +1355,38 @@ def record_into(r, f, tens, zc, s_nodes, out):
 
 
 @njit(cache=True)
-def ga_advance(t1, dt, nsub, max_split, r, v, a, fn, fs, rf1, vf1, rA, vA, aA, fnA, fs1, rB, vB,
-               aB, fA, rf, vf, P, E, S, cur_z, cur_u, wk, fric, coef, tol, maxit, q, tens, Mb,
-               Dg, Of, BX, Rk, W, Yk, T1, da, info, stats):
-    """Trial advance of a line from its accepted state (``r, v, a, fn, fs`` at ``t1 - dt``) to
-    ``t1`` in ``nsub`` generalised-alpha steps with the fairlead moving linearly to ``rf1`` /
-    ``vf1``; a step whose Newton iteration fails is halved (down to 1/2^max_split of a
-    sub-step) and the step size grows back after each completed pair.  Trial state into
-    ``rA, vA, aA, fnA, fs1``; ``stats[0]`` += Newton iterations, ``stats[1]`` += halvings.
+def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
+    """Trial advance of a line from its accepted state ``now`` (:class:`~.bundles.LineState`
+    at ``t1 - dt``) to ``t1`` in ``nsub`` generalised-alpha steps with the fairlead moving
+    linearly to ``rf1`` / ``vf1``; a step whose Newton iteration fails is halved (down to
+    1/2^max_split of a sub-step) and the step size grows back after each completed pair.
+    Trial state into ``trial``; ``step`` holds each sub-step's result; ``w``
+    (:class:`~.bundles.LineWork`): ``w.stats[0]`` += Newton iterations, ``w.stats[1]`` +=
+    halvings, ``w.rf, w.vf`` the sub-step's fairlead.
 
-    Returns 0, or the failing status of :func:`gen_alpha_step` with ``info[0]`` the time (s)
-    and ``info[1]`` the node.
+    The bundles may also be plain tuples in the same field order: the entry point for one line
+    called from Python (numba types a plain tuple of arrays from its C fingerprint, a named
+    tuple through Python, ~0.3 us per field, 15 us per call for the ~50 arrays of a line).
+
+    Returns 0, or the failing status of :func:`gen_alpha_step` with ``w.info[0]`` the time (s)
+    and ``w.info[1]`` the node.
     """
+    s0 = LineState(*now)
+    s1 = LineState(*trial)
+    s2 = LineState(*step)
+    lp = LineParams(*par)
+    lw = LineWork(*w)
+    r, v, a, fn, fs = s0
+    rA, vA, aA, fnA, fs1 = s1
+    rB, vB, aB, fA, _ = s2
+    rf = lw.rf
+    vf = lw.vf
+    info = lw.info
+    stats = lw.stats
+    fric = lp.fric
+    P = lp.P
+    S = lp.S
+    q = lw.q
     n = r.shape[0]
     for i in range(n):
         for k in range(3):
@@ -1333,9 +1412,7 @@ def ga_advance(t1, dt, nsub, max_split, r, v, a, fn, fs, rf1, vf1, rA, vA, aA, f
             rf[k] = r[n - 1, k] + s * (rf1[k] - r[n - 1, k])
             vf[k] = v[n - 1, k] + s * (vf1[k] - v[n - 1, k])
         tk = t0 + (pos + sz) * hmin
-        it = gen_alpha_step(tk, sz * hmin, rA, vA, aA, fnA, rf, vf, P, E, S, cur_z, cur_u, wk,
-                            fric, fs1, coef, tol, maxit, rB, vB, aB, fA, q, tens, Mb, Dg, Of, BX,
-                            Rk, W, Yk, T1, da, info)
+        it = gen_alpha_step(tk, sz * hmin, rf, vf, s1, s2, lp, lw)
         if it < 0:
             if sz > 1:
                 sz //= 2
@@ -1356,3 +1433,4 @@ def ga_advance(t1, dt, nsub, max_split, r, v, a, fn, fs, rf1, vf1, rA, vA, aA, f
         while sz < full and pos % (2 * sz) == 0:
             sz *= 2
     return 0
+

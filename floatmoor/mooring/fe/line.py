@@ -5,7 +5,7 @@ Coupling interface (for the body solver): ::
 
     line = FELine(spec)
     line.solve_static()                 # equilibrium at the initial fairlead position
-    line.start(dt=0.1)                  # generalised-alpha, rho_inf = 0.7
+    line.start()                        # generalised-alpha, rho_inf = 0.7
     for each body step t -> t + dt:
         F = line.advance(t + dt, dt, r_fair(t + dt), v_fair(t + dt))   # trial, N (3,)
         ... (the body solver may call advance again with new fairlead kinematics: every call
@@ -18,6 +18,11 @@ the accepted and the new position when the body step is larger than the line can
 splits a step by itself (up to 2^5 times) where Newton does not converge.  For several lines on
 one body, :class:`floatmoor.mooring.fe.body.FEMooring` takes the body pose and velocity and
 returns the 6-DOF generalised force.
+
+The trial state is changed only through the line's methods: :meth:`FELine.advance` (or
+:meth:`FELine.trial` after a kernel that advanced several lines' :attr:`FELine.bundle` at
+once), :meth:`FELine.accept` and :meth:`FELine.reject`; :attr:`FELine.failure` and
+:meth:`FELine.step_error` describe a failed step.
 """
 
 from __future__ import annotations
@@ -31,9 +36,12 @@ import numpy as np
 from ...core.errors import ConvergenceError, FloatmoorWarning, NumericalError
 from ..catenary import line_profile, solve_line
 from . import kernels as K
+from .bundles import LineBundle, LineParams, LineState, new_state, new_work
 from .config import FRICTION_MODELS, FELineSpec
 
 __all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients"]
+
+_NO_COEF = np.zeros(4)   # generalised-alpha coefficients of a static parameter bundle (unused)
 
 
 def gen_alpha_coefficients(rho_inf: float) -> np.ndarray:
@@ -218,25 +226,19 @@ class FELine:
     # ------------------------------------------------------------------------------------------
     def _alloc_work(self):
         nn = self.n_nodes
-        z3 = lambda: np.zeros((nn, 3))  # noqa: E731
-        self._r1, self._v1, self._a1, self._f1 = z3(), z3(), z3(), z3()
-        self._q, self._Rr, self._Y, self._da, self._rtry = z3(), z3(), z3(), z3(), z3()
-        self._tens = np.zeros(nn - 1)
-        self._Mb = np.zeros((nn, 3, 3))
-        self._Dg = np.zeros((nn, 3, 3))
-        self._Of = np.zeros((nn - 1, 3, 3))
-        self._BX = np.zeros((7, nn, 3, 3))
-        self._W = np.zeros((nn, 3, 3))
-        self._T1 = np.zeros((3, 3))
-        self._info = np.zeros(3)
+        # kernel bundles (arrays allocated once; the line's own r, v, a, fn, fs are the
+        # accepted state)
+        self._now = LineState(self.r, self.v, self.a, self.fn, self.fs)
+        self._trial_state = new_state(nn, K.N_FS)
+        self._step_state = new_state(nn, K.N_FS)
+        self.work = new_work(nn)
         self._ends = np.zeros(6)
-        self._fs1 = np.zeros((nn, K.N_FS))
-        self._rB, self._vB, self._aB, self._Rk, self._Yk = z3(), z3(), z3(), z3(), z3()
-        self._stats = np.zeros(2)
         self._rf0 = np.zeros(3)
         self._vf0 = np.zeros(3)
-        self._rfk = np.zeros(3)
-        self._vfk = np.zeros(3)
+        self._par = None
+        self._bundle = None
+        self._trial = False
+        self._t1 = 0.0
 
     def initial_shape(self, fairlead=None) -> np.ndarray:
         """Node positions (n, 3) from the quasi-static elastic catenary (no friction, static EA)
@@ -286,7 +288,7 @@ class FELine:
         hence the generous ``maxit`` (an iteration costs ~10-20 us for 100 elements).  When
         Newton fails the axial stiffness is ramped up (continuation) and the fairlead move is
         split in halves.  Seabed
-        friction in statics is the displacement ramp (seed 000 sec. 2.2.1) measured from
+        friction in statics is the displacement ramp (Lu 2012, sec. 2.2.1) measured from
         ``reference`` node positions (default: the positions before this call) when the
         line's friction model is not ``none`` and ``friction`` is true.
 
@@ -313,19 +315,20 @@ class FELine:
             st = self._move_and_solve(np.asarray(fairlead, float), 0, args)
         else:
             st = self._solve_here(*args)
+        info = self.work.info
         if st != 0:
             raise ConvergenceError(
                 f"FE statics: {'singular tangent' if st == -2 else 'no convergence'} "
-                f"(largest residual {self._info[1]:.3g} N after {int(self._info[0])} iterations)",
-                where=f"line {self.spec.name}, node {int(self._info[2])}",
+                f"(largest residual {info[1]:.3g} N after {int(info[0])} iterations)",
+                where=f"line {self.spec.name}, node {int(info[2])}",
                 remedy="move the fairlead in smaller steps (continuation), check that the line is "
                        "long enough and not slack, or add elements")
-        K.end_forces(self.r, v0, self.P, self._f1, self._tens, self._ends)
+        K.end_forces(self.r, v0, self.P, self._step_state.f, self.work.tens, self._ends)
         # end forces: the internal nodal force of the end node
-        return StaticSolution(positions=self.r.copy(), tensions=self._tens.copy(),
+        return StaticSolution(positions=self.r.copy(), tensions=self.work.tens.copy(),
                               fairlead_force=self._ends[3:6].copy(),
                               anchor_force=self._ends[0:3].copy(),
-                              iterations=int(self._info[0]), residual=float(self._info[1]))
+                              iterations=int(info[0]), residual=float(info[1]))
 
     def _move_and_solve(self, F, depth, args):
         """Move the fairlead to ``F`` (nodes shifted in proportion to the arc length) and solve;
@@ -364,10 +367,9 @@ class FELine:
 
     def _newton(self, E, code, tol, maxit, v0):
         # statics: no waves (zero kinematics)
-        return K.static_newton(self.r, self.P, E, self.S, self.cur_z, self.cur_u, self._wk0,
-                               code, self.fs, tol, maxit, v0, self._q, self._f1, self._tens,
-                               self._Dg, self._Of, self._BX,
-                               self._W, self._Y, self._T1, self._da, self._rtry, self._info)
+        par = LineParams(self.P, E, self.S, self.cur_z, self.cur_u, self._wk0, int(code),
+                         _NO_COEF, float(tol), int(maxit), self.s_nodes)
+        return K.static_newton(self.r, v0, self.fs, par, self._step_state.f, self.work)
 
     # ------------------------------------------------------------------------------------------
     def start(self, *, rho_inf: float = 0.7, tol: float = 1e-6, maxit: int = 30,
@@ -385,21 +387,77 @@ class FELine:
             raise ValueError("integrator must be 'generalized_alpha' or 'explicit'")
         self.integrator = integrator
         self.coef = gen_alpha_coefficients(rho_inf)
-        self.tol = float(tol)
-        self.maxit = int(maxit)
+        self._tol = float(tol)
+        self._maxit = int(maxit)
+        self._set_params()
         self.v[:] = 0.0
         self.a[:] = 0.0
         self.fs[:] = 0.0
         self.fs[:, 4:6] = self.r[:, 0:2]
         self.time = float(t0)
-        K.line_forces(self.r, self.v, self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u,
-                      self.wk,
-                      self.fric_code, self.fs, self._q, self.fn, self._tens, False, 0.0, 0.0,
-                      self._Dg, self._Of, self._BX)
+        K.line_forces(self.r, self.v, self.fs, self._par, False, 0.0, 0.0, self.fn, self.work)
         self._trial = False
+        self._t1 = self.time
         self._started = True
         self.newton_iterations = 0
         self.substeps_taken = 0
+
+    def _set_params(self):
+        self._par = LineParams(self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u, self.wk,
+                               int(self.fric_code), self.coef, self._tol, self._maxit,
+                               self.s_nodes)
+        self._bundle = LineBundle(self._par, self._now, self._trial_state, self._step_state,
+                                  self.work)
+        # the same as plain tuples, for the entry from Python (fast dispatch, see ga_advance)
+        self._tuples = tuple(tuple(b) for b in self._bundle[1:4]) + (tuple(self._par),
+                                                                     tuple(self.work))
+
+    @property
+    def tol(self) -> float:
+        """Newton tolerance in dynamics (m, :meth:`start`)."""
+        return self._tol
+
+    @tol.setter
+    def tol(self, value: float):
+        self._tol = float(value)
+        if self._par is not None:
+            self._set_params()
+
+    @property
+    def maxit(self) -> int:
+        """Newton iteration limit in dynamics (:meth:`start`).  Setting it (or :attr:`tol`)
+        after :meth:`start` renews :attr:`bundle`; typed lists built before keep the old one."""
+        return self._maxit
+
+    @maxit.setter
+    def maxit(self, value: int):
+        self._maxit = int(value)
+        if self._par is not None:
+            self._set_params()
+
+    def params(self, *, static: bool = False, fric: int | None = None, wk=None,
+               tol: float | None = None, maxit: int | None = None) -> LineParams:
+        """The line's :class:`~.bundles.LineParams` for a kernel called directly: the dynamic
+        (default) or static axial law, the line's friction code or ``fric``, its wave
+        kinematics array or ``wk`` (n, 6), the Newton ``tol`` / ``maxit`` and coefficients of
+        :meth:`start` (zeros before it)."""
+        started = self._par is not None
+        return LineParams(self.P, self.E_static if static else self.E_dynamic, self.S,
+                          self.cur_z, self.cur_u, self.wk if wk is None else wk,
+                          int(self.fric_code if fric is None else fric),
+                          self.coef if started else _NO_COEF,
+                          float(tol if tol is not None else (self.tol if started else 1e-6)),
+                          int(maxit if maxit is not None else (self.maxit if started else 30)),
+                          self.s_nodes)
+
+    @property
+    def bundle(self) -> LineBundle:
+        """The line's kernel bundles in dynamics (:class:`~.bundles.LineBundle`: parameters,
+        accepted / trial / sub-step states, work arrays; the arrays are the line's own), for
+        kernels that advance several lines at once (:mod:`.multi`).  Set by :meth:`start`."""
+        if self._bundle is None:
+            raise RuntimeError("call start() first")
+        return self._bundle
 
     def advance(self, t1: float, dt: float, rf1, vf1, *, substeps: int = 1) -> np.ndarray:
         """Advance from the last accepted state (time ``t1 - dt``) to ``t1`` with the fairlead at
@@ -412,14 +470,14 @@ class FELine:
             raise RuntimeError("call start() before advance()")
         rf1 = np.asarray(rf1, dtype=np.float64)
         vf1 = np.asarray(vf1, dtype=np.float64)
-        rA, vA, fA = self._r1, self._v1, self._f1
-        fnA = self._Rr  # trial copy of fn
+        tr = self._trial_state
+        w = self.work
         if self.integrator == "explicit":
-            rA[:] = self.r
-            vA[:] = self.v
-            self._a1[:] = self.a
-            self._fs1[:] = self.fs
-            fnA[:] = self.fn
+            tr.r[:] = self.r
+            tr.v[:] = self.v
+            tr.a[:] = self.a
+            tr.fs[:] = self.fs
+            tr.f[:] = self.fn
         if self.waves is not None:
             self.waves.kinematics_into(t1, self.r, self._kin_work, self._kin_v, self._kin_a,
                                        self._kin_p, self._kin_eta, wheeler=self.wheeler,
@@ -427,29 +485,14 @@ class FELine:
             self.wk[:, 0:3] = self._kin_v
             self.wk[:, 3:6] = self._kin_a
         if self.integrator == "generalized_alpha":
-            self._stats[:] = 0.0
-            st = K.ga_advance(t1, dt, substeps, self.MAX_SPLIT, self.r, self.v, self.a, self.fn,
-                              self.fs, rf1, vf1, rA, vA, self._a1, fnA, self._fs1, self._rB,
-                              self._vB, self._aB, fA, self._rfk, self._vfk, self.P,
-                              self.E_dynamic, self.S, self.cur_z, self.cur_u, self.wk,
-                              self.fric_code, self.coef, self.tol, self.maxit, self._q,
-                              self._tens, self._Mb, self._Dg, self._Of, self._BX, self._Rk,
-                              self._W, self._Yk, self._T1, self._da, self._info, self._stats)
-            self.newton_iterations += int(self._stats[0])
-            self.substeps_taken += int(self._stats[1])
+            w.stats[:] = 0.0
+            st = K.ga_advance(t1, dt, substeps, self.MAX_SPLIT, rf1, vf1, *self._tuples)
+            self.newton_iterations += int(w.stats[0])
+            self.substeps_taken += int(w.stats[1])
             if st < 0:
-                msg = {-1: f"no Newton convergence in {self.maxit} iterations",
-                       -2: "singular iteration matrix", -3: "NaN in the line state"}[st]
-                remedy = (f"reduce dt (the step was already halved {self.MAX_SPLIT} times), "
-                          "add elements, or check for a slack line hit by a snap load")
-                if self.E_dynamic[:, K.EL_C1].max() > self.STIFF_EA:
-                    remedy += (f"; the dynamic EA reaches {self.E_dynamic[:, K.EL_C1].max():.3g}"
-                               " N: lower rho_inf (e.g. 0.5: more damping of the touchdown "
-                               "impacts of a practically inextensible line) or set "
-                               "axial_stiffness_limit (e.g. 3.84e11 N)")
-                self._fail(float(self._info[0]), int(self._info[1]), msg, remedy)
+                raise self.step_error(st)
         else:
-            rf0, vf0, rf, vf = self._rf0, self._vf0, self._rfk, self._vfk
+            rf0, vf0, rf, vf = self._rf0, self._vf0, w.rf, w.vf
             rf0[:] = self.r[-1]
             vf0[:] = self.v[-1]
             h = dt / substeps
@@ -460,20 +503,15 @@ class FELine:
                     rf[c] = rf0[c] + s * (rf1[c] - rf0[c])
                     vf[c] = vf0[c] + s * (vf1[c] - vf0[c])
                 tk = t0 + k * h
-                bad = K.explicit_step(tk, h, rA, vA, rf, vf, self.P, self.E_dynamic, self.S,
-                                      self.cur_z, self.cur_u, self.wk, self.fric_code,
-                                      self._fs1, self._q, fA, self._tens, self._Mb, self._Dg,
-                                      self._Of, self._BX, self._W)
+                # the explicit step reports the forces at the start of its (short) step
+                bad = K.explicit_step(tk, h, rf, vf, tr, self._par, w)
                 if bad >= 0:
                     self._fail(tk, bad, "explicit step diverged (NaN)",
                                "reduce dt below the axial-wave limit or use generalized_alpha")
-                # the explicit step reports the forces at the start of its (short) step
-                fnA[:] = fA
-                K.friction_commit(rA, vA, self._q, self.fric_code, self._fs1, self.P, self.S,
+                K.friction_commit(tr.r, tr.v, w.q, self.fric_code, tr.fs, self.P, self.S,
                                   self.S[K.S_ZC])
-        self._t1 = t1
-        self._trial = True
-        K.end_forces(rA, vA, self.P, fnA, self._tens, self._ends)
+        self.trial(t1)
+        K.end_forces(tr.r, tr.v, self.P, tr.f, w.tens, self._ends)
         return self._ends[3:6].copy()
 
     MAX_SPLIT = 5
@@ -482,16 +520,49 @@ class FELine:
     ``axial_stiffness_limit`` (the OC3 line with EA = 3.84e14 N, surge 3 m at 15 s, fails at
     dt 0.1 s with rho_inf 0.7 after 49 s and runs with rho_inf 0.5; see RESULTS.md)."""
 
-    def accept(self):
-        """Commit the state of the last :meth:`advance`."""
+    # ---- trial / accept protocol -------------------------------------------------------------
+    def trial(self, t1: float) -> None:
+        """Declare the trial state (:attr:`bundle` ``.trial``) the state at ``t1``: called by
+        :meth:`advance`, and by a caller whose kernel advanced the line itself
+        (:func:`.multi.body_advance`)."""
+        self._t1 = float(t1)
+        self._trial = True
+
+    @property
+    def has_trial(self) -> bool:
+        """True between an advance (:meth:`trial`) and :meth:`accept` / :meth:`reject`."""
+        return self._trial
+
+    @property
+    def trial_time(self) -> float:
+        """Time of the trial state (s); the accepted time when there is none."""
+        return self._t1 if self._trial else self.time
+
+    def accept(self, *, copied: bool = False):
+        """Commit the state of the last advance.  ``copied``: the trial arrays were already
+        copied into the accepted state by a multi-line kernel (:func:`.multi.body_accept`);
+        only the time is advanced."""
         if not self._trial:
             raise RuntimeError("accept() without a preceding advance()")
-        self.r[:] = self._r1
-        self.v[:] = self._v1
-        self.a[:] = self._a1
-        self.fn[:] = self._Rr
-        self.fs[:] = self._fs1
+        if not copied:
+            tr = self._trial_state
+            self.r[:] = tr.r
+            self.v[:] = tr.v
+            self.a[:] = tr.a
+            self.fn[:] = tr.f
+            self.fs[:] = tr.fs
         self.time = self._t1
+        self._trial = False
+
+    def reject(self) -> None:
+        """Drop the trial state: the next advance starts again from the accepted state."""
+        self._trial = False
+
+    def set_time(self, t: float) -> None:
+        """The accepted state is at ``t`` (s): for a kernel that advanced and accepted the line
+        itself (:func:`floatmoor.solvers.fe_coupling.run`); drops any trial."""
+        self.time = float(t)
+        self._t1 = self.time
         self._trial = False
 
     def step(self, t1, dt, rf1, vf1, *, substeps: int = 1) -> np.ndarray:
@@ -502,10 +573,35 @@ class FELine:
 
     @property
     def tensions(self) -> np.ndarray:
-        """Element tensions (N) of the last force evaluation."""
-        return self._tens.copy()
+        """Element tensions (N) of the last force evaluation (a copy)."""
+        return self.work.tens.copy()
+
+    @property
+    def failure(self) -> tuple[float, int]:
+        """Time (s) and node of the last failed step (kernel ``info``)."""
+        return float(self.work.info[0]), int(self.work.info[1])
+
+    def step_error(self, code: int, *, remedy: str | None = None) -> NumericalError:
+        """The NumericalError of a failed generalised-alpha advance with status ``code`` (-1
+        no convergence, -2 singular iteration matrix, -3 NaN), at :attr:`failure`."""
+        msg = {-1: f"no Newton convergence in {self.maxit} iterations",
+               -2: "singular iteration matrix", -3: "NaN in the line state"}.get(
+            code, f"line step failed (code {code})")
+        if remedy is None:
+            remedy = (f"reduce dt (the step was already halved {self.MAX_SPLIT} times), "
+                      "add elements, or check for a slack line hit by a snap load")
+            if self.E_dynamic[:, K.EL_C1].max() > self.STIFF_EA:
+                remedy += (f"; the dynamic EA reaches {self.E_dynamic[:, K.EL_C1].max():.3g}"
+                           " N: lower rho_inf (e.g. 0.5: more damping of the touchdown "
+                           "impacts of a practically inextensible line) or set "
+                           "axial_stiffness_limit (e.g. 3.84e11 N)")
+        t, node = self.failure
+        return self._error(t, node, msg, remedy)
+
+    def _error(self, t, node, what, remedy):
+        return NumericalError(f"FE line: {what}", time=t,
+                              where=f"line {self.spec.name}, node {node} of {self.n_nodes - 1}",
+                              remedy=remedy)
 
     def _fail(self, t, node, what, remedy):
-        raise NumericalError(f"FE line: {what}", time=t,
-                             where=f"line {self.spec.name}, node {node} of {self.n_nodes - 1}",
-                             remedy=remedy)
+        raise self._error(t, node, what, remedy)

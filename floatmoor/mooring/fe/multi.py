@@ -1,15 +1,16 @@
 """All FE lines of one body in one numba call per body step (:class:`FEMooring` fast path).
 
-The per-line Python work of :meth:`FELine.advance` (argument checks, ~45 arguments unboxed per
-numba call, end forces, copies on accept) was about 40 % of the time of a 12-line storm.  Here
-the fairlead kinematics, the generalised-alpha advance of every line (:func:`kernels.ga_advance`,
+The fairlead kinematics, the generalised-alpha advance of every line (:func:`kernels.ga_advance`,
 unchanged), the end forces and their generalised force on the body are one call
-(:func:`body_advance`), and :func:`body_accept` commits every line.  The per-line arrays are
-the lines' own (numba typed lists hold references: no copies), so every :class:`FELine` stays
-valid for its other methods.
+(:func:`body_advance`), and :func:`body_accept` commits every line.  The lines are a numba
+typed list of their :class:`~.bundles.LineBundle` (the bundles hold the lines' own arrays: no
+copies), so every :class:`FELine` stays valid for its other methods; the body side is one
+:class:`FEBody`.
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -17,26 +18,71 @@ from numba import njit
 from ...core.frames import rotation_matrix_into
 from .kernels import ga_advance
 
-__all__ = ["body_advance", "body_accept", "add_line_wrench"]
+__all__ = ["FEBody", "new_body", "line_list", "body_advance", "body_accept", "add_line_wrench"]
+
+
+class FEBody(NamedTuple):
+    """The body side of the FE lines of one body (``n`` lines; arrays written by
+    :func:`body_advance` marked "out")."""
+
+    fair_b: np.ndarray
+    """(n, 3) fairleads in body axes relative to the reference point (m)."""
+    R: np.ndarray
+    """(3, 3) rotation matrix of the pose (out)."""
+    rf: np.ndarray
+    """(n, 3) fairlead positions, earth axes (m, out)."""
+    vf: np.ndarray
+    """(n, 3) fairlead velocities (m/s, out)."""
+    arm: np.ndarray
+    """(n, 3) lever arms of the fairleads about the displaced reference point (m, out)."""
+    Q: np.ndarray
+    """(6,) generalised force of the lines on the body (N, N m, earth axes, out)."""
+    forces: np.ndarray
+    """(n, 3) force of each line on its fairlead (N, out)."""
+    on: np.ndarray
+    """(n,) bool: False for a released (failed, ALS) line."""
+    fail: np.ndarray
+    """(1,) int64: the failing line (out)."""
+    counters: np.ndarray
+    """(n, 2) Newton iterations and step halvings since the start."""
+
+
+def new_body(fairleads_body) -> FEBody:
+    """An :class:`FEBody` for the fairleads ``fairleads_body`` (n, 3): all lines on, zero
+    outputs and counters."""
+    fb = np.ascontiguousarray(fairleads_body, dtype=np.float64)
+    n = fb.shape[0]
+    return FEBody(fair_b=fb, R=np.zeros((3, 3)), rf=np.zeros((n, 3)), vf=np.zeros((n, 3)),
+                  arm=np.zeros((n, 3)), Q=np.zeros(6), forces=np.zeros((n, 3)),
+                  on=np.ones(n, dtype=np.bool_), fail=np.zeros(1, dtype=np.int64),
+                  counters=np.zeros((n, 2)))
+
+
+def line_list(lines):
+    """Numba typed list of the :attr:`FELine.bundle` of started ``lines`` (references)."""
+    from numba.typed import List
+
+    lst = List()
+    for ln in lines:
+        lst.append(ln.bundle)
+    return lst
 
 
 @njit(cache=True)
-def body_advance(t1, dt, nsub, max_split, pose, vel, fair_b, R, rf_all, vf_all, arm, Q, forces,
-                 fail, on, counters, r, v, a, fn, fs, rA, vA, aA, fnA, fs1, rB, vB, aB, fA, rfk,
-                 vfk, P, E, S, cur_z, cur_u, wk, fric, coef, tol, maxit, q, tens, Mb, Dg, Of, BX,
-                 Rk, W, Yk, T1, da, info, stats):
+def body_advance(t1, dt, nsub, max_split, pose, vel, body, lines):
     """Trial advance of every line of a body to ``t1`` with the body at ``pose`` moving with
-    ``vel`` (angular velocity in earth axes, rad/s).
+    ``vel`` (angular velocity in earth axes, rad/s); ``lines`` the typed list of the lines'
+    :class:`~.bundles.LineBundle`, ``body`` their :class:`FEBody`.
 
-    Writes the fairlead positions / velocities ``rf_all, vf_all`` (n, 3), the lever arms
-    ``arm`` (n, 3), the force of each line on its fairlead ``forces`` (n, 3) N and the
-    generalised force ``Q`` (6,) (N, N m about the displaced reference point, earth axes);
-    ``counters`` (n, 2) += Newton iterations and step halvings.  ``on`` (n,) bool: lines with
-    ``on[i]`` False are released (failed, ALS): not advanced (their state stays as it was),
-    zero force, no contribution to ``Q``.  Returns 0, or the failing status of
-    :func:`kernels.ga_advance` with ``fail[0]`` the line index (its ``info`` holds the time and
-    the node).
+    Writes the fairlead positions / velocities ``body.rf, body.vf``, the lever arms
+    ``body.arm``, the force of each line on its fairlead ``body.forces`` and the generalised
+    force ``body.Q`` (N, N m about the displaced reference point, earth axes);
+    ``body.counters`` += Newton iterations and step halvings.  Lines with ``body.on[i]`` False
+    are released (failed, ALS): not advanced (their state stays as it was), zero force, no
+    contribution to ``Q``.  Returns 0, or the failing status of :func:`kernels.ga_advance`
+    with ``body.fail[0]`` the line index (its ``work.info`` holds the time and the node).
     """
+    fair_b, R, rf_all, vf_all, arm, Q, forces, on, fail, counters = body
     rotation_matrix_into(pose[3], pose[4], pose[5], R)
     for k in range(6):
         Q[k] = 0.0
@@ -54,20 +100,18 @@ def body_advance(t1, dt, nsub, max_split, pose, vel, fair_b, R, rf_all, vf_all, 
             for c in range(3):
                 forces[i, c] = 0.0
             continue
-        st_i = stats[i]
+        ln = lines[i]
+        st_i = ln.work.stats
         st_i[0] = 0.0
         st_i[1] = 0.0
-        st = ga_advance(t1, dt, nsub, max_split, r[i], v[i], a[i], fn[i], fs[i], rf_all[i],
-                        vf_all[i], rA[i], vA[i], aA[i], fnA[i], fs1[i], rB[i], vB[i], aB[i],
-                        fA[i], rfk[i], vfk[i], P[i], E[i], S[i], cur_z[i], cur_u[i], wk[i],
-                        fric[i], coef[i], tol[i], maxit[i], q[i], tens[i], Mb[i], Dg[i], Of[i],
-                        BX[i], Rk[i], W[i], Yk[i], T1[i], da[i], info[i], st_i)
+        st = ga_advance(t1, dt, nsub, max_split, rf_all[i], vf_all[i], ln.now, ln.trial,
+                        ln.step, ln.par, ln.work)
         counters[i, 0] += st_i[0]
         counters[i, 1] += st_i[1]
         if st < 0:
             fail[0] = i
             return st
-        f = fnA[i]
+        f = ln.trial.f
         n = f.shape[0]
         for c in range(3):
             forces[i, c] = f[n - 1, c]
@@ -87,47 +131,17 @@ def add_line_wrench(i, arm, forces, Q):
 
 
 @njit(cache=True)
-def body_accept(on, r, v, a, fn, fs, rA, vA, aA, fnA, fs1):
+def body_accept(on, lines):
     """Commit the trial state of every line with ``on[i]`` (the copies of
     :meth:`FELine.accept`); released lines keep their state."""
-    for i in range(len(r)):
+    for i in range(len(lines)):
         if not on[i]:
             continue
-        r[i][:, :] = rA[i]
-        v[i][:, :] = vA[i]
-        a[i][:, :] = aA[i]
-        fn[i][:, :] = fnA[i]
-        fs[i][:, :] = fs1[i]
-
-
-def typed_lists(lines, names):
-    """Numba typed lists of the attributes ``names`` of ``lines`` (references, no copies)."""
-    from numba.typed import List
-
-    out = []
-    for nm in names:
-        lst = List()
-        for ln in lines:
-            lst.append(getattr(ln, nm))
-        out.append(lst)
-    return out
-
-
-# the per-line arguments of body_advance after ``fail, on, counters``, as FELine attribute names
-LINE_ARGS = ("r", "v", "a", "fn", "fs", "_r1", "_v1", "_a1", "_Rr", "_fs1", "_rB", "_vB",
-             "_aB", "_f1", "_rfk", "_vfk", "P", "E_dynamic", "S", "cur_z", "cur_u", "wk")
-SCALAR_ARGS = ("fric", "coef", "tol", "maxit")
-WORK_ARGS = ("_q", "_tens", "_Mb", "_Dg", "_Of", "_BX", "_Rk", "_W", "_Yk", "_T1", "_da",
-             "_info", "_stats")
-
-
-def pack(lines):
-    """Arguments of :func:`body_advance` / :func:`body_accept` for started lines: the typed
-    lists (per-line arrays) and the per-line scalars as arrays."""
-    per_line = typed_lists(lines, LINE_ARGS)
-    work = typed_lists(lines, WORK_ARGS)
-    fric = np.array([ln.fric_code for ln in lines], dtype=np.int64)
-    coef = np.array([ln.coef for ln in lines], dtype=np.float64)
-    tol = np.array([ln.tol for ln in lines], dtype=np.float64)
-    maxit = np.array([ln.maxit for ln in lines], dtype=np.int64)
-    return per_line, (fric, coef, tol, maxit), work
+        ln = lines[i]
+        now = ln.now
+        tr = ln.trial
+        now.r[:, :] = tr.r
+        now.v[:, :] = tr.v
+        now.a[:, :] = tr.a
+        now.f[:, :] = tr.f
+        now.fs[:, :] = tr.fs

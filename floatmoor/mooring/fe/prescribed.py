@@ -1,8 +1,8 @@
 """Decoupled FE line runs: fairlead motion prescribed as a harmonic or a time series (for
-example the fairlead track of a previous floater run, seed 002 chapter 8 workflow), results as
+example the fairlead track of a previous floater run, Wang (2016) chapter 8 workflow), results as
 an xarray Dataset with units, and the dynamic amplification factor
 
-    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (seed 002, eq. 8.1)
+    DAF = (T_max - T_mean)_FE / (T_max - T_mean)_QS            (Wang 2016, eq. 8.1)
 
 with the quasi-static tension from the elastic catenary for the same fairlead track.
 """
@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
+from numba import njit
 
 from ...core.frames import rotation_matrix_into
 from ..catenary import solve_line
@@ -110,57 +111,64 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     r0 = line.r[-1].copy()
     nrec = n // record_every + 1
     times = np.zeros(nrec)
-    Ff = np.zeros((nrec, 3))
-    Fa = np.zeros((nrec, 3))
-    tmax = np.zeros(nrec)
-    imax = np.zeros(nrec, dtype=np.int64)
-    ttd = np.zeros(nrec)
-    xtd = np.zeros(nrec)
-    ytd = np.zeros(nrec)
-    lg = np.zeros(nrec)
-    snap_steps = sorted({int(round(ts / dt)) for ts in snapshot_times})
+    recs = np.zeros((nrec, 13))     # kernels.record_into channels of every recorded step
+    snap_steps = np.array(sorted({int(round(ts / dt)) for ts in snapshot_times}), np.int64)
     snaps_r = np.zeros((len(snap_steps), line.n_nodes, 3))
     snaps_t = np.zeros((len(snap_steps), line.n_nodes - 1))
     zc = line.S[K.S_ZC]
     t0 = line.time
-
-    rec = np.zeros(13)
     tracked = np.asarray(track_nodes, dtype=np.int64)
     pos_tr = np.zeros((nrec, tracked.size, 3))
-
-    def record(k, t, f):
-        times[k] = t
-        K.record_into(line.r, f, line._tens, zc, line.s_nodes, rec)
-        Ff[k] = rec[0:3]
-        Fa[k] = rec[3:6]
-        tmax[k] = rec[6]
-        imax[k] = int(rec[7])
-        ttd[k] = rec[8]
-        xtd[k] = rec[9]
-        ytd[k] = rec[10]
-        lg[k] = rec[11]
-        if tracked.size:
-            pos_tr[k] = line.r[tracked]
-
-    K.line_forces(line.r, line.v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk,
-                  line.fric_code, line.fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
-                  line._Dg, line._Of, line._BX)
-    record(0, t0, line._f1)
+    b = line.bundle
+    tens = b.work.tens      # element tensions of the last force evaluation (read only here)
+    K.line_forces(line.r, line.v, line.fs, b.par, False, 0.0, 0.0, b.step.f, b.work)
+    times[0] = t0
+    K.record_into(line.r, b.step.f, tens, zc, line.s_nodes, recs[0])
+    pos_tr[0] = line.r[tracked]
     si = 0
-    if snap_steps and snap_steps[0] == 0:
+    if snap_steps.size and snap_steps[0] == 0:
         snaps_r[0] = line.r
-        snaps_t[0] = line._tens
+        snaps_t[0] = tens
         si = 1
-    for k in range(1, n + 1):
-        t = t0 + k * dt
-        d, v = motion(t - t0)
-        line.step(t, dt, r0 + d, v, substeps=substeps)
-        if k % record_every == 0:
-            record(k // record_every, t, line.fn)
-        if si < len(snap_steps) and snap_steps[si] == k:
-            snaps_r[si] = line.r
-            snaps_t[si] = line._tens
-            si += 1
+    if line.integrator == "generalized_alpha" and line.waves is None:
+        # the fairlead track first, then every step in one numba call
+        rf = np.zeros((n + 1, 3))
+        vf = np.zeros((n + 1, 3))
+        for k in range(1, n + 1):
+            d, v = motion(t0 + k * dt - t0)
+            rf[k] = r0 + d
+            vf[k] = v
+        counts = np.zeros(2)
+        k, st = _run_steps(t0, dt, n, int(substeps), line.MAX_SPLIT, rf, vf, record_every,
+                           snap_steps, si, tracked, b, times, recs, snaps_r, snaps_t, pos_tr,
+                           counts)
+        line.newton_iterations += int(counts[0])
+        line.substeps_taken += int(counts[1])
+        line.set_time(t0 + (k if st == 0 else k - 1) * dt)
+        if st < 0:
+            raise line.step_error(st)
+    else:
+        for k in range(1, n + 1):
+            t = t0 + k * dt
+            d, v = motion(t - t0)
+            line.step(t, dt, r0 + d, v, substeps=substeps)
+            if k % record_every == 0:
+                kr = k // record_every
+                times[kr] = t
+                K.record_into(line.r, line.fn, tens, zc, line.s_nodes, recs[kr])
+                pos_tr[kr] = line.r[tracked]
+            if si < len(snap_steps) and snap_steps[si] == k:
+                snaps_r[si] = line.r
+                snaps_t[si] = tens
+                si += 1
+    Ff = recs[:, 0:3]
+    Fa = recs[:, 3:6]
+    tmax = recs[:, 6]
+    imax = recs[:, 7].astype(np.int64)
+    ttd = recs[:, 8]
+    xtd = recs[:, 9]
+    ytd = recs[:, 10]
+    lg = recs[:, 11]
     name = line.spec.name
     ds = xr.Dataset(
         {
@@ -200,6 +208,48 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     return ds
 
 
+@njit(cache=True)
+def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si, tracked, ln,
+               times, recs, snaps_r, snaps_t, pos_tr, counts):
+    """Steps 1 .. n of :func:`run_prescribed` for a line without wave kinematics: advance
+    (:func:`kernels.ga_advance`) to ``t0 + k dt`` with the fairlead at ``rf[k]`` moving with
+    ``vf[k]``, accept, record every ``record_every`` steps (``times``, ``recs`` rows of
+    :func:`kernels.record_into`, ``pos_tr`` of the ``tracked`` nodes) and the snapshots at
+    ``snap_steps[si:]``.  ``counts`` += Newton iterations and halvings.  Returns ``(k, 0)``
+    after the last step or ``(k, status)`` of the step ``k`` that failed (not accepted)."""
+    now = ln.now
+    tr = ln.trial
+    w = ln.work
+    zc = ln.par.S[K.S_ZC]
+    s_nodes = ln.par.s_nodes
+    for k in range(1, n + 1):
+        t = t0 + k * dt
+        w.stats[0] = 0.0
+        w.stats[1] = 0.0
+        st = K.ga_advance(t, dt, nsub, max_split, rf[k], vf[k], now, tr, ln.step, ln.par, w)
+        counts[0] += w.stats[0]
+        counts[1] += w.stats[1]
+        if st < 0:
+            return k, st
+        now.r[:, :] = tr.r
+        now.v[:, :] = tr.v
+        now.a[:, :] = tr.a
+        now.f[:, :] = tr.f
+        now.fs[:, :] = tr.fs
+        if k % record_every == 0:
+            kr = k // record_every
+            times[kr] = t
+            K.record_into(now.r, now.f, w.tens, zc, s_nodes, recs[kr])
+            for j in range(tracked.shape[0]):
+                for c in range(3):
+                    pos_tr[kr, j, c] = now.r[tracked[j], c]
+        if si < snap_steps.shape[0] and snap_steps[si] == k:
+            snaps_r[si, :, :] = now.r
+            snaps_t[si, :] = w.tens
+            si += 1
+    return n, 0
+
+
 def quasi_static_tension(line: FELine, motion, times) -> np.ndarray:
     """Quasi-static fairlead tension (N) along the fairlead track (elastic catenary of
     :func:`floatmoor.mooring.solve_line`, no friction, static EA) at ``times`` (s)."""
@@ -223,8 +273,8 @@ def quasi_static_tension(line: FELine, motion, times) -> np.ndarray:
 
 
 def daf(t_fe, t_qs) -> float:
-    """Dynamic amplification factor ``(T_max - T_mean)_FE / (T_max - T_mean)_QS`` (seed 002
-    eq. 8.1) from two tension histories over the same (steady) interval."""
+    """Dynamic amplification factor ``(T_max - T_mean)_FE / (T_max - T_mean)_QS`` (Wang
+    2016, eq. 8.1) from two tension histories over the same (steady) interval."""
     t_fe = np.asarray(t_fe, float)
     t_qs = np.asarray(t_qs, float)
     den = t_qs.max() - t_qs.mean()
@@ -237,7 +287,7 @@ def decoupled_analysis(system, t, poses, *, dt: float | None = None, discard: fl
                        lines=None, element_length: float = 20.0, line_kw=None,
                        **spec_kw) -> xr.Dataset:
     """Decoupled FE analysis of mooring lines driven by the body motion of a previous floater
-    run (seed 002 chapter 8: SIMO motions into RIFLEX), with the DAF per line.
+    run (Wang (2016) chapter 8: SIMO motions into RIFLEX), with the DAF per line.
 
     Parameters
     ----------

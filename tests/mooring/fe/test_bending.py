@@ -9,6 +9,7 @@ import pytest
 
 from floatmoor.mooring.fe import FELine, FELineSpec, FESegment, Seabed
 from floatmoor.mooring.fe import kernels as K
+from floatmoor.mooring.fe.bundles import new_work
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
 from floatmoor.mooring.line_types import LineType
 
@@ -63,16 +64,11 @@ def test_bending_tangent_matches_finite_differences():
 
     def forces(rr):
         f = np.zeros((n, 3))
-        K.line_forces(rr, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, 0,
-                      line.fs, np.zeros((n, 3)), f, np.zeros(n - 1), False, 0.0, 0.0,
-                      np.zeros((n, 3, 3)), np.zeros((n - 1, 3, 3)), np.zeros((7, n, 3, 3)))
+        K.line_forces(rr, v, line.fs, line.params(fric=0), False, 0.0, 0.0, f, new_work(n))
         return f
-    Dg = np.zeros((n, 3, 3))
-    Of = np.zeros((n - 1, 3, 3))
-    BX = np.zeros((7, n, 3, 3))
-    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, 0,
-                  line.fs, np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n - 1), True, 1.0, 1e-300,
-                  Dg, Of, BX)
+    w = new_work(n)
+    K.line_forces(r, v, line.fs, line.params(fric=0), True, 1.0, 1e-300, np.zeros((n, 3)), w)
+    Dg, Of, BX = w.Dg, w.Of, w.BX
     Kd = np.zeros((3 * n, 3 * n))
     for i in range(n):
         Kd[3 * i:3 * i + 3, 3 * i:3 * i + 3] = Dg[i]

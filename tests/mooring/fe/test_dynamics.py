@@ -99,7 +99,7 @@ def test_dataset_units_and_daf():
 
 
 def test_inextensible_line_dynamics_with_axial_stiffness_limit():
-    """EA = 3.84e14 N (seed 000's inextensible line): statics with the full EA, dynamics with the
+    """EA = 3.84e14 N (Lu's (2012) inextensible line): statics with the full EA, dynamics with the
     axial stiffness limited to 3.84e11 N (strain ~2.5e-6 at 1 MN).  No NaN, and the mean tension
     of a slow surge stays within 1 % of the inextensible static tension."""
     from floatmoor.core.errors import FloatmoorWarning

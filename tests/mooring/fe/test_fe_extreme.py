@@ -1,6 +1,6 @@
 """Issue-9 audit, stiff and extreme cases.
 
-The inextensible OC3 line (EA = 3.84e14 N, seed 000's limit) runs in dynamics at its full
+The inextensible OC3 line (EA = 3.84e14 N, Lu's (2012) limit) runs in dynamics at its full
 stiffness at body-sized steps (generalised-alpha, no ``axial_stiffness_limit``) and gives the same
 tensions as the same line with the stiffness limited to 3.84e11 N: at the largest tension
 (1.41e6 N) the limited line stretches by 3.7e-6, 3.3 mm over 902 m, which moves the fairlead
@@ -8,7 +8,7 @@ tension of this catenary by a few hundred N (the OC3 line's horizontal stiffness
 1e5 N/m), i.e. below 0.05 %.  Both runs are therefore physically the same line; what remains
 between them is discretisation noise (touchdown impacts of the lumped masses, the axial mode's
 numerical damping), hence the tolerances below.  The largest dt that completes the extreme cases
-(recorded in benchmarks/RESULTS.md, "Stiff lines at full EA (issue 9, third session)") is
+(recorded in benchmarks/RESULTS.md, "Stiff lines at full EA") is
 checked at that dt.
 """
 

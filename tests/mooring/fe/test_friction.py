@@ -1,4 +1,4 @@
-"""Seabed friction: seed 000 (Lu 2012) static analytic solution for transverse friction, and the
+"""Seabed friction: Lu (2012) static analytic solution for transverse friction, and the
 dynamic friction models."""
 
 import numpy as np
@@ -11,12 +11,12 @@ from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
 
 from .conftest import OC3, oc3_spec, oc3_type
 
-MU = 1.0   # seed 000 does not print its coefficient; 1.0 is the usual lateral value for chain
+MU = 1.0   # Lu (2012) does not print its coefficient; 1.0 is the usual lateral value for chain
 
 
 def _case2_line(friction):
-    """Seed 000 table 1, case 2 (the OC3 line): anchor at the origin on the seabed, fairlead
-    848.67 m away and 250 m above it.  EA = 3.84e11 N, the value seed 000 used in OrcaFlex for
+    """Lu (2012) table 1, case 2 (the OC3 line): anchor at the origin on the seabed, fairlead
+    848.67 m away and 250 m above it.  EA = 3.84e11 N, the value Lu (2012) used in OrcaFlex for
     the inextensible line (sec. 4.1)."""
     spec = oc3_spec(n=100, ea=3.84e11, friction=friction)
     spec = type(spec)(**{**spec.__dict__, "anchor": (0.0, 0.0, -320.0),
@@ -26,7 +26,7 @@ def _case2_line(friction):
 
 def test_seed000_static_transverse_friction_analytic_solution():
     """Fairlead moved sideways 0 to 24 m: total fairlead tension within 1 % and sway component
-    within 20 % of seed 000 eq. 10-19 (inextensible line, transverse Coulomb friction mu N).
+    within 20 % of Lu (2012) eq. 10-19 (inextensible line, transverse Coulomb friction mu N).
     Measured: tension -0.001 %, sway -0.06 % at 24 m."""
     w = oc3_type().submerged_weight()
     line = _case2_line(Friction(model="displacement_velocity_ramp", mu_axial=0.0,
@@ -52,9 +52,9 @@ def test_unknown_friction_model_is_a_scene_error():
 
 @pytest.mark.parametrize("model", ["velocity_ramp", "displacement_velocity_ramp"])
 def test_lateral_friction_dissipates_energy_and_holds_the_grounded_part(model):
-    """Sway 3 m at 15 s (seed 000 excitation 2) with lateral friction: the first grounded node
-    next to the touchdown point slides much less (seed 000 conclusion 4) and the line dissipates
-    more energy per cycle than without friction; the fairlead tension changes little (seed 000
+    """Sway 3 m at 15 s (Lu 2012, excitation 2) with lateral friction: the first grounded node
+    next to the touchdown point slides much less (Lu 2012, conclusion 4) and the line dissipates
+    more energy per cycle than without friction; the fairlead tension changes little (Lu 2012,
     conclusions 2 and 3)."""
     res = {}
     for name, fr in (("none", Friction()),
@@ -80,7 +80,7 @@ def test_lateral_friction_dissipates_energy_and_holds_the_grounded_part(model):
 
 
 def test_seed000_case1_shallow_line_static_transverse_friction():
-    """Seed 000 case 1 (95 m water, more than 500 m on the seabed), fairlead moved sideways
+    """Lu (2012) case 1 (95 m water, more than 500 m on the seabed), fairlead moved sideways
     8, 16, 24 m: total tension within 1 %, sway component within 20 % of eq. 10-19.  EA raised
     to 100 x the table value for the inextensible analytic solution.  Measured: tension
     -0.03 / +0.07 / +0.01 %, sway -0.2 / -0.1 / -0.0 %."""

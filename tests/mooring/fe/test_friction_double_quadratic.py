@@ -1,4 +1,4 @@
-"""Double-quadratic velocity-ramp friction (seed 001, Aqwa eq. 9-62 to 9-65, figure 9.10;
+"""Double-quadratic velocity-ramp friction (ANSYS 2013, Aqwa eq. 9-62 to 9-65, figure 9.10;
 reconstructed form, see floatmoor.mooring.fe.config): the transition function against its
 defining properties and hand values, a grounded line dragged on the seabed against the Coulomb
 closed form ``mu N x grounded length`` with the unloading branch on a speed decrease, the energy
@@ -94,15 +94,14 @@ def _friction_force(line, v, fric, fs):
     friction model minus the same without friction (drag cancels)."""
     out = []
     for code in (fric, K.FR_NONE):
-        K.line_forces(line.r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u,
-                      line.wk, code, fs, line._q, line._f1, line._tens, False, 0.0, 0.0,
-                      line._Dg, line._Of, line._BX)
-        out.append(line._f1.sum(axis=0))
+        f = np.zeros((line.n_nodes, 3))
+        K.line_forces(line.r, v, fs, line.params(fric=code), False, 0.0, 0.0, f, line.work)
+        out.append(f.sum(axis=0))
     return out[0] - out[1]
 
 
 def _commit(line, v, fric, fs):
-    K.friction_commit(line.r, v, line._q, fric, fs, line.P, line.S, line.S[K.S_ZC])
+    K.friction_commit(line.r, v, line.work.q, fric, fs, line.P, line.S, line.S[K.S_ZC])
 
 
 def test_grounded_line_dragged_axially_and_lateral_closed_form(grounded):
@@ -167,10 +166,10 @@ def test_friction_damping_block_matches_finite_differences(grounded):
         _commit(line, vp, K.FR_VDQ, fs)
         v = np.zeros_like(line.r)
         v[:, 0:2] = scale_now * vR * d
-        K.line_forces(line.r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u,
-                      line.wk, K.FR_VDQ, fs, line._q, line._f1, line._tens, True, 0.0, 1.0,
-                      line._Dg, line._Of, line._BX)
-        Dg = line._Dg.copy()
+        par = line.params(fric=K.FR_VDQ)
+        f = np.zeros((line.n_nodes, 3))
+        K.line_forces(line.r, v, fs, par, True, 0.0, 1.0, f, line.work)
+        Dg = line.work.Dg.copy()
         for i in (3, 10):
             for a in range(2):
                 h = 1e-7 * vR
@@ -178,10 +177,8 @@ def test_friction_damping_block_matches_finite_differences(grounded):
                 for sgn in (1.0, -1.0):
                     vv = v.copy()
                     vv[i, a] += sgn * h
-                    K.line_forces(line.r, vv, line.P, line.E_dynamic, line.S, line.cur_z,
-                                  line.cur_u, line.wk, K.FR_VDQ, fs, line._q, line._f1,
-                                  line._tens, False, 0.0, 0.0, line._Dg, line._Of, line._BX)
-                    fpm.append(line._f1[i].copy())
+                    K.line_forces(line.r, vv, fs, par, False, 0.0, 0.0, f, line.work)
+                    fpm.append(f[i].copy())
                 col = -(fpm[0] - fpm[1]) / (2 * h)
                 assert np.allclose(col, Dg[i][:, a], rtol=1e-5,
                                    atol=1e-6 * np.abs(Dg[i]).max()), (scale_prev, i, a)
@@ -239,7 +236,7 @@ def test_energy_per_cycle_of_harmonic_lateral_sliding(grounded):
 # the full FE line in the time domain
 # ---------------------------------------------------------------------------------------------
 def test_oc3_line_harmonic_sway_with_the_three_regularisations():
-    """Sway 3 m at 15 s (seed 000 excitation 2), OC3 line, generalised-alpha at 0.1 s: with each
+    """Sway 3 m at 15 s (Lu 2012, excitation 2), OC3 line, generalised-alpha at 0.1 s: with each
     regularisation the work per cycle exceeds the frictionless one, the first grounded node
     slides much less, and the three agree within 1 % (the ramp velocity D / T_z = 9 mm/s is far
     below the sliding speeds, so all tend to the same Coulomb limit).  Measured 2026-11-21:

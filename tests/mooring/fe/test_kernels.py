@@ -6,6 +6,7 @@ import pytest
 
 from floatmoor.mooring.fe import FELine
 from floatmoor.mooring.fe import kernels as K
+from floatmoor.mooring.fe.bundles import new_work
 
 from .conftest import oc3_spec
 
@@ -35,22 +36,15 @@ def test_block_tridiagonal_solver_matches_dense_solve():
 def _forces(line, r, v, fric=0):
     n = line.n_nodes
     f = np.zeros((n, 3))
-    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, fric,
-                  line.fs,
-                  np.zeros((n, 3)), f, np.zeros(n - 1), False, 0.0, 0.0,
-                  np.zeros((n, 3, 3)), np.zeros((n - 1, 3, 3)), np.zeros((7, n, 3, 3)))
+    K.line_forces(r, v, line.fs, line.params(fric=fric), False, 0.0, 0.0, f, new_work(n))
     return f
 
 
 def _jac(line, r, v, cK, cC, fric=0):
     n = line.n_nodes
-    Dg = np.zeros((n, 3, 3))
-    Of = np.zeros((n - 1, 3, 3))
-    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, line.wk, fric,
-                  line.fs,
-                  np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n - 1), True, cK, cC, Dg, Of,
-                  np.zeros((7, n, 3, 3)))
-    return Dg, Of
+    w = new_work(n)
+    K.line_forces(r, v, line.fs, line.params(fric=fric), True, cK, cC, np.zeros((n, 3)), w)
+    return w.Dg, w.Of
 
 
 def test_stiffness_and_damping_blocks_match_finite_differences():

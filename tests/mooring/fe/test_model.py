@@ -63,7 +63,7 @@ def test_uniform_current_drag_on_the_line():
 
 
 def test_mud_layer_seabed_carries_the_weight_at_the_seabed():
-    """Seed 001 mud layer: the grounded nodes settle where the spring carries their net
+    """ANSYS (2013) mud layer: the grounded nodes settle where the spring carries their net
     weight, i.e. at the seabed itself (penetration of the layer = its depth)."""
     spec = oc3_spec(n=50, seabed=Seabed(depth=320.0, model="mud_layer", mud_depth=0.2))
     line = FELine(spec)
@@ -186,7 +186,7 @@ def test_fe_mooring_on_a_body_matches_the_quasi_static_system():
 
 
 def test_decoupled_analysis_from_a_body_motion_history():
-    """Seed 002 chapter 8 workflow: body poses of a 'previous floater run' (here a ramped
+    """Wang (2016) chapter 8 workflow: body poses of a 'previous floater run' (here a ramped
     3 m / 15 s surge) drive the three OC3 lines.  Line 1 (anchor on +x) equals the single-line
     run of the same fairlead track; lines 2 and 3 (at 120 and 240 deg) see the surge at
     cos 120 deg and have smaller tension ranges; DAF > 1 for every line."""

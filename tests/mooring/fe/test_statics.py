@@ -38,7 +38,7 @@ def test_fairlead_tension_converges_with_element_count():
 
 
 def test_inextensible_limit_ea_3p84e14_static():
-    """Seed 000 sec. 4.1 uses EA = 3.84e14 N for the inextensible line.  Reference: the elastic
+    """Lu (2012) sec. 4.1 uses EA = 3.84e14 N for the inextensible line.  Reference: the elastic
     catenary with the same EA."""
     ea = 3.84e14
     s = FELine(oc3_spec(n=50, ea=ea)).solve_static()

@@ -11,6 +11,7 @@ from floatmoor.metocean.kinematics import wavenumber
 from floatmoor.metocean.realisation import WaveRealisation
 from floatmoor.mooring.fe import FELine
 from floatmoor.mooring.fe import kernels as K
+from floatmoor.mooring.fe.bundles import new_work
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
 
 from .conftest import OC3, oc3_spec
@@ -19,9 +20,7 @@ from .conftest import OC3, oc3_spec
 def _forces(line, r, v, wk):
     n = line.n_nodes
     f = np.zeros((n, 3))
-    K.line_forces(r, v, line.P, line.E_dynamic, line.S, line.cur_z, line.cur_u, wk, 0, line.fs,
-                  np.zeros((n, 3)), f, np.zeros(n - 1), False, 0.0, 0.0, np.zeros((n, 3, 3)),
-                  np.zeros((n - 1, 3, 3)), np.zeros((7, n, 3, 3)))
+    K.line_forces(r, v, line.fs, line.params(fric=0, wk=wk), False, 0.0, 0.0, f, new_work(n))
     return f
 
 
