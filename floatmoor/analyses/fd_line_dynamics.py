@@ -27,6 +27,44 @@ from .fd_maxima import tension_columns
 __all__ = ["FD_LINE_SEABED", "dynamic_line_columns", "dynamic_wf_tensions"]
 
 FD_LINE_SEABED = "least_squares"
+N_LINE_FREQUENCIES = 120
+"""Frequencies of the line model: the drag linearisation runs on this many bins over the
+energetic range of the fairlead motion (the line's transfer function is smooth on that scale);
+the tension spectrum is then formed on the FD grid with the interpolated transfer function."""
+
+
+def coarse_grid(w, Sx, n: int):
+    """Bin centres (n + 2,) over the range holding all but 1e-6 of the fairlead motion variance
+    (trace) and the bin-averaged cross-spectrum (zero at the two end points), so that the
+    trapezoidal rule on the coarse grid integrates the spectrum as the fine grid does.  Grids
+    with at most ``n`` points are returned unchanged."""
+    if w.size <= n:
+        return w, Sx
+    tr = np.real(np.einsum("wii->w", Sx))
+    wt = np.zeros_like(w)
+    d = np.diff(w)
+    wt[:-1] += 0.5 * d
+    wt[1:] += 0.5 * d
+    c = np.cumsum(tr * wt)
+    if c[-1] <= 0:
+        return w[np.linspace(0, w.size - 1, n).astype(int)], Sx[np.linspace(0, w.size - 1,
+                                                                              n).astype(int)]
+    lo = w[max(np.searchsorted(c, 1e-6 * c[-1]) - 1, 0)]
+    hi = w[min(np.searchsorted(c, (1 - 1e-6) * c[-1]) + 1, w.size - 1)]
+    edges = np.linspace(lo, hi, n + 1)
+    k = np.clip(np.searchsorted(edges, w, side="right") - 1, 0, n - 1)
+    inside = (w >= lo) & (w <= hi)
+    Sc = np.zeros((n, 3, 3), complex)
+    np.add.at(Sc, k[inside], Sx[inside] * wt[inside, None, None])
+    dw = edges[1] - edges[0]
+    Sc /= dw
+    wc = np.concatenate([[edges[0]], 0.5 * (edges[:-1] + edges[1:]), [edges[-1]]])
+    Sc = np.concatenate([np.zeros((1, 3, 3)), Sc, np.zeros((1, 3, 3))])
+    # the end points carry no energy: the trapezoidal weights of the centres are dw (first and
+    # last: 3/4 dw); rescale those two bins so the variance is that of the fine grid
+    Sc[1] *= 4.0 / 3.0
+    Sc[-2] *= 4.0 / 3.0
+    return wc, Sc
 
 
 def dynamic_wf_tensions(built, mean, rao, omega, wave_spectrum, *,
@@ -58,8 +96,13 @@ def dynamic_wf_tensions(built, mean, rao, omega, wave_spectrum, *,
         arm = R @ np.asarray(ld.fairlead, float)
         h = rao[:, :3] + np.cross(rao[:, 3:], arm)
         Sx = h[:, :, None] * h[:, None, :].conj() * S[:, None, None]
-        ds = frequency_response(line, w, Sx, seabed=seabed, n_modes=0)
-        p = ds["fairlead_tension_psd"].values
+        wc, Sc = coarse_grid(w, Sx, N_LINE_FREQUENCIES)
+        ds = frequency_response(line, wc, Sc, seabed=seabed, n_modes=0)
+        # the linearised line's tension transfer, interpolated onto the FD grid
+        tr = ds["fairlead_tension_rao"].values
+        hT = np.stack([np.interp(w, wc, tr[:, a, 0]) + 1j * np.interp(w, wc, tr[:, a, 1])
+                       for a in range(3)], axis=1)
+        p = np.real(np.einsum("wa,wab,wb->w", hT, Sx, hT.conj()))
         m0 = np.trapezoid(p, w)
         m2 = np.trapezoid(w * w * p, w)
         std[i] = math.sqrt(max(m0, 0.0))

@@ -311,16 +311,13 @@ def _mask(model: _Model, K, C):
         A[fi, fd, :] = 0.0
         A[fi, :, fd] = 0.0
     K[fi, fd, fd] = 1.0
-    n = M.shape[0]
-    for i, d in zip(fi, fd):
-        if i == n - 1:
-            continue  # the fairlead is prescribed: its coupling is the right-hand side
-        if i < n - 1:
-            Ko[i, d, :] = 0.0
-            Co[i, d, :] = 0.0
-        if i > 0:
-            Ko[i - 1, :, d] = 0.0
-            Co[i - 1, :, d] = 0.0
+    # rows of held DOFs (node j) and columns (node j+1); the fairlead (prescribed, last node)
+    # keeps its coupling: it is the right-hand side
+    cols = model.fixed[1:].copy()
+    cols[-1] = False
+    keep = ~model.fixed[:-1, :, None] & ~cols[:, None, :]
+    Ko *= keep
+    Co *= keep
     return M, K, C, Ko, Co
 
 
@@ -337,7 +334,7 @@ def _transfer(omega, M, C, K, Ko, Co, scratch):
 
 def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares",
                        drag: bool = True, tol: float = 1e-3, max_iterations: int = 50,
-                       relaxation: float = 0.5, cut_fraction: float = 0.05, n_modes: int = 6,
+                       relaxation: float = 0.7, cut_fraction: float = 0.05, n_modes: int = 6,
                        dynamic_ea: bool = True) -> xr.Dataset:
     """Linearised dynamic tension of a FE line under random fairlead motion.
 
@@ -553,7 +550,7 @@ def natural_frequencies(M, K, Ko, fixed, n_modes: int = 6) -> np.ndarray:
             Kc[i - 1, :, d] = 0.0
     Ad = R @ (0.5 * (Kd + np.swapaxes(Kd, 1, 2))) @ R
     Ac = R[:-1] @ Kc @ R[1:]
-    # lower band storage: band[k, j] = A[j + k, j], k = 0..5
+    # lower band storage (the fairlead DOFs are held: their couplings are zeroed above): band[k, j] = A[j + k, j], k = 0..5
     band = np.zeros((6, nd))
     for a in range(3):
         for b in range(a + 1):

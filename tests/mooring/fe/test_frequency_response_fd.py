@@ -47,7 +47,9 @@ def test_dynamic_columns_and_quasi_static_beside(oc3_fd):
 def test_dynamic_wf_tension_is_the_line_response_to_the_fairlead_motion(oc3_fd):
     """Independent recomputation for one line: the fairlead displacement RAO from the body RAO
     (small rotations about the body origin), its cross-spectrum with the wave spectrum, and
-    frequency_response of the FE line at the mean pose (with the scene's current)."""
+    frequency_response of the FE line at the mean pose (with the scene's current), on the full
+    FD grid: the FD runs the line on 120 bins and interpolates its transfer function (within
+    0.5 %)."""
     p, _, dyn = oc3_fd
     built = build(p)
     system = built.mooring
@@ -69,4 +71,4 @@ def test_dynamic_wf_tension_is_the_line_response_to_the_fairlead_motion(oc3_fd):
     line.solve_static()
     ds = frequency_response(line, w, Sx)
     assert float(ds.fairlead_tension_std) == pytest.approx(
-        float(dyn["tension_std_wf"].values[0]), rel=1e-6)
+        float(dyn["tension_std_wf"].values[0]), rel=5e-3)
