@@ -22,17 +22,20 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from floatmoor.analyses.fd_line_dynamics import (N_LINE_FREQUENCIES, coarse_grid,  # noqa: E402
-                                                 dynamic_wf_tensions)
-from floatmoor.analyses.frequency_domain import frequency_domain_result  # noqa: E402
-from floatmoor.core.frames import rotation_matrix_into  # noqa: E402
-from floatmoor.io.build import build  # noqa: E402
-from floatmoor.metocean.spectra import jonswap  # noqa: E402
-from floatmoor.mooring.fe import FELine, FELineSpec, FESegment, Seabed  # noqa: E402
-from floatmoor.mooring.fe.body import scene_line_inputs  # noqa: E402
-from floatmoor.mooring.fe.frequency import frequency_response  # noqa: E402
-from floatmoor.mooring.fe.from_system import spec_from_linedef  # noqa: E402
-from floatmoor.mooring.line_types import LineType  # noqa: E402
+from floatmoor.analyses.fd_line_dynamics import (
+    N_LINE_FREQUENCIES,
+    coarse_grid,
+    dynamic_wf_tensions,
+)
+from floatmoor.analyses.frequency_domain import frequency_domain_result
+from floatmoor.core.frames import rotation_matrix_into
+from floatmoor.io.build import build
+from floatmoor.metocean.spectra import jonswap
+from floatmoor.mooring.fe import FELine, FELineSpec, FESegment, Seabed
+from floatmoor.mooring.fe.body import scene_line_inputs
+from floatmoor.mooring.fe.frequency import frequency_response
+from floatmoor.mooring.fe.from_system import spec_from_linedef
+from floatmoor.mooring.line_types import LineType
 
 
 def oc3_line(n=50):
