@@ -16,7 +16,7 @@ import numpy as np
 
 from .prescribed import TimeSeriesMotion, run_prescribed
 
-__all__ = ["periodic_realisation", "td_tension_std"]
+__all__ = ["periodic_realisation", "periodic_realisation_from_transfer", "td_tension_std"]
 
 
 def periodic_realisation(omega, auto_psd, duration: float, seed: int, *, ramp: float = 60.0,
@@ -67,3 +67,26 @@ def td_tension_std(line, omega, auto_psd, *, duration: float = 600.0, seeds=(1, 
     s = np.array(out_std)
     return {"std": s, "mean_std": float(np.sqrt(np.mean(s ** 2))), "motion_std": np.array(m_std),
             "max": np.array(out_max)}
+
+
+def periodic_realisation_from_transfer(omega, h, wave_psd, duration: float, seed: int, *,
+                                       ramp: float = 60.0, dt: float = 0.05) -> TimeSeriesMotion:
+    """Fairlead motion ``x(t) = Re sum h(w_k) a_k exp(i (w_k t + phi_k))`` (exp(+i w t)) for the
+    fairlead displacement per unit wave amplitude ``h`` (n_w, 3) complex and the wave spectrum
+    ``wave_psd`` (n_w,) on ``omega``; periodic with ``duration`` after the ramp (deterministic
+    amplitudes ``a_k = sqrt(2 S dw)``, random phases)."""
+    dw = 2.0 * math.pi / duration
+    k = np.arange(math.ceil(omega[0] / dw), math.floor(omega[-1] / dw) + 1)
+    wr = k * dw
+    rng = np.random.default_rng(seed)
+    amp = np.sqrt(2.0 * np.interp(wr, omega, wave_psd) * dw)
+    ph = rng.uniform(0.0, 2.0 * math.pi, wr.size)
+    H = np.stack([np.interp(wr, omega, h[:, a].real) + 1j * np.interp(wr, omega, h[:, a].imag)
+                  for a in range(3)], axis=1)
+    t = np.arange(0.0, ramp + duration + 2 * dt, dt)
+    xyz = np.zeros((t.size, 3))
+    for j in range(0, wr.size, 256):
+        e = np.exp(1j * (wr[j:j + 256, None] * t[None] + ph[j:j + 256, None]))   # (k, t)
+        xyz += np.real(np.einsum("ka,kt->ta", H[j:j + 256] * amp[j:j + 256, None], e))
+    g = 0.5 * (1.0 - np.cos(math.pi * np.clip(t / ramp, 0.0, 1.0)))
+    return TimeSeriesMotion(t=t, xyz=xyz * g[:, None])
