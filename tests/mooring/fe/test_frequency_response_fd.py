@@ -72,3 +72,15 @@ def test_dynamic_wf_tension_is_the_line_response_to_the_fairlead_motion(oc3_fd):
     ds = frequency_response(line, w, Sx)
     assert float(ds.fairlead_tension_std) == pytest.approx(
         float(dyn["tension_std_wf"].values[0]), rel=5e-3)
+
+
+def test_scene_section_selects_the_dynamic_model(oc3_fd, tmp_path):
+    import yaml
+    p, _, dyn = oc3_fd
+    sc = yaml.safe_load(open(p))
+    sc["frequency_domain"] = {"tension_model": "dynamic"}
+    q = p.parent / "oc3_dynamic.yaml"
+    q.write_text(yaml.safe_dump(sc, sort_keys=False))
+    ds = frequency_domain(q)
+    assert ds.attrs["tension_model"] == "dynamic"
+    np.testing.assert_allclose(ds["tension_std_wf"].values, dyn["tension_std_wf"].values)
