@@ -77,7 +77,7 @@ def test_dynamic_wf_tension_is_the_line_response_to_the_fairlead_motion(oc3_fd):
 def test_scene_section_selects_the_dynamic_model(oc3_fd, tmp_path):
     import yaml
     p, _, dyn = oc3_fd
-    sc = yaml.safe_load(open(p))
+    sc = yaml.safe_load(p.read_text())
     sc["frequency_domain"] = {"tension_model": "dynamic"}
     q = p.parent / "oc3_dynamic.yaml"
     q.write_text(yaml.safe_dump(sc, sort_keys=False))
