@@ -528,7 +528,7 @@ def natural_frequencies(M, K, Ko, fixed, n_modes: int = 6) -> np.ndarray:
     Mass-normalised (``M^-1/2 K M^-1/2`` with the 3x3 nodal blocks) and solved as a banded
     symmetric eigenproblem (bandwidth 5); held DOFs get an eigenvalue far above the rest."""
     n = M.shape[0]
-    nd = 3 * n
+    ndof = 3 * n
     nm = min(n_modes, int((~fixed).sum()))
     if nm <= 0:
         return np.zeros(0)
@@ -551,7 +551,7 @@ def natural_frequencies(M, K, Ko, fixed, n_modes: int = 6) -> np.ndarray:
     Ad = R @ (0.5 * (Kd + np.swapaxes(Kd, 1, 2))) @ R
     Ac = R[:-1] @ Kc @ R[1:]
     # lower band storage (the fairlead DOFs are held: their couplings are zeroed above): band[k, j] = A[j + k, j], k = 0..5
-    band = np.zeros((6, nd))
+    band = np.zeros((6, ndof))
     for a in range(3):
         for b in range(a + 1):
             band[a - b, np.arange(n) * 3 + b] = Ad[:, a, b]
