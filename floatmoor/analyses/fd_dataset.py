@@ -39,8 +39,9 @@ class Variable:
     long_name: str
     get: Callable[[FDResult], np.ndarray] | None = None
 
-    def values(self, r: FDResult) -> np.ndarray:
-        return np.asarray(getattr(r, self.name) if self.get is None else self.get(r))
+    def values(self, r: FDResult) -> np.ndarray | None:
+        v = getattr(r, self.name) if self.get is None else self.get(r)
+        return None if v is None else np.asarray(v)
 
 
 def _diagonal(field: str):
@@ -134,6 +135,13 @@ VARIABLES: tuple[Variable, ...] = (
     Variable("mbs", L, "N", "minimum breaking strength"),
     Variable("safety_factor", L, "1", "MBS / maximum tension"),
     Variable("line_failed", L, "1", "line removed (failed)"),
+    # tension_model: dynamic only (absent otherwise)
+    Variable("tension_std_wf_quasi_static", L, "N", "WF tension std, quasi-static"),
+    Variable("tension_tz_wf_quasi_static", L, "s", "WF tension Tz, quasi-static"),
+    Variable("tension_wf_dynamic_spectrum", ("omega", "line"), "N^2 s/rad",
+             "WF fairlead tension spectrum of the FE line in the frequency domain"),
+    Variable("dynamic_amplification", L, "1",
+             "WF tension std: dynamic (FE line) over quasi-static"),
 )
 
 
@@ -181,7 +189,7 @@ def to_dataset(r: FDResult) -> xr.Dataset:
     ``long_name``; the attributes of :data:`ATTRIBUTES`."""
     data = {v.name: (v.dims, v.values(r), {"units": v.units,
                                            "long_name": v.long_name.format(r=r)})
-            for v in VARIABLES}
+            for v in VARIABLES if v.values(r) is not None}
     coords = {"dof": list(DOF_NAMES), "dof2": list(DOF_NAMES),
               "omega": ("omega", r.model.omega, {"units": "rad/s", "long_name": "wave frequency"}),
               "mu": ("mu", r.model.mu, {"units": "rad/s",
@@ -220,7 +228,22 @@ def format_table(ds: xr.Dataset) -> str:
         out.append(f"  {str(name):9s}" + "".join(f"{x:8.1f}" for x in vals)
                    + f"{ds['safety_factor'].values[j]:8.2f}"
                    + f"{ds['tension_max_total_catenary'].values[j] / 1e3:9.1f}")
-    out += ["  (Max Tot: eq. 2.49 on the linearised quasi-static tension; Max Tot catenary: the "
+    dynamic = "dynamic_amplification" in ds
+    if dynamic:
+        out += [("  (StD WF, Max WF, Max Tot, Safety factor: dynamic WF tension of the FE lines; "
+                 "LF quasi-static)"), "",
+                "* WAVE-FREQUENCY TENSION: QUASI-STATIC AND DYNAMIC (FE line) *  (kN)",
+                "  Line      StD WF QS  StD WF dyn   Dyn. ampl.  Tz QS (s)  Tz dyn (s)"]
+        for j, name in enumerate(ds["line"].values):
+            if bool(ds["line_failed"].values[j]):
+                continue
+            out.append(f"  {name!s:9s}{ds['tension_std_wf_quasi_static'].values[j] / 1e3:10.1f}"
+                       f"{ds['tension_std_wf'].values[j] / 1e3:12.1f}"
+                       f"{ds['dynamic_amplification'].values[j]:13.2f}"
+                       f"{ds['tension_tz_wf_quasi_static'].values[j]:11.2f}"
+                       f"{ds['tension_tz_wf'].values[j]:12.2f}")
+    out += ["  (Max Tot: eq. 2.49 on the linearised " + ("WF dynamic / LF quasi-static" if dynamic
+            else "quasi-static") + " tension; Max Tot catenary: the "
             "catenary at the most likely pose of that excursion)"]
     if ds.attrs.get("notes"):
         out += ["", "notes: " + ds.attrs["notes"]]

@@ -128,3 +128,8 @@ class FDResult:
     linearisation_iterations: int
     notes: tuple = ()
     run_time_s: float = float("nan")
+    # tension_model: dynamic (None otherwise): the quasi-static WF tension beside the dynamic one
+    tension_std_wf_quasi_static: np.ndarray | None = None
+    tension_tz_wf_quasi_static: np.ndarray | None = None
+    tension_wf_dynamic_spectrum: np.ndarray | None = None
+    dynamic_amplification: np.ndarray | None = None

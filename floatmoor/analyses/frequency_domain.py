@@ -43,7 +43,11 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    the offset X_max - X_WF,max, from which the WF maximum is added).
    ``tension_max_total_catenary`` re-evaluates the catenary at the most likely pose giving that
    excursion (the conditional mean pose of the Gaussian responses), which shows the effect of
-   the line's nonlinearity.
+   the line's nonlinearity.  With ``tension_model: dynamic`` the WF tension std and Tz come
+   from each line's FE model linearised in the frequency domain under its WF fairlead motion
+   (:mod:`~floatmoor.analyses.fd_line_dynamics`; ANSYS (2013) eq. 9-75, touchdown by Ong &
+   Pellegrino (2003)); the quasi-static WF std and the dynamic amplification are reported
+   beside it; the LF tension stays quasi-static.
 6. **Viscous drift** (Wang (2016) chapter 6; the scene key ``forces: viscous_drift``):
    ``model: correction_formula`` replaces the potential mean drift coefficients by eq. 6.6
    (:func:`floatmoor.forces.slender.corrected_drift_database`, the same coefficients as the
@@ -83,6 +87,7 @@ from ..solvers.frequency_domain import (FDModel, FDOptions, aranha_drift_damping
                                         response_std_tz, solve_frequency_domain)
 from ..solvers.statics import solve_equilibrium
 from .fd_dataset import to_dataset
+from .fd_line_dynamics import dynamic_line_columns
 from .fd_loads import interp0, qtf_function, relative_flow_damping, rot6
 from .fd_maxima import combine_maxima, rayleigh_maxima, tension_columns
 from .fd_result import FDResult
@@ -145,6 +150,9 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
     mean = mean_parts["mean"]
     motions = _motion_statistics(mean, sol, model, opt.duration)
     lines = _line_statistics(built.mooring, mean, sol, model, opt.duration)
+    if opt.tension_model == "dynamic":
+        # WF tension from the FE lines in the frequency domain; LF stays quasi-static
+        lines.update(dynamic_line_columns(built, mean, sol, model, lines, opt.duration))
     return FDResult(
         scene=str(sc.file) if sc.file else sc.name, scene_name=sc.name, options=opt,
         model=model, solution=sol, line_names=tuple(built.mooring.names), **mean_parts,

@@ -27,6 +27,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="add Aranha's wave drift damping to the LF system")
     p.add_argument("--lf-cutoff", type=positive_float, default=None, metavar="S",
                    help="LF cut-off period, s (default 30)")
+    p.add_argument("--tension-model", choices=("quasi_static", "dynamic"), default=None,
+                   help="WF line tension: quasi-static catenary, or dynamic (FE lines in the "
+                        "frequency domain; LF stays quasi-static)")
 
 
 def to_netcdf(ds, path) -> Path:
@@ -54,6 +57,8 @@ def run(args: argparse.Namespace) -> int:
         overrides["wave_drift_damping"] = True
     if args.lf_cutoff is not None:
         overrides["lf_cutoff_period"] = args.lf_cutoff
+    if args.tension_model is not None:
+        overrides["tension_model"] = args.tension_model
     ds = frequency_domain(args.scene, **overrides)
     print(format_table(ds))
     if args.out:

@@ -3,7 +3,7 @@
 ```yaml
 frequency_domain:
   duration: 10800.0            # s, storm duration for the Rayleigh maxima (N = duration / Tz)
-  tension_model: quasi_static  # the only model so far (dynamic WF tension: FE lines, later)
+  tension_model: quasi_static  # or dynamic: WF tension of the FE lines in the frequency domain
   drift: auto                  # auto (full QTF when the database has one) | newman | qtf
   wave_drift_damping: false    # Aranha's wave drift damping in the LF system
   lf_cutoff_period: 30.0       # s, upper end of the LF band

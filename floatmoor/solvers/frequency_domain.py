@@ -249,7 +249,7 @@ def aranha_drift_damping(omega, s_eta, coefficient_along, gravity, direction):
     return B
 
 
-TENSION_MODELS = ("quasi_static",)
+TENSION_MODELS = ("quasi_static", "dynamic")
 DRIFT_METHODS = ("auto", "newman", "qtf")
 
 @dataclass(frozen=True, kw_only=True)
@@ -258,7 +258,9 @@ class FDOptions:
     ``frequency_domain:`` when present, read by :mod:`floatmoor.io.fd_section`).
 
     duration : s, the storm duration for the number of cycles N = duration / Tz (3 h).
-    tension_model : ``quasi_static`` (a dynamic WF tension from the FE line model is planned).
+    tension_model : ``quasi_static``, or ``dynamic``: the WF tension of every line from its FE
+        model in the frequency domain (:mod:`floatmoor.analyses.fd_line_dynamics`; LF stays
+        quasi-static).
     drift : ``auto`` (the full QTF when the database has one, else Newman), ``newman``, ``qtf``.
     wave_drift_damping : add Aranha's wave drift damping to the LF system.
     lf_cutoff_period : s, upper end of the LF band (2 pi / period rad/s).

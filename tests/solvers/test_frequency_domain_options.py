@@ -25,7 +25,7 @@ def test_defaults_and_values():
 
 @pytest.mark.parametrize("data, key", [
     ({"duration": -5.0}, "frequency_domain.duration"),
-    ({"tension_model": "dynamic"}, "frequency_domain.tension_model"),
+    ({"tension_model": "fully_dynamic"}, "frequency_domain.tension_model"),
     ({"drift": "pinkster"}, "frequency_domain.drift"),
     ({"wave_drift_damping": "yes"}, "frequency_domain.wave_drift_damping"),
     ({"n_lf": 10}, "frequency_domain.n_lf"),

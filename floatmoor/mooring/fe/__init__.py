@@ -9,6 +9,7 @@ from .analytic import transverse_friction_static
 from .body import FEMooring
 from .config import (FRICTION_MODELS, SEABED_MODELS, FELineSpec, FESegment, Friction, PointBody,
                      Seabed)
+from .frequency import frequency_response
 from .from_system import spec_from_linedef, specs_from_system
 from .line import FELine, StaticSolution, gen_alpha_coefficients
 from .decoupled import harmonic_poses, run_decoupled
@@ -22,4 +23,4 @@ __all__ = ["FELineSpec", "FESegment", "Friction", "PointBody", "Seabed", "FRICTI
            "quasi_static_tension", "daf", "transverse_friction_static", "spec_from_linedef",
            "specs_from_system", "FEMooring", "decoupled_analysis", "FEOptions",
            "parse_fe_options", "MOORING_MODELS", "LineModels", "parse_line_models",
-           "run_decoupled", "harmonic_poses"]
+           "run_decoupled", "harmonic_poses", "frequency_response"]
