@@ -239,6 +239,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     with warnings.catch_warnings():
         warnings.showwarning = _show_warning
         warnings.simplefilter("default", FloatmoorWarning)
+        warnings.simplefilter("ignore", RuntimeWarning)  # numpy noise; NaN results are errors
         try:
             return int(args._run(args))
         except (SceneError, UsageError) as exc:
@@ -248,7 +249,14 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"floatmoor: numerical error: {exc}", file=sys.stderr)
             return EXIT_NUMERICAL_ERROR
         except KeyboardInterrupt:
+            print("floatmoor: interrupted", file=sys.stderr)
             return EXIT_INTERRUPTED
+        except OSError as exc:  # a file named on the command line cannot be read or written
+            name = exc.filename if exc.filename is not None else ""
+            what = exc.strerror or type(exc).__name__
+            print(f"floatmoor: error: {name}: {what}" if name else f"floatmoor: error: {exc}",
+                  file=sys.stderr)
+            return EXIT_SCENE_ERROR
 
 
 if __name__ == "__main__":  # pragma: no cover

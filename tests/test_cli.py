@@ -103,7 +103,7 @@ def test_keyboard_interrupt_exits_130_quietly(capsys, monkeypatch):
     _install_failing_command(monkeypatch, KeyboardInterrupt())
     assert main(["check", "x.yaml"]) == 130
     captured = capsys.readouterr()
-    assert captured.out == "" and captured.err == ""
+    assert captured.out == "" and captured.err == "floatmoor: interrupted\n"
 
 
 def test_python_dash_m_entry_point(tmp_path):
@@ -164,7 +164,7 @@ def test_environment_defaults_come_from_the_scene(tmp_path, capsys):
 
 @pytest.mark.parametrize("extra, text", [(["--dt", "0"], "expected a number > 0"),
                                          (["--duration", "-5"], "expected a number > 0"),
-                                         (["--seed", "-1"], "seed >= 0"),
+                                         (["--seed", "-1"], "seed between 0 and 4294967295"),
                                          (["--seed", "x"], "integer seed"),
                                          (["--dt", "700", "--duration", "600"],
                                           "must be shorter than the duration")])

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .argtypes import positive_float
+from .argtypes import check_out_file, positive_float
 
 HELP = "frequency-domain analysis (mean, LF, WF, Rayleigh maxima, line tensions)"
 
@@ -32,6 +32,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def to_netcdf(ds, path) -> Path:
     """Write a frequency-domain result as netCDF (booleans stored as int8)."""
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     out = ds.copy()
     for name, var in out.data_vars.items():
         if var.dtype == bool:
@@ -45,6 +46,8 @@ def run(args: argparse.Namespace) -> int:
     from ..analyses.fd_dataset import format_table
     from ..analyses.frequency_domain import frequency_domain
 
+    if args.out:
+        check_out_file(args.out)
     overrides = {}
     if args.duration is not None:
         overrides["duration"] = args.duration

@@ -61,13 +61,14 @@ def _point(node: Node, key: str, *, default_z=None, what: str):
     if isinstance(raw, list):
         return tuple(node.array(key, shape=(3,), unit="m"))
     p = node.child(key)
+    extra = {"above_seabed"} if key == "anchor" else set()
     if "radius" in p:
-        p.reject_unknown({"radius", "azimuth_deg", "z"})
+        p.reject_unknown({"radius", "azimuth_deg", "z"} | extra)
         r = p.float("radius", ge=0.0, unit="m")
         a = p.angle_deg("azimuth_deg")
         z = p.float("z", default_z, unit="m") if default_z is not None else p.float("z", unit="m")
         return (r * math.cos(a), r * math.sin(a), z)
-    p.reject_unknown({"x", "y", "z"})
+    p.reject_unknown({"x", "y", "z"} | extra)
     x = p.float("x", unit="m")
     y = p.float("y", unit="m")
     z = p.float("z", default_z, unit="m") if default_z is not None else p.float("z", unit="m")
@@ -134,6 +135,19 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                                      f"{fairlead[2]:g} m)", list(anchor),
                            f"line {name!r}: the anchor must be lower than the fairlead")
         on_seabed = abs(anchor[2] + water_depth) <= 1e-6 * max(water_depth, 1.0)
+        if not on_seabed:
+            a_src = src_anchor = (ln if "anchor" in ln or defaults is None
+                                  or "anchor" not in defaults else defaults)
+            a_raw = src_anchor.raw("anchor", None)
+            declared = isinstance(a_raw, dict) and a_raw.get("above_seabed") is True
+            if not declared:
+                where = a_src.child("anchor") if isinstance(a_raw, dict) else a_src
+                raise where.error("z" if isinstance(a_raw, dict) else "anchor",
+                                  f"an anchor on the seabed (z = {-water_depth:g} m; an anchor "
+                                  "above it must be declared with above_seabed: true)",
+                                  anchor[2] if isinstance(a_raw, dict) else list(anchor),
+                                  f"line {name!r}: the anchor is "
+                                  f"{anchor[2] + water_depth:.4g} m above the seabed")
         src = ln if "segments" in ln or defaults is None else defaults
         seg_nodes = src.item_nodes("segments", min_len=1)
         segs = []
@@ -164,8 +178,11 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
         if f not in names:
             raise SceneError(node.file, f"{node.key('failed_lines')}[{i}]",
                              "a line name, one of: " + ", ".join(names), f)
+    if failed and len(set(failed)) >= len(names):
+        raise node.error("failed_lines", "some lines left intact (every line is listed as "
+                         "failed: nothing would hold the floater)", failed)
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
-                       gravity=gravity, source=str(node.file) if node.file else "<scene>",
+                       gravity=gravity, source=str(node.file) if node.file else "mooring (given in Python)",
                        failed=failed, line_models=line_models, line_types=used_types)
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
@@ -182,6 +199,13 @@ def _check_at_zero_pose(ms: MooringSystem, node: Node, line_nodes):
                                       f"line {line.name!r}: {exc}") from None
         tf = float(t["fairlead_tension"][0])
         if tf > line.mbs:
-            warnings.warn(f"{node.file or '<scene>'}: line {line.name!r} has {tf / 1e3:.1f} kN at "
-                          f"the fairlead at zero offset, above its MBS {line.mbs / 1e3:.1f} kN "
-                          f"(too short, or anchor too far)", FloatmoorWarning, stacklevel=3)
+            a, f = np.asarray(line.anchor, float), np.asarray(line.fairlead, float)
+            dist = float(np.linalg.norm(f - a))
+            length = float(sum(sg.length for sg in line.segments))
+            raise line_nodes[i].error(
+                "segments", f"a line whose tension at zero offset is below its MBS "
+                f"{line.mbs / 1e3:.1f} kN", f"{tf / 1e3:.1f} kN at the fairlead",
+                f"line {line.name!r}: unstretched length {length:.6g} m, anchor-fairlead "
+                f"distance {dist:.6g} m"
+                + (f" (a stretch of {100 * (dist / length - 1):.3g} %)" if dist > length else "")
+                + "; the line is too short or its anchor too far")

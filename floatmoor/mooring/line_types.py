@@ -60,6 +60,11 @@ STEEL_DENSITY = 7850.0
 POLYESTER_DENSITY = 1380.0
 
 
+MATERIALS = ("chain", "wire", "polyester", "nylon", "hmpe", "user")
+"""Line materials a line-type entry may name (``material:``); the material sets defaults
+(``chain``: area_factor 2), so a misspelt name must not pass as ``user``."""
+
+
 @dataclass(frozen=True, kw_only=True)
 class LineType:
     """Properties of one line type (SI units).
@@ -249,7 +254,7 @@ class LineTypeLibrary:
         e.reject_unknown(_USER_KEYS | {"area_factor"})
         d = e.float("diameter", gt=0.0, unit="m")
         mass = e.float("mass_per_length", gt=0.0, unit="kg/m")
-        material = e.str("material", "user")
+        material = e.str("material", "user", choices=MATERIALS)
         if "ea" in e and "elastic_modulus" in e:
             raise e.error("elastic_modulus", "either ea or elastic_modulus, not both",
                           e.raw("elastic_modulus"))
