@@ -90,6 +90,11 @@ def _check_run(args: argparse.Namespace) -> int:
     if not args.quick:
         for line in _read_references(scene):
             print(line)
+        if scene.vessel is not None:
+            from .io.build import build
+            from .io.plausibility import check_built
+            check_built(build(scene))
+            print("plausibility: depth, mass and displacement, stability, model inputs: OK")
     print(f"{args.scene}: OK")
     return EXIT_OK
 
@@ -170,6 +175,9 @@ def _environment_run(args: argparse.Namespace) -> int:
     if dt >= duration:
         raise UsageError(f"the time step --dt {dt:g} s must be shorter than the duration "
                          f"{duration:g} s")
+    from .io.analysis import check_time_steps
+    check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None else
+                     "--duration" if args.duration is not None else "analysis.dt")
     from .metocean.summary import environment_summary, format_summary
 
     summary = environment_summary(scene.environment, water_depth=scene.site.water_depth,

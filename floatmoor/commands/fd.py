@@ -48,6 +48,9 @@ def run(args: argparse.Namespace) -> int:
 
     if args.out:
         check_out_file(args.out)
+    from ..io.build import build
+    from ..io.plausibility import check_built
+    check_built(build(args.scene))
     overrides = {}
     if args.duration is not None:
         overrides["duration"] = args.duration

@@ -70,6 +70,11 @@ def run(args: argparse.Namespace) -> int:
     from ..analyses.statics import equilibrium, restoring_curves
 
     built = build(args.scene, failed_lines=args.fail)
+    from ..io.plausibility import check_built
+    check_built(built)
+    if args.out:
+        from .argtypes import check_out_file
+        check_out_file(args.out)
     res = equilibrium(built, external_force=args.force)
     print(f"scene: {built.scene.name}  [{built.scene.file}]")
     print(f"net buoyancy at zero pose: {built.static_force[2] / 1e3:.1f} kN"

@@ -119,7 +119,7 @@ def _check_yaml_tree(root, path: Path) -> None:
         if depth > MAX_YAML_DEPTH:
             raise SceneError(path, _where(node.start_mark),
                              f"lists and mappings nested at most {MAX_YAML_DEPTH} deep",
-                             f"deeper nesting")
+                             "deeper nesting")
         if isinstance(node, yaml.ScalarNode):
             n = len(node.value)
             if n > MAX_SCALAR_CHARS:

@@ -99,7 +99,7 @@ def parse_seeds(node: Node, key: str, default=SceneError.MISSING) -> tuple[int, 
             raise node.error(key, expected, value, hint)
         first, last = value
         if last < first:
-            raise node.error(key, f"[first, last] with last >= first", value)
+            raise node.error(key, "[first, last] with last >= first", value)
         for s in (first, last):
             if not 0 <= s <= MAX_SEED:
                 raise node.error(key, f"seeds between 0 and {MAX_SEED}", value)
@@ -180,7 +180,7 @@ def check_time_steps(file, duration: float, dt: float, *, key: str = "analysis.d
 
 
 def _bytes(n: float) -> str:
-    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+    for unit, size in (("PB", 1e15), ("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
         if n >= size:
             return f"{n / size:.3g} {unit}"
     return f"{n / 1e3:.3g} kB"

@@ -36,13 +36,12 @@ attribute ``line_models`` (:class:`~floatmoor.mooring.fe.options.LineModels`) of
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
 from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
-from ..core.errors import ConvergenceError, FloatmoorWarning, SceneError
+from ..core.errors import ConvergenceError, SceneError
 from ..mooring.fe.options import parse_line_models
 from ..mooring.line_types import LineTypeLibrary, default_library
 from ..mooring.system import LineDef, MooringSystem, Segment
