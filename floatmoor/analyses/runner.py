@@ -244,10 +244,12 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
         keys = sorted({k for v in foreign.values() for k in v})
         first = min(foreign)
         raise SceneError(scene.file, "", f"a results folder holding results of this scene "
-                         f"only ({out_dir})", f"{len(foreign)} result file(s) computed from other "
-                         f"inputs (e.g. seed {first}); they differ in: {', '.join(keys)}",
-                         hint="use another --out folder, or --force to compute those seeds "
+                         f"and models only ({out_dir})", SceneError.NOT_APPLICABLE,
+                         hint=f"{len(foreign)} result file(s) there (e.g. seed {first}) were "
+                              f"computed from other inputs; they differ in: {', '.join(keys)}; "
+                              "use another --out folder, or --force to compute those seeds "
                               "again")
+
     if workers is None:
         try:
             workers = len(os.sched_getaffinity(0))
@@ -316,7 +318,12 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
         except KeyboardInterrupt:
             if bar is not None:
                 bar.close()
-            left = sorted(s for s, _ in todo if s not in outcomes)
+            # a seed whose file exists was finished (written whole, then renamed) even when
+            # its outcome had not reached this process yet
+            left = sorted(s for s, path in todo if s not in outcomes and not path.is_file())
+            for s, path in todo:
+                if s not in outcomes and path.is_file():
+                    outcomes[s] = SeedOutcome(s, "done", path)
             for s in left:
                 p = seed_file(out_dir, scene.name, s)
                 if p.with_name(p.name + ".tmp").is_file():
@@ -333,8 +340,13 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
 
 def _stop_pool(pool) -> None:
     """Stop a ProcessPoolExecutor now: cancel queued seeds, terminate the running workers."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for p in procs:
+        try:
+            p.terminate()
+        except Exception:  # pragma: no cover - already gone
+            pass
     pool.shutdown(wait=False, cancel_futures=True)
-    procs = list(getattr(pool, "_processes", {}).values())
     for p in procs:
         try:
             p.terminate()

@@ -88,6 +88,8 @@ class SceneError(FloatmoorError, ValueError):
     """
 
     MISSING = object()
+    NOT_APPLICABLE = object()
+    """``found`` for a mistake that is not a value (the hint says what was found)."""
 
     def __init__(self, file, key: str, expected: str, found=MISSING, hint: str | None = None):
         self.file = None if file is None else os.fspath(file)
@@ -105,19 +107,23 @@ class SceneError(FloatmoorError, ValueError):
             found = "nothing (the key is missing)"
         else:
             found = _short(self.found)
-        msg = f"{where}: expected {self.expected}, found {found}"
+        msg = f"{where}: expected {self.expected}"
+        if self.found is not SceneError.NOT_APPLICABLE:
+            msg += f", found {found}"
         if self.hint:
             msg += f" ({self.hint})"
         return msg
 
     def __reduce__(self):  # keep the error picklable across worker processes
+        sentinel = (1 if self.found is SceneError.MISSING else
+                    2 if self.found is SceneError.NOT_APPLICABLE else 0)
         return (_rebuild_scene_error, (self.file, self.key, self.expected,
-                                       None if self.found is SceneError.MISSING else self.found,
-                                       self.found is SceneError.MISSING, self.hint))
+                                       None if sentinel else self.found, sentinel, self.hint))
 
 
 def _rebuild_scene_error(file, key, expected, found, missing, hint):
-    return SceneError(file, key, expected, SceneError.MISSING if missing else found, hint)
+    found = {1: SceneError.MISSING, 2: SceneError.NOT_APPLICABLE}.get(int(missing), found)
+    return SceneError(file, key, expected, found, hint)
 
 
 def argument_error(key: str, expected: str, found=SceneError.MISSING,
