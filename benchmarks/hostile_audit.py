@@ -8,6 +8,7 @@ limit, and counts the outcomes:
 * ``traceback`` a Python traceback (or exit 1);
 * ``hang``      killed at the time limit, or out of memory;
 * ``silent``    exit 0 (a bad input accepted);
+* ``warned``    exit 0 with a ``floatmoor: warning:`` (a doubtful input accepted, but said so);
 * ``other``     anything else (exit 3 for an input error, a message without a file, ...).
 
 Usage::
@@ -263,7 +264,7 @@ def cases(tree: Tree):
     # -- mooring file -----------------------------------------------------------------------
     M = "vessels/floatel_like/mooring.yaml"
     mt = tree.text(M)
-    first_len = re.search(r"length: ([0-9.]+)", mt).group(0)
+    first_len = re.search(r"\blength: ([0-9.]+)", mt).group(0)
     anchor = re.search(r"anchor: \{[^}]*\}", mt).group(0)
     mooring_cases = [
         ("material chian", "material: chain", "material: chian"),
@@ -418,7 +419,7 @@ def classify(status, stdout, stderr, expect):
     if expect == "ok":
         return "rejected" if status == 0 else "other"
     if status == 0:
-        return "silent"
+        return "warned" if "floatmoor: warning:" in stderr else "silent"
     if status == 2:
         msg = stderr.strip().splitlines()[-1] if stderr.strip() else ""
         if "<scene>" in text or "np.float64" in text or "RuntimeWarning" in text:
@@ -461,7 +462,7 @@ def main(argv=None):
         if a.v or kind != "rejected":
             print(f"{kind:10s} {status!s:>7s} {secs:5.1f}s  {name}: {last}", flush=True)
     print(f"\n{n} cases in {time.monotonic() - t_all:.0f} s: " + ", ".join(
-        f"{k} {totals.get(k, 0)}" for k in ("rejected", "traceback", "hang", "silent", "other")))
+        f"{k} {totals.get(k, 0)}" for k in ("rejected", "traceback", "hang", "silent", "warned", "other")))
     if not a.keep:
         shutil.rmtree(tmp, ignore_errors=True)
     else:

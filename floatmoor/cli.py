@@ -236,6 +236,15 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
         stream.write(warnings.formatwarning(message, category, filename, lineno, line))
 
 
+def _with_input_file(exc: SceneError, args: argparse.Namespace) -> SceneError:
+    """A SceneError raised without a file (by a model checking its arguments) names the input
+    the command was given: the scene file, or the results folder of ``report``."""
+    source = getattr(args, "scene", None) or getattr(args, "results_dir", None)
+    if not source:
+        return exc
+    return SceneError(source, exc.key, exc.expected, exc.found, exc.hint)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the ``floatmoor`` command with ``argv`` (default ``sys.argv[1:]``); return the exit
     status."""
@@ -251,6 +260,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         try:
             return int(args._run(args))
         except (SceneError, UsageError) as exc:
+            if isinstance(exc, SceneError) and exc.file is None:
+                exc = _with_input_file(exc, args)
             print(f"floatmoor: error: {exc}", file=sys.stderr)
             return EXIT_SCENE_ERROR
         except NumericalError as exc:

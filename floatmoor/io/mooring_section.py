@@ -43,7 +43,7 @@ from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import ConvergenceError, SceneError
 from ..mooring.fe.options import parse_line_models
-from ..mooring.line_types import LineTypeLibrary, default_library
+from ..mooring.line_types import MAX_DIAMETER, LineTypeLibrary, default_library
 from ..mooring.system import LineDef, MooringSystem, Segment
 
 __all__ = ["parse_mooring"]
@@ -153,7 +153,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
         for k, sn in enumerate(seg_nodes):
             sn.reject_unknown(_SEG_KEYS)
             tname = sn.str("type")
-            d = sn.float("diameter", None, gt=0.0, unit="m")
+            d = sn.float("diameter", None, gt=0.0, le=MAX_DIAMETER, unit="m")
             lt, w_override = lib.get(tname, diameter=d, node=sn, key="type",
                                      water_density=water_density, gravity=gravity)
             used_types.setdefault(lt.name, lt)

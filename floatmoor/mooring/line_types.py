@@ -65,6 +65,14 @@ MATERIALS = ("chain", "wire", "polyester", "nylon", "hmpe", "user")
 (``chain``: area_factor 2), so a misspelt name must not pass as ``user``."""
 
 
+STEEL_MATERIALS = ("chain", "wire")
+"""Materials whose ``density`` must be that of steel (a chain lighter than water is a typo)."""
+
+MAX_DIAMETER = 0.5
+"""Largest nominal line diameter accepted, m (the largest chains and ropes are about 0.2-0.3 m;
+a diameter in mm typed for m is refused)."""
+
+
 @dataclass(frozen=True, kw_only=True)
 class LineType:
     """Properties of one line type (SI units).
@@ -230,7 +238,7 @@ class LineTypeLibrary:
         if "family" in e:
             e.reject_unknown(_FAMILY_KEYS)
             family = e.choice("family", FAMILIES, what="line type family")
-            d = e.float("diameter", None, gt=0.0, unit="m")
+            d = e.float("diameter", None, gt=0.0, le=MAX_DIAMETER, unit="m")
             if d is None:
                 d = diameter
             if d is None:
@@ -252,7 +260,7 @@ class LineTypeLibrary:
                 over["source"] = e.str("source")
             return (replace(lt, **over) if over else lt), None
         e.reject_unknown(_USER_KEYS | {"area_factor"})
-        d = e.float("diameter", gt=0.0, unit="m")
+        d = e.float("diameter", gt=0.0, le=MAX_DIAMETER, unit="m")
         mass = e.float("mass_per_length", gt=0.0, unit="kg/m")
         material = e.str("material", "user", choices=MATERIALS)
         if "ea" in e and "elastic_modulus" in e:
@@ -275,7 +283,11 @@ class LineTypeLibrary:
         if given[0] == "displaced_volume":
             vol = e.float("displaced_volume", ge=0.0, unit="m^3/m")
         elif given[0] == "density":
-            vol = mass / e.float("density", gt=0.0, unit="kg/m^3")
+            rho_m = e.float("density", gt=0.0, unit="kg/m^3")
+            if material in STEEL_MATERIALS and not 6000.0 <= rho_m <= 9000.0:
+                raise e.error("density", f"the density of steel {material} in kg/m^3 (about "
+                              f"{STEEL_DENSITY:g}; 6000-9000 accepted)", rho_m)
+            vol = mass / rho_m
         elif given[0] == "volumetric_diameter":
             dv = e.float("volumetric_diameter", gt=0.0, unit="m")
             vol = math.pi * dv * dv / 4

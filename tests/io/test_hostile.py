@@ -230,7 +230,6 @@ def test_anchor_above_seabed_must_be_declared(tree, capsys):
     m = _mutate(tree, M, anchor, anchor.replace("}", ", z: -30.0}"), "floating_anchor.yaml")
     p = _scene_with(tree, "floating_anchor_scene.yaml",
                     mooring="../vessels/floatel_like/floating_anchor.yaml")
-    code, err = _cli(["check", "--quick", p], capsys)
     code, err = _cli(["check", p], capsys)
     assert code == 2 and str(m) in err and "anchor" in err and "above_seabed" in err, err
 
@@ -274,3 +273,34 @@ def test_shipped_scenes_still_pass(capsys):
     for name in ("floatel_100yr.yaml", "oc3_hywind.yaml"):
         code, err = _cli(["check", ROOT / "scenes" / name], capsys)
         assert code == 0, err
+
+
+# -- 6. messages: every error names its file; no RuntimeWarning noise ------------------------
+def test_error_without_file_names_the_command_input(monkeypatch, capsys, tmp_path):
+    """A SceneError raised by a model without a file (e.g. a realisation checking its
+    arguments) is printed with the scene file the command was given."""
+    from floatmoor import cli
+    from floatmoor.core.errors import SceneError
+
+    def failing(args):
+        import numpy as np
+        np.log(np.zeros(3))  # a RuntimeWarning that must not reach the user
+        raise SceneError(None, "analysis.duration", "a number > 0 (s)", -1.0)
+
+    monkeypatch.setattr(cli, "COMMANDS", [cli.Command("check", "x", cli._check_arguments,
+                                                      failing)])
+    code = cli.main(["check", str(tmp_path / "my_scene.yaml")])
+    err = capsys.readouterr().err
+    assert code == 2 and err.startswith(f"floatmoor: error: {tmp_path / 'my_scene.yaml'}: "
+                                        "analysis.duration")
+    assert "RuntimeWarning" not in err and "(given in Python)" not in err
+
+
+def test_line_diameter_in_mm_and_light_chain_refused(tree, capsys):
+    for old, new, key in (("diameter: 0.084", "diameter: 84", "diameter"),
+                          ("density: 7850.0", "density: 785.0", "density")):
+        m = _mutate(tree, M, old, new, "bad_line_type.yaml")
+        p = _scene_with(tree, "bad_line_type_scene.yaml",
+                        mooring="../vessels/floatel_like/bad_line_type.yaml")
+        code, err = _cli(["check", p], capsys)
+        assert code == 2 and str(m) in err and key in err, err
