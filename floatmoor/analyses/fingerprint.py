@@ -15,7 +15,7 @@ import hashlib
 import json
 from pathlib import Path
 
-__all__ = ["scene_fingerprint", "fingerprint_digest", "differing_keys", "FINGERPRINT_ATTR"]
+__all__ = ["scene_fingerprint", "fingerprint_json", "fingerprint_digest", "differing_keys", "FINGERPRINT_ATTR"]
 
 FINGERPRINT_ATTR = "input_fingerprint"
 """Result-file attribute holding the JSON of :func:`scene_fingerprint`."""
@@ -80,6 +80,15 @@ def scene_fingerprint(scene, overrides: dict | None = None) -> dict[str, str]:
         fp["mooring"] = (_file_hash(scene.mooring) if isinstance(scene.mooring, Path)
                          else _value_hash(scene.mooring))
     return fp
+
+
+def fingerprint_json(scene, overrides: dict | None = None) -> str:
+    """:func:`scene_fingerprint` as the JSON text stored in a result file (``scene``: a Scene
+    or the path of a scene file)."""
+    if not hasattr(scene, "analysis"):
+        from ..io.scene import load_scene
+        scene = load_scene(scene)
+    return json.dumps(scene_fingerprint(scene, overrides), sort_keys=True)
 
 
 def fingerprint_digest(fp: dict[str, str]) -> str:

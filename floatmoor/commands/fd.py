@@ -63,5 +63,7 @@ def run(args: argparse.Namespace) -> int:
     ds = frequency_domain(args.scene, **overrides)
     print(format_table(ds))
     if args.out:
+        from ..analyses.fingerprint import FINGERPRINT_ATTR, fingerprint_json
+        ds.attrs[FINGERPRINT_ATTR] = fingerprint_json(args.scene, overrides)
         print(f"written: {to_netcdf(ds, args.out)}")
     return 0

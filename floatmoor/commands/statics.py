@@ -96,6 +96,9 @@ def run(args: argparse.Namespace) -> int:
             c = c.rename({v: f"curve_{v}" for v in c.data_vars})
             ds = xr.merge([ds, c], combine_attrs="drop_conflicts")
         ds.attrs["scene"] = str(built.scene.file)
+        from ..analyses.fingerprint import FINGERPRINT_ATTR, fingerprint_json
+        ds.attrs[FINGERPRINT_ATTR] = fingerprint_json(built.scene, {"fail": args.fail,
+                                                                    "force": args.force})
         path = Path(args.out)
         ds.to_netcdf(path)
         print(f"written: {path}")

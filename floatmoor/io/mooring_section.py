@@ -54,6 +54,11 @@ _LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction", "mode
 _SEG_KEYS = {"type", "diameter", "length", "clump_weight", "buoy_net_buoyancy"}
 
 
+MAX_LENGTH_RATIO = 5.0
+"""Longest line accepted, as a multiple of its anchor-fairlead distance at zero pose (catenary
+moorings use 1.0-1.5; the rest of a longer line would only lie on the seabed)."""
+
+
 def _point(node: Node, key: str, *, default_z=None, what: str):
     """A point given as [x, y, z], {x, y, z} or {radius, azimuth_deg, z}."""
     raw = node.raw(key, expected=f"the {what} as [x, y, z] or {{radius, azimuth_deg, z}}")
@@ -168,6 +173,13 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
             segs.append(Segment(length=length, ea=lt.ea, w=w, mbs=lt.mbs, line_type=lt.name,
                                 point_load=clump - buoy, ea_dynamic=lt.ea_dynamic,
                                 mass_per_length=lt.mass_per_length, diameter=lt.diameter))
+        total = sum(sg.length for sg in segs)
+        dist = math.dist(anchor, fairlead)
+        if total > MAX_LENGTH_RATIO * dist:
+            raise seg_nodes[-1].error("length", f"a line at most {MAX_LENGTH_RATIO:g} x its "
+                                      f"anchor-fairlead distance ({dist:.6g} m) long",
+                                      segs[-1].length, f"line {name!r}: unstretched length "
+                                      f"{total:.6g} m in total; a length in mm typed for m?")
         cb = ln.float("seabed_friction", defaults.float("seabed_friction", cb_default, ge=0.0)
                       if defaults is not None else cb_default, ge=0.0)
         lines.append(LineDef(name=name, anchor=anchor, fairlead=fairlead, segments=tuple(segs),

@@ -304,3 +304,13 @@ def test_line_diameter_in_mm_and_light_chain_refused(tree, capsys):
                         mooring="../vessels/floatel_like/bad_line_type.yaml")
         code, err = _cli(["check", p], capsys)
         assert code == 2 and str(m) in err and key in err, err
+
+
+def test_line_far_longer_than_its_span_refused(tree, capsys):
+    text = (tree / M).read_text()
+    first = re.search(r"\blength: ([0-9.]+)", text).group(0)
+    m = _mutate(tree, M, first, "length: 1.0e+9", "endless_line.yaml")
+    p = _scene_with(tree, "endless_line_scene.yaml",
+                    mooring="../vessels/floatel_like/endless_line.yaml")
+    code, err = _cli(["check", p], capsys)
+    assert code == 2 and str(m) in err and "length" in err and "anchor-fairlead" in err, err
