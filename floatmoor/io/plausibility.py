@@ -40,12 +40,17 @@ DEPTH_RATIO_LIMIT = 2.0
 (refused beyond; warned beyond 10 %): the added mass, damping and excitation depend on it."""
 
 
-def check_built(built) -> None:
-    """Run every plausibility check on a :class:`~floatmoor.io.build.BuiltScene`."""
+def check_built(built, *, time_domain: bool = True) -> None:
+    """Run every plausibility check on a :class:`~floatmoor.io.build.BuiltScene`.
+
+    ``time_domain=False`` (the frequency-domain analysis, which runs without wind or current
+    coefficients and says so in its notes) skips the check of the time-domain models' inputs.
+    """
     if built.vessel is None:
         return
     check_depth(built)
-    check_model_inputs(built)
+    if time_domain:
+        check_model_inputs(built)
     check_mass_and_stability(built)
 
 
