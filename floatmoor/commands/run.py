@@ -1,7 +1,12 @@
 """``floatmoor run SCENE.yaml --seeds 1-20 --out DIR``: time-domain storms, one netCDF per seed.
 
-Seeds run in parallel on the local cores; a seed whose file exists is skipped (resumable); a
-failed seed is reported and the others go on (exit status 3 naming the failed seeds).  At the
+Seeds run in parallel on the local cores (worker processes); a seed whose file exists, is
+readable and was computed from the same inputs (the fingerprint of scene and models stored in
+it) is skipped (resumable); files from other inputs are refused (exit status 2 naming the
+differing sections) unless ``--force``; an unreadable or truncated file is computed again; a
+failed seed is reported and the others go on (exit status 3 naming the failed seeds).  Ctrl-C
+or SIGTERM stops the workers at once, keeps only complete files, lists the seeds not computed
+in ``interrupted.txt``, prints the command that resumes, and exits with status 130.  At the
 end a short table of the finished seeds: mean, std and max of the horizontal offset and of the
 tensions of the most loaded lines, over the statistics window (after ``analysis.transient``).
 """
