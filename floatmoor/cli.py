@@ -90,6 +90,11 @@ def _check_run(args: argparse.Namespace) -> int:
     if not args.quick:
         for line in _read_references(scene):
             print(line)
+        if scene.vessel is not None:
+            from .io.build import build
+            from .io.plausibility import check_built
+            check_built(build(scene))
+            print("plausibility: depth, mass and displacement, stability, model inputs: OK")
     print(f"{args.scene}: OK")
     return EXIT_OK
 
@@ -170,6 +175,9 @@ def _environment_run(args: argparse.Namespace) -> int:
     if dt >= duration:
         raise UsageError(f"the time step --dt {dt:g} s must be shorter than the duration "
                          f"{duration:g} s")
+    from .io.analysis import check_time_steps
+    check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None else
+                     "--duration" if args.duration is not None else "analysis.dt")
     from .metocean.summary import environment_summary, format_summary
 
     summary = environment_summary(scene.environment, water_depth=scene.site.water_depth,
@@ -229,6 +237,15 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
         stream.write(warnings.formatwarning(message, category, filename, lineno, line))
 
 
+def _with_input_file(exc: SceneError, args: argparse.Namespace) -> SceneError:
+    """A SceneError raised without a file (by a model checking its arguments) names the input
+    the command was given: the scene file, or the results folder of ``report``."""
+    source = getattr(args, "scene", None) or getattr(args, "results_dir", None)
+    if not source:
+        return exc
+    return SceneError(source, exc.key, exc.expected, exc.found, exc.hint)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the ``floatmoor`` command with ``argv`` (default ``sys.argv[1:]``); return the exit
     status."""
@@ -240,16 +257,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     with warnings.catch_warnings():
         warnings.showwarning = _show_warning
         warnings.simplefilter("default", FloatmoorWarning)
+        warnings.simplefilter("ignore", RuntimeWarning)  # numpy noise; NaN results are errors
         try:
             return int(args._run(args))
         except (SceneError, UsageError) as exc:
+            if isinstance(exc, SceneError) and exc.file is None:
+                exc = _with_input_file(exc, args)
             print(f"floatmoor: error: {exc}", file=sys.stderr)
             return EXIT_SCENE_ERROR
         except NumericalError as exc:
             print(f"floatmoor: numerical error: {exc}", file=sys.stderr)
             return EXIT_NUMERICAL_ERROR
         except KeyboardInterrupt:
+            print("floatmoor: interrupted", file=sys.stderr)
             return EXIT_INTERRUPTED
+        except OSError as exc:  # a file named on the command line cannot be read or written
+            name = exc.filename if exc.filename is not None else ""
+            what = exc.strerror or type(exc).__name__
+            print(f"floatmoor: error: {name}: {what}" if name else f"floatmoor: error: {exc}",
+                  file=sys.stderr)
+            return EXIT_SCENE_ERROR
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -22,7 +22,42 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["run_seeds", "SeedOutcome", "BatchResult", "seed_file"]
+from ..core.errors import SceneError
+
+__all__ = ["run_seeds", "SeedOutcome", "BatchResult", "seed_file", "BatchInterrupted",
+           "check_result_file"]
+
+FINGERPRINT_ATTR = "input_fingerprint"  # the same as floatmoor.analyses.fingerprint
+
+
+class BatchInterrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM during :func:`run_seeds`: the workers were stopped, the seeds in
+    flight abandoned (no partial file) and recorded.  ``finished``: outcomes of the seeds done
+    before the interrupt; ``interrupted``: the seeds abandoned; ``record``: the file listing
+    them."""
+
+    def __init__(self, finished, interrupted, record):
+        super().__init__("interrupted")
+        self.finished = tuple(finished)
+        self.interrupted = tuple(interrupted)
+        self.record = record
+
+
+def check_result_file(path: Path):
+    """The stored fingerprint (dict, or None when absent) of a complete result file; raises
+    OSError/ValueError when the file is unreadable or truncated (its last time step cannot be
+    read)."""
+    import json
+
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        nc["motion"][-1, :]  # the last row is written last: a truncated file fails here
+        for name in ("line_tension",):
+            if name in nc.variables:
+                nc[name][-1, :]
+        text = getattr(nc, FINGERPRINT_ATTR, None)
+    return None if text is None else json.loads(text)
 
 
 @dataclass(frozen=True)
@@ -59,7 +94,14 @@ def seed_file(out_dir: Path, scene_name: str, seed: int) -> Path:
     return Path(out_dir) / f"{safe}_seed{int(seed):04d}.nc"
 
 
-def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> SeedOutcome:
+def _ignore_sigint() -> None:
+    """Worker initializer: the parent alone handles Ctrl-C (it then stops the workers)."""
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
+             fingerprint: str = "") -> SeedOutcome:
     """Worker: simulate one seed and write it (temp file + rename)."""
     import warnings
 
@@ -82,9 +124,15 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> Seed
             ds = simulate(scene, seed=seed, **overrides)
         messages = tuple(dict.fromkeys(str(w.message) for w in caught
                                        if issubclass(w.category, FloatmoorWarning)))
+        if fingerprint:
+            ds.attrs[FINGERPRINT_ATTR] = fingerprint
         tmp = out.with_name(out.name + ".tmp")
-        ds.to_netcdf(tmp)
-        os.replace(tmp, out)
+        try:
+            ds.to_netcdf(tmp)
+            os.replace(tmp, out)
+        except BaseException:  # no partial file: interrupted or failed while writing
+            tmp.unlink(missing_ok=True)
+            raise
         if err_file.exists():
             err_file.unlink()
         an = ds.attrs
@@ -105,7 +153,8 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict) -> Seed
 
 
 def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrides=None,
-              echo=print, progress: bool | None = None) -> BatchResult:
+              echo=print, progress: bool | None = None, force: bool = False,
+              in_process: bool | None = None) -> BatchResult:
     """Run ``seeds`` of the scene file ``scene_path`` into ``out_dir``.
 
     Parameters
@@ -117,6 +166,9 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     overrides : dict of :func:`floatmoor.simulate` keywords (duration, dt, ...).
     echo : function printing one progress line per finished seed (None: quiet).
     progress : use a tqdm bar (default: when tqdm is installed and stderr is a terminal).
+    force : recompute seeds whose files came from different inputs (default: refuse).
+    in_process : run the seeds in this process (default: when ``workers`` is 1); otherwise in
+        worker processes, which Ctrl-C stops at once (a seed in progress is abandoned).
 
     Returns
     -------
@@ -126,7 +178,12 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     Raises
     ------
     SceneError
-        A bad scene file, or a duration not longer than the transient (before any seed runs).
+        A bad scene file, or a duration not longer than the transient (before any seed runs);
+        files in ``out_dir`` computed from other inputs (unless ``force``), naming the
+        sections that differ.
+    BatchInterrupted
+        Ctrl-C or SIGTERM: the seeds in flight are abandoned and listed in
+        ``<out_dir>/interrupted.txt``; a rerun of the same command resumes.
     """
     from ..io.scene import load_scene
 
@@ -140,19 +197,59 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     check_statistics_window(scene.file, float(an.duration if duration is None else duration),
                             float(an.transient if transient is None else transient),
                             key="analysis.duration" if duration is None else "duration")
+    from .fingerprint import differing_keys, scene_fingerprint
+    import json
+
+    from ..io.analysis import check_time_steps
+    check_time_steps(scene.file, float(overrides.get("duration", an.duration)),
+                     float(overrides.get("dt", an.dt)),
+                     key="analysis.dt" if "dt" not in overrides else "dt")
+    fp = scene_fingerprint(scene, overrides)
+    fp_text = json.dumps(fp, sort_keys=True)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     seeds = [int(s) for s in seeds]
     outcomes: dict[int, SeedOutcome] = {}
     todo = []
+    foreign: dict[int, list[str]] = {}
     for s in seeds:
         path = seed_file(out_dir, scene.name, s)
+        stale = path.with_name(path.name + ".tmp")
+        if stale.is_file():  # left by a killed run
+            stale.unlink()
         if path.exists():
+            try:
+                stored = check_result_file(path)
+            except Exception as exc:  # truncated, corrupted, not netCDF: compute it again
+                if echo:
+                    echo(f"seed {s}: {path.name} is unreadable or incomplete "
+                         f"({type(exc).__name__}), computing it again")
+                todo.append((s, path))
+                continue
+            diff = differing_keys(stored or {}, fp) if stored is not None else ["(no fingerprint)"]
+            if diff:
+                foreign[s] = diff
+                if force:
+                    if echo:
+                        echo(f"seed {s}: {path.name} came from other inputs "
+                             f"({', '.join(diff)}), computing it again (--force)")
+                    todo.append((s, path))
+                continue
             outcomes[s] = SeedOutcome(s, "skipped", path)
             if echo:
                 echo(f"seed {s}: already done ({path.name}), skipped")
         else:
             todo.append((s, path))
+    if foreign and not force:
+        keys = sorted({k for v in foreign.values() for k in v})
+        first = min(foreign)
+        raise SceneError(scene.file, "", f"a results folder holding results of this scene "
+                         f"and models only ({out_dir})", SceneError.NOT_APPLICABLE,
+                         hint=f"{len(foreign)} result file(s) there (e.g. seed {first}) were "
+                              f"computed from other inputs; they differ in: {', '.join(keys)}; "
+                              "use another --out folder, or --force to compute those seeds "
+                              "again")
+
     if workers is None:
         try:
             workers = len(os.sched_getaffinity(0))
@@ -188,20 +285,92 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
                 echo(head + f"FAILED: {o.error}")
 
     src = os.fspath(Path(scene_path).resolve())
-    if workers == 1:
-        for s, path in todo:
-            report(_run_one(src, s, os.fspath(path), overrides))
-    elif todo:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futs = {pool.submit(_run_one, src, s, os.fspath(path), overrides): (s, path)
-                    for s, path in todo}
-            for fut in as_completed(futs):
-                s, path = futs[fut]
+    if in_process is None:
+        in_process = workers == 1
+    record = out_dir / "interrupted.txt"
+    running: set[int] = set()
+    with _interrupts_as_keyboard_interrupt():
+        try:
+            if in_process:
+                for s, path in todo:
+                    running = {s}
+                    report(_run_one(src, s, os.fspath(path), overrides, fp_text))
+                running = set()
+            elif todo:
+                pool = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint)
                 try:
-                    o = fut.result()
-                except Exception as exc:  # worker died (e.g. killed): record, go on
-                    o = SeedOutcome(s, "failed", path, error=f"worker failed: {exc!r}")
-                report(o)
+                    futs = {pool.submit(_run_one, src, s, os.fspath(path), overrides,
+                                        fp_text): (s, path) for s, path in todo}
+                    running = {s for s, _ in todo}
+                    for fut in as_completed(futs):
+                        s, path = futs[fut]
+                        try:
+                            o = fut.result()
+                        except Exception as exc:  # worker died (e.g. killed): record, go on
+                            o = SeedOutcome(s, "failed", path, error=f"worker failed: {exc!r}")
+                        running.discard(s)
+                        report(o)
+                except KeyboardInterrupt:
+                    _stop_pool(pool)
+                    raise
+                else:
+                    pool.shutdown(wait=True)
+        except KeyboardInterrupt:
+            if bar is not None:
+                bar.close()
+            # a seed whose file exists was finished (written whole, then renamed) even when
+            # its outcome had not reached this process yet
+            left = sorted(s for s, path in todo if s not in outcomes and not path.is_file())
+            for s, path in todo:
+                if s not in outcomes and path.is_file():
+                    outcomes[s] = SeedOutcome(s, "done", path)
+            for s in left:
+                p = seed_file(out_dir, scene.name, s)
+                if p.with_name(p.name + ".tmp").is_file():
+                    p.with_name(p.name + ".tmp").unlink()
+            record.write_text("seeds not computed (interrupted; run the same command again to "
+                              "compute them):\n" + "\n".join(str(s) for s in left) + "\n")
+            raise BatchInterrupted([outcomes[s] for s in seeds if s in outcomes], left,
+                                   record) from None
+    record.unlink(missing_ok=True)
     if bar is not None:
         bar.close()
     return BatchResult(tuple(outcomes[s] for s in seeds))
+
+
+def _stop_pool(pool) -> None:
+    """Stop a ProcessPoolExecutor now: cancel queued seeds, terminate the running workers."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for p in procs:
+        try:
+            p.terminate()
+        except Exception:  # pragma: no cover - already gone
+            pass
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        try:
+            p.terminate()
+        except Exception:  # pragma: no cover - already gone
+            pass
+    for p in procs:
+        p.join(timeout=5.0)
+
+
+class _interrupts_as_keyboard_interrupt:
+    """Within the block, SIGTERM raises KeyboardInterrupt like Ctrl-C (main thread only)."""
+
+    def __enter__(self):
+        import signal
+        import threading
+        self._old = None
+        if threading.current_thread() is threading.main_thread():
+            def handler(signum, frame):
+                raise KeyboardInterrupt
+            self._old = signal.signal(signal.SIGTERM, handler)
+        return self
+
+    def __exit__(self, *exc):
+        import signal
+        if self._old is not None:
+            signal.signal(signal.SIGTERM, self._old)
+        return False

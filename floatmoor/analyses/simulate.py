@@ -123,6 +123,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         if not isinstance(scene, Scene):
             scene = load_scene(scene)
         built = build(scene)
+        from ..io.plausibility import check_built
+        check_built(built)
     sc = built.scene
     an = sc.analysis
     seed = an.seeds[0] if seed is None else seed
@@ -134,6 +136,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     transient = an.transient if transient is None else float(transient)
     if not (0.0 < dt < duration):
         raise SceneError(sc.file, "analysis.dt", f"0 < dt < duration ({duration:g} s)", dt)
+    from ..io.analysis import check_time_steps
+    check_time_steps(sc.file, duration, dt, key="analysis.dt")
     if not duration > transient:  # legitimate for short checks; refused by run_seeds / run
         warnings.warn(f"the duration {duration:g} s is not longer than the transient "
                       f"{transient:g} s: the run has no statistics window (floatmoor run "

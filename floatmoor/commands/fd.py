@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .argtypes import positive_float
+from .argtypes import check_out_file, positive_float
 
 HELP = "frequency-domain analysis (mean, LF, WF, Rayleigh maxima, line tensions)"
 
@@ -35,6 +35,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def to_netcdf(ds, path) -> Path:
     """Write a frequency-domain result as netCDF (booleans stored as int8)."""
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     out = ds.copy()
     for name, var in out.data_vars.items():
         if var.dtype == bool:
@@ -48,6 +49,11 @@ def run(args: argparse.Namespace) -> int:
     from ..analyses.fd_dataset import format_table
     from ..analyses.frequency_domain import frequency_domain
 
+    if args.out:
+        check_out_file(args.out)
+    from ..io.build import build
+    from ..io.plausibility import check_built
+    check_built(build(args.scene), time_domain=False)
     overrides = {}
     if args.duration is not None:
         overrides["duration"] = args.duration
@@ -62,5 +68,7 @@ def run(args: argparse.Namespace) -> int:
     ds = frequency_domain(args.scene, **overrides)
     print(format_table(ds))
     if args.out:
+        from ..analyses.fingerprint import FINGERPRINT_ATTR, fingerprint_json
+        ds.attrs[FINGERPRINT_ATTR] = fingerprint_json(args.scene, overrides)
         print(f"written: {to_netcdf(ds, args.out)}")
     return 0

@@ -68,6 +68,38 @@ def parse_harmonic(text: str) -> list[tuple[int, float, float]]:
     return out
 
 
+MAX_HARMONIC_OFFSET = 0.3
+"""Largest summed amplitude of the horizontal harmonic motion, as a fraction of the water depth
+(design offsets are a few percent of it; 30 % has broken any catenary mooring)."""
+
+MAX_HARMONIC_HEAVE = 0.2
+"""Largest summed heave amplitude, as a fraction of the water depth."""
+
+MAX_HARMONIC_ROTATION_DEG = 30.0
+"""Largest summed roll, pitch or yaw amplitude, deg."""
+
+
+def check_harmonic_amplitudes(comps, water_depth: float, error=argparse.ArgumentTypeError):
+    """Refuse ``--harmonic`` amplitudes no floater moves by (a typo, or mm for m): summed per DOF
+    against :data:`MAX_HARMONIC_OFFSET` and :data:`MAX_HARMONIC_HEAVE` of the water depth and
+    :data:`MAX_HARMONIC_ROTATION_DEG`."""
+    names = ("surge", "sway", "heave", "roll_deg", "pitch_deg", "yaw_deg")
+    amp = [0.0] * 6
+    for i, a, _ in comps:
+        amp[i] += abs(a)
+    horiz = math.hypot(amp[0], amp[1])
+    if horiz > MAX_HARMONIC_OFFSET * water_depth:
+        raise error(f"--harmonic: a horizontal amplitude of at most {MAX_HARMONIC_OFFSET:g} x the "
+                    f"water depth ({MAX_HARMONIC_OFFSET * water_depth:g} m), found {horiz:g} m")
+    if amp[2] > MAX_HARMONIC_HEAVE * water_depth:
+        raise error(f"--harmonic: a heave amplitude of at most {MAX_HARMONIC_HEAVE:g} x the water "
+                    f"depth ({MAX_HARMONIC_HEAVE * water_depth:g} m), found {amp[2]:g} m")
+    for i in (3, 4, 5):
+        if math.degrees(amp[i]) > MAX_HARMONIC_ROTATION_DEG:
+            raise error(f"--harmonic: a {names[i]} amplitude of at most "
+                        f"{MAX_HARMONIC_ROTATION_DEG:g} deg, found {math.degrees(amp[i]):g} deg")
+
+
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``floatmoor lines``."""
     p.add_argument("scene", metavar="SCENE.yaml", help="the scene file (its mooring section)")
@@ -206,9 +238,12 @@ def run(args: argparse.Namespace) -> int:
         out = Path(args.out) if args.out else mpath.with_name(mpath.stem + "_lines.nc")
     else:
         comps = args.harmonic
+        check_harmonic_amplitudes(comps, site.water_depth, UsageError)
         tmax_p = max(c[2] for c in comps)
         dt = 0.1 if args.dt is None else args.dt
         duration = 10.0 * tmax_p + tmax_p if args.duration is None else args.duration
+        from ..io.analysis import check_time_steps
+        check_time_steps(scene.file, duration, dt, key="--dt")
         t = np.arange(0.0, duration + 0.5 * dt, dt)
         if t.size < 3:
             raise UsageError(f"--duration {duration:g} s gives fewer than 3 steps of {dt:g} s")

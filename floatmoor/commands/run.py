@@ -1,7 +1,12 @@
 """``floatmoor run SCENE.yaml --seeds 1-20 --out DIR``: time-domain storms, one netCDF per seed.
 
-Seeds run in parallel on the local cores; a seed whose file exists is skipped (resumable); a
-failed seed is reported and the others go on (exit status 3 naming the failed seeds).  At the
+Seeds run in parallel on the local cores (worker processes); a seed whose file exists, is
+readable and was computed from the same inputs (the fingerprint of scene and models stored in
+it) is skipped (resumable); files from other inputs are refused (exit status 2 naming the
+differing sections) unless ``--force``; an unreadable or truncated file is computed again; a
+failed seed is reported and the others go on (exit status 3 naming the failed seeds).  Ctrl-C
+or SIGTERM stops the workers at once, keeps only complete files, lists the seeds not computed
+in ``interrupted.txt``, prints the command that resumes, and exits with status 130.  At the
 end a short table of the finished seeds: mean, std and max of the horizontal offset and of the
 tensions of the most loaded lines, over the statistics window (after ``analysis.transient``).
 """
@@ -12,7 +17,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .argtypes import positive_float
+from .argtypes import check_out_dir, positive_float, positive_int
 
 HELP = "time-domain storm simulation of seeds in parallel (one netCDF file per seed)"
 
@@ -24,13 +29,16 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help='seeds, e.g. "1-20", "3,7,11", "1-5,9" (default: analysis.seeds)')
     p.add_argument("--out", default=None, metavar="DIR",
                    help="output folder (default: results/<scene name> next to the scene file)")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
+    p.add_argument("--force", action="store_true",
+                   help="recompute seeds whose files in --out came from other inputs (default: "
+                        "refuse to mix the results of two scenes in one folder)")
+    p.add_argument("--workers", type=positive_int, default=None, metavar="N",
                    help="parallel processes (default: the local cores)")
     p.add_argument("--duration", type=positive_float, default=None, metavar="S",
                    help="simulated length in s (default: analysis.duration)")
     p.add_argument("--dt", type=positive_float, default=None, metavar="S",
                    help="time step in s (default: analysis.dt)")
-    p.add_argument("--lines", type=int, default=3, metavar="N",
+    p.add_argument("--lines", type=positive_int, default=3, metavar="N",
                    help="most loaded lines shown in the table (default 3)")
 
 
@@ -72,10 +80,10 @@ def summary_table(files, n_lines: int = 3) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``floatmoor run``; returns the exit status."""
-    from ..cli import EXIT_NUMERICAL_ERROR, EXIT_OK, UsageError
+    from ..cli import EXIT_INTERRUPTED, EXIT_NUMERICAL_ERROR, EXIT_OK, UsageError
     from ..io.analysis import seeds_from_text
     from ..io.scene import load_scene
-    from ..analyses.runner import run_seeds
+    from ..analyses.runner import BatchInterrupted, run_seeds
 
     scene = load_scene(args.scene)
     if args.seeds is None:
@@ -84,10 +92,9 @@ def run(args: argparse.Namespace) -> int:
         try:
             seeds = seeds_from_text(args.seeds)
         except ValueError as exc:
-            raise UsageError(f"--seeds {args.seeds!r}: {exc}") from None
-    if args.workers is not None and args.workers < 1:
-        raise UsageError(f"--workers must be >= 1, found {args.workers}")
+            raise UsageError(f"--seeds {args.seeds[:60]!r}: {exc}") from None
     out = Path(args.out) if args.out else Path(scene.file).parent / "results" / scene.name
+    check_out_dir(out)
     overrides = {}
     if args.duration is not None:
         from ..analyses.simulate import check_statistics_window
@@ -96,10 +103,28 @@ def run(args: argparse.Namespace) -> int:
         overrides["duration"] = args.duration
     if args.dt is not None:
         overrides["dt"] = args.dt
+    if overrides:
+        from ..io.analysis import check_time_steps
+        duration = overrides.get("duration", scene.analysis.duration)
+        dt = overrides.get("dt", scene.analysis.dt)
+        if not dt < duration:
+            raise UsageError(f"--dt {dt:g}: expected a time step shorter than the duration "
+                             f"{duration:g} s")
+        check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None
+                         else "--duration")
     print(f"scene: {scene.name}  [{scene.file}]")
     print(f"{len(seeds)} seed(s) -> {out}")
-    batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
-                      echo=lambda s: print(s, flush=True))
+    try:
+        batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
+                          echo=lambda s: print(s, flush=True), force=args.force,
+                          in_process=False)
+    except BatchInterrupted as exc:
+        done = [o.seed for o in exc.finished]
+        print(f"floatmoor: interrupted: {len(done)} seed(s) finished, {len(exc.interrupted)} "
+              f"not computed (listed in {exc.record}); resume with the same command:\n"
+              f"  {_resume_command(args, out)}",
+              file=sys.stderr, flush=True)
+        return EXIT_INTERRUPTED
     files = batch.files
     if files:
         print()
@@ -110,3 +135,14 @@ def run(args: argparse.Namespace) -> int:
               + f" (errors in {out}/*.error.txt; run again to retry only those)", file=sys.stderr)
         return EXIT_NUMERICAL_ERROR
     return EXIT_OK
+
+
+def _resume_command(args: argparse.Namespace, out: Path) -> str:
+    """The command that resumes an interrupted ``floatmoor run``."""
+    import shlex
+    words = ["floatmoor", "run", args.scene, "--out", str(out)]
+    for flag, value in (("--seeds", args.seeds), ("--duration", args.duration),
+                        ("--dt", args.dt), ("--workers", args.workers)):
+        if value is not None:
+            words += [flag, f"{value:g}" if isinstance(value, float) else str(value)]
+    return " ".join(shlex.quote(w) for w in words)

@@ -70,6 +70,11 @@ def run(args: argparse.Namespace) -> int:
     from ..analyses.statics import equilibrium, restoring_curves
 
     built = build(args.scene, failed_lines=args.fail)
+    from ..io.plausibility import check_built
+    check_built(built)
+    if args.out:
+        from .argtypes import check_out_file
+        check_out_file(args.out)
     res = equilibrium(built, external_force=args.force)
     print(f"scene: {built.scene.name}  [{built.scene.file}]")
     print(f"net buoyancy at zero pose: {built.static_force[2] / 1e3:.1f} kN"
@@ -91,6 +96,9 @@ def run(args: argparse.Namespace) -> int:
             c = c.rename({v: f"curve_{v}" for v in c.data_vars})
             ds = xr.merge([ds, c], combine_attrs="drop_conflicts")
         ds.attrs["scene"] = str(built.scene.file)
+        from ..analyses.fingerprint import FINGERPRINT_ATTR, fingerprint_json
+        ds.attrs[FINGERPRINT_ATTR] = fingerprint_json(built.scene, {"fail": args.fail,
+                                                                    "force": args.force})
         path = Path(args.out)
         ds.to_netcdf(path)
         print(f"written: {path}")

@@ -26,7 +26,7 @@ import yaml
 
 from .errors import SceneError
 
-__all__ = ["Node", "MISSING", "type_name"]
+__all__ = ["Node", "MISSING", "type_name", "parse_yaml_text"]
 
 MISSING = SceneError.MISSING
 
@@ -79,6 +79,102 @@ _UniqueKeyLoader.yaml_implicit_resolvers = {
 _UniqueKeyLoader.add_implicit_resolver("tag:yaml.org,2002:float", _FLOAT_12, list("-+0123456789."))
 
 
+MAX_YAML_NODES = 200_000
+"""Most values (mappings, lists and scalars, counting each alias as a full copy) a YAML file may
+expand to.  The largest shipped input (a vessel with slender elements) holds about a thousand;
+the bound refuses alias bombs ("billion laughs") before they are expanded."""
+
+MAX_YAML_DEPTH = 50
+"""Deepest nesting of lists and mappings in a YAML file (scene files use fewer than 8 levels)."""
+
+MAX_NUMBER_CHARS = 40
+"""Longest number literal (digits, sign, dot and exponent) accepted; a longer one is refused before
+it is converted (a 5000-digit integer would otherwise stall or overflow the conversion)."""
+
+MAX_SCALAR_CHARS = 10_000
+"""Longest single value (a name, a description, a number) accepted in a YAML file."""
+
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+
+
+def _where(mark) -> str:
+    return "" if mark is None else f"line {mark.line + 1}, column {mark.column + 1}"
+
+
+def _check_yaml_tree(root, path: Path) -> None:
+    """Refuse, before construction, a composed YAML node graph that is cyclic (a recursive
+    alias), nested deeper than :data:`MAX_YAML_DEPTH`, expands to more than
+    :data:`MAX_YAML_NODES` values, or holds an oversized scalar.  Linear in the distinct nodes
+    (expanded sizes are memoised per node), so an alias bomb costs nothing to detect."""
+    sizes: dict[int, int] = {}
+    active: set[int] = set()
+
+    def visit(node, depth: int) -> int:
+        key = id(node)
+        if key in sizes:
+            return sizes[key]
+        if key in active:
+            raise SceneError(path, _where(node.start_mark), "a YAML value that does not contain "
+                             "itself", "a recursive alias (an anchor used inside its own value)")
+        if depth > MAX_YAML_DEPTH:
+            raise SceneError(path, _where(node.start_mark),
+                             f"lists and mappings nested at most {MAX_YAML_DEPTH} deep",
+                             "deeper nesting")
+        if isinstance(node, yaml.ScalarNode):
+            n = len(node.value)
+            if n > MAX_SCALAR_CHARS:
+                raise SceneError(path, _where(node.start_mark),
+                                 f"a value of at most {MAX_SCALAR_CHARS} characters",
+                                 f"a value of {n} characters")
+            if node.tag in _NUMBER_TAGS and n > MAX_NUMBER_CHARS:
+                raise SceneError(path, _where(node.start_mark),
+                                 f"a number of at most {MAX_NUMBER_CHARS} characters",
+                                 f"a {n}-character number starting {node.value[:20]}...")
+            sizes[key] = 1
+            return 1
+        active.add(key)
+        total = 1
+        if isinstance(node, yaml.SequenceNode):
+            children = node.value
+        else:
+            children = [c for pair in node.value for c in pair]
+        for child in children:
+            total += visit(child, depth + 1)
+            if total > MAX_YAML_NODES:
+                raise SceneError(path, _where(node.start_mark),
+                                 f"a file expanding to at most {MAX_YAML_NODES} values",
+                                 "more (aliases that repeat anchors many times over: an alias "
+                                 "bomb?)")
+        active.discard(key)
+        sizes[key] = total
+        return total
+
+    visit(root, 0)
+
+
+def parse_yaml_text(text: str, path: Path | str | None = None):
+    """Parse YAML ``text`` safely: duplicate keys, recursive or exploding aliases, excessive
+    nesting and oversized numbers are refused with a :class:`SceneError` naming ``path`` (and the
+    line), before any value is constructed."""
+    loader = _UniqueKeyLoader(text)
+    try:
+        try:
+            root = loader.get_single_node()
+        except RecursionError:
+            raise SceneError(path, "", f"lists and mappings nested at most {MAX_YAML_DEPTH} "
+                             "deep", "deeper nesting") from None
+        if root is None:
+            return None
+        _check_yaml_tree(root, path)
+        return loader.construct_document(root)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        problem = getattr(exc, "problem", None) or str(exc)
+        raise SceneError(path, _where(mark), "valid YAML", f"a syntax error: {problem}") from None
+    finally:
+        loader.dispose()
+
+
 def _read_yaml(path: Path, key: str = "", referenced_from: "Node | None" = None):
     file_for_error = referenced_from.file if referenced_from is not None else path
     if not path.exists():
@@ -86,17 +182,18 @@ def _read_yaml(path: Path, key: str = "", referenced_from: "Node | None" = None)
     if path.is_dir():
         raise SceneError(file_for_error, key, "a path to a file, not a directory", str(path))
     try:
+        size = path.stat().st_size
+        if size > MAX_YAML_BYTES:
+            raise SceneError(path, "", f"a YAML file of at most {MAX_YAML_BYTES // 2**20} MiB",
+                             f"{size / 2**20:.0f} MiB")
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneError(path, "", "a readable UTF-8 YAML file", f"unreadable file ({exc})") from None
-    try:
-        data = yaml.load(text, Loader=_UniqueKeyLoader)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        problem = getattr(exc, "problem", None) or str(exc)
-        raise SceneError(path, where, "valid YAML", f"a syntax error: {problem}") from None
-    return data
+    return parse_yaml_text(text, path)
+
+
+MAX_YAML_BYTES = 16 * 2**20
+"""Largest YAML file read (scene, vessel, mooring and metocean files are a few kB)."""
 
 
 class Node:
@@ -241,7 +338,10 @@ class Node:
                     if any(c.isalpha() for c in value):
                         hint = "give the value in SI units without a unit suffix"
             raise self.error(name, expected, value, hint)
-        value = float(value)
+        try:
+            value = float(value)
+        except OverflowError:
+            raise self.error(name, expected, value) from None
         if not math.isfinite(value):
             raise self.error(name, expected, value)
         if ((gt is not None and not value > gt) or (ge is not None and not value >= ge)
@@ -351,6 +451,10 @@ class Node:
             raise self.error(name, expected + f", each >= {ge:g}", value)
         if gt is not None and np.any(arr <= gt):
             raise self.error(name, expected + f", each > {gt:g}", value)
+        if name.endswith("_deg"):
+            hint = radians_list_hint(arr)
+            if hint:
+                raise self.error(name, "angles in degrees", value, hint)
         return arr
 
     def path_value(self, name: str, default=MISSING, *, must_exist: bool = True) -> Path:
@@ -384,6 +488,25 @@ def looks_like_radians(value_deg: float) -> bool:
     ratio = v / (math.pi / 4.0)
     k = round(ratio)
     return k >= 1 and abs(ratio - k) < 5e-4 and abs(v - round(v)) > 1e-9
+
+
+def radians_list_hint(values_deg) -> str | None:
+    """Why a list of angles given in degrees looks like radians, or None.
+
+    Like :func:`looks_like_radians` for one value: every value within +-2 pi and either one of
+    them a recognisable multiple of pi/4 (3.1416, 1.5708, ...) or three or more values spanning
+    at most 2 pi (a table of headings covering less than 6.3 degrees)."""
+    v = np.abs(np.asarray(values_deg, float).ravel())
+    if v.size == 0 or not np.all(v <= 2.0 * math.pi + 1e-3) or not np.any(v > 0.0):
+        return None
+    suspects = [float(x) for x in v if looks_like_radians(float(x))]
+    if suspects:
+        return (f"{suspects[0]:g} looks like an angle in radians ({math.degrees(suspects[0]):.6g}"
+                " deg) and every value is within 2 pi; give the angles in degrees")
+    if v.size >= 3 and np.ptp(np.asarray(values_deg, float)) <= 2.0 * math.pi + 1e-3:
+        return ("all values lie within 2 pi (6.28): they look like radians; give the angles in "
+                "degrees")
+    return None
 
 
 def _has_bool(value) -> bool:

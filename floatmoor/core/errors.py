@@ -23,7 +23,49 @@ class FloatmoorError(Exception):
 
 
 def _short(value, limit: int = 80) -> str:
-    text = repr(value)
+    """A repr of ``value`` cut to ``limit`` characters, built without ever forming the full
+    representation (a value may be an alias bomb or a cyclic list); numpy scalars and arrays are
+    shown as plain numbers and lists."""
+    out: list[str] = []
+    budget = [limit + 1]
+
+    def put(text: str) -> bool:
+        out.append(text[: budget[0]])
+        budget[0] -= len(text)
+        return budget[0] > 0
+
+    def walk(v, depth: int) -> bool:
+        if depth > 6:
+            return put("...")
+        if hasattr(v, "tolist") and hasattr(v, "dtype"):  # numpy scalar or array
+            v = v.ravel()[:limit].tolist() if getattr(v, "ndim", 0) else v.item()
+        if isinstance(v, (list, tuple)):
+            open_, close = ("[", "]") if isinstance(v, list) else ("(", ")")
+            if not put(open_):
+                return False
+            for i, item in enumerate(v):
+                if i and not put(", "):
+                    return False
+                if not walk(item, depth + 1):
+                    return False
+            return put(close)
+        if isinstance(v, dict):
+            if not put("{"):
+                return False
+            for i, (k, item) in enumerate(v.items()):
+                if (i and not put(", ")) or not walk(k, depth + 1) or not put(": "):
+                    return False
+                if not walk(item, depth + 1):
+                    return False
+            return put("}")
+        if isinstance(v, int) and not isinstance(v, bool) and v.bit_length() > 200:
+            return put(f"<an integer of about {int(v.bit_length() * 0.30103)} digits>")
+        if isinstance(v, str) and len(v) > limit:
+            v = v[:limit]
+        return put(repr(v))
+
+    walk(value, 0)
+    text = "".join(out)
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
@@ -46,6 +88,8 @@ class SceneError(FloatmoorError, ValueError):
     """
 
     MISSING = object()
+    NOT_APPLICABLE = object()
+    """``found`` for a mistake that is not a value (the hint says what was found)."""
 
     def __init__(self, file, key: str, expected: str, found=MISSING, hint: str | None = None):
         self.file = None if file is None else os.fspath(file)
@@ -56,26 +100,30 @@ class SceneError(FloatmoorError, ValueError):
         super().__init__(self._message())
 
     def _message(self) -> str:
-        where = self.file if self.file is not None else "<scene>"
+        where = self.file if self.file is not None else "(given in Python)"
         if self.key:
             where += f": {self.key}"
         if self.found is SceneError.MISSING:
             found = "nothing (the key is missing)"
         else:
             found = _short(self.found)
-        msg = f"{where}: expected {self.expected}, found {found}"
+        msg = f"{where}: expected {self.expected}"
+        if self.found is not SceneError.NOT_APPLICABLE:
+            msg += f", found {found}"
         if self.hint:
             msg += f" ({self.hint})"
         return msg
 
     def __reduce__(self):  # keep the error picklable across worker processes
+        sentinel = (1 if self.found is SceneError.MISSING else
+                    2 if self.found is SceneError.NOT_APPLICABLE else 0)
         return (_rebuild_scene_error, (self.file, self.key, self.expected,
-                                       None if self.found is SceneError.MISSING else self.found,
-                                       self.found is SceneError.MISSING, self.hint))
+                                       None if sentinel else self.found, sentinel, self.hint))
 
 
 def _rebuild_scene_error(file, key, expected, found, missing, hint):
-    return SceneError(file, key, expected, SceneError.MISSING if missing else found, hint)
+    found = {1: SceneError.MISSING, 2: SceneError.NOT_APPLICABLE}.get(int(missing), found)
+    return SceneError(file, key, expected, found, hint)
 
 
 def argument_error(key: str, expected: str, found=SceneError.MISSING,

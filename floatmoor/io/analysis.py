@@ -28,7 +28,8 @@ from dataclasses import dataclass
 from ..core.config import Node
 from ..core.errors import FloatmoorWarning, SceneError
 
-__all__ = ["AnalysisSpec", "parse_analysis", "parse_seeds", "seeds_from_text", "ANALYSIS_KEYS"]
+__all__ = ["AnalysisSpec", "parse_analysis", "parse_seeds", "seeds_from_text", "ANALYSIS_KEYS",
+           "check_time_steps", "MAX_SEEDS", "MAX_TIME_STEPS", "MAX_SEED"]
 
 ANALYSIS_KEYS = ("duration", "dt", "transient", "ramp", "seeds")
 
@@ -65,6 +66,7 @@ def parse_analysis(node: Node) -> AnalysisSpec:
     transient = node.float("transient", d.transient, ge=0.0, lt=duration, unit="s")
     ramp = node.float("ramp", d.ramp, ge=0.0, lt=duration, unit="s")
     seeds = parse_seeds(node, "seeds", d.seeds)
+    check_time_steps(node.file, duration, dt, key=node.key("dt"))
     if ramp > transient:
         _warn(node, "ramp", f"the ramp ({ramp:g} s) is longer than the transient window "
               f"({transient:g} s): the statistics include the ramp-up")
@@ -97,7 +99,13 @@ def parse_seeds(node: Node, key: str, default=SceneError.MISSING) -> tuple[int, 
             raise node.error(key, expected, value, hint)
         first, last = value
         if last < first:
-            raise node.error(key, f"[first, last] with last >= first", value)
+            raise node.error(key, "[first, last] with last >= first", value)
+        for s in (first, last):
+            if not 0 <= s <= MAX_SEED:
+                raise node.error(key, f"seeds between 0 and {MAX_SEED}", value)
+        if last - first + 1 > MAX_SEEDS:
+            raise node.error(key, f"at most {MAX_SEEDS} seeds", value,
+                             f"[{first}, {last}] is {last - first + 1} seeds")
         seeds = tuple(range(first, last + 1))
     elif isinstance(value, str):
         try:
@@ -112,6 +120,11 @@ def parse_seeds(node: Node, key: str, default=SceneError.MISSING) -> tuple[int, 
     return seeds
 
 
+MAX_SEEDS = 100_000
+"""Most seeds one scene or command may ask for (a 3-hour storm takes minutes per seed; 100,000
+seeds is already years of computing).  Checked before the list of seeds is built."""
+
+
 _TOKEN = re.compile(r"^\s*(\d+)\s*(?:-\s*(\d+)\s*)?$")
 
 
@@ -123,18 +136,54 @@ def seeds_from_text(text: str) -> tuple[int, ...]:
     seeds: list[int] = []
     if not text.strip():
         raise ValueError("no seeds given")
+    if len(text) > 100_000:
+        raise ValueError(f"a seed list of {len(text)} characters is too long")
     for part in text.split(","):
         m = _TOKEN.match(part)
         if m is None:
-            raise ValueError(f"cannot read {part.strip()!r} as a seed or a range first-last")
+            raise ValueError(f"cannot read {part.strip()[:40]!r} as a seed or a range first-last")
+        if max(len(g or "") for g in m.groups()) > 12:
+            raise ValueError(f"a seed must be between 0 and {MAX_SEED}: "
+                             f"{part.strip()[:40]!r} is out of range")
         first = int(m.group(1))
         last = int(m.group(2)) if m.group(2) is not None else first
         if last < first:
             raise ValueError(f"the range {first}-{last} runs backwards")
+        if last > MAX_SEED:
+            raise ValueError(f"seeds must be between 0 and {MAX_SEED}, found {last}")
+        if len(seeds) + last - first + 1 > MAX_SEEDS:
+            raise ValueError(f"at most {MAX_SEEDS} seeds, found {len(seeds) + last - first + 1} "
+                             "or more")
         seeds.extend(range(first, last + 1))
     if len(set(seeds)) != len(seeds):
         raise ValueError("a seed is repeated")
     return tuple(seeds)
+
+
+MAX_TIME_STEPS = 20_000_000
+"""Most time steps one run may take: 3 hours at dt = 0.5 ms.  Motion and velocity alone need
+96 bytes a step (12 doubles), 1.9 GB at the bound, before line tensions and forces."""
+
+BYTES_PER_STEP = 96
+"""Memory a time step needs at least: motion and velocity, 12 doubles."""
+
+
+def check_time_steps(file, duration: float, dt: float, *, key: str = "analysis.dt") -> None:
+    """SceneError when ``duration / dt`` exceeds :data:`MAX_TIME_STEPS`, stating the memory the
+    time series would need (the bound is checked before anything is allocated)."""
+    steps = duration / dt
+    if steps > MAX_TIME_STEPS:
+        need = steps * BYTES_PER_STEP
+        raise SceneError(file, key, f"at most {MAX_TIME_STEPS:,} time steps (duration / dt)",
+                         dt, f"duration {duration:g} s / dt {dt:g} s = {steps:.3g} steps, which "
+                         f"would need at least {_bytes(need)} for the motion and velocity alone")
+
+
+def _bytes(n: float) -> str:
+    for unit, size in (("PB", 1e15), ("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+        if n >= size:
+            return f"{n / size:.3g} {unit}"
+    return f"{n / 1e3:.3g} kB"
 
 
 def _warn(node: Node, key: str, message: str) -> None:

@@ -65,7 +65,45 @@ def check_wave_resolution(scene: "Scene") -> None:
               f"{duration:g} s; use at least {needed} frequencies (or leave n_frequencies out)")
 
 
+def check_realisation_size(scene: "Scene") -> None:
+    """SceneError when the wave or wind realisation would hold more components than
+    :data:`~floatmoor.io.environment.MAX_WAVE_COMPONENTS` / ``MAX_FREQUENCIES``: without an
+    explicit ``n_frequencies`` their number grows with the duration (one per 2 pi/duration), so
+    a very long duration would otherwise hang in the realisation."""
+    from ..core.errors import SceneError
+    from ..metocean.realisation import SPECTRAL_CUTOFF, _default_f_max, default_omega_range
+    from .environment import MAX_FREQUENCIES, MAX_WAVE_COMPONENTS
+
+    duration = scene.analysis.duration
+    env = scene.environment
+    src = env.source or scene.file
+    waves = env.waves
+    if waves is not None and waves.n_frequencies is None:
+        lo_d, hi_d = default_omega_range(waves, SPECTRAL_CUTOFF)
+        lo = lo_d if waves.omega_min is None else waves.omega_min
+        hi = hi_d if waves.omega_max is None else waves.omega_max
+        n = max(16, math.ceil((hi - lo) * duration / (2.0 * math.pi))) * waves.n_directions
+        if n > MAX_WAVE_COMPONENTS:
+            raise SceneError(scene.file, "analysis.duration", "a duration whose wave "
+                             f"realisation has at most {MAX_WAVE_COMPONENTS:,} components",
+                             duration, f"{n:,} components (one per 2 pi/duration over "
+                             f"[{lo:.3g}, {hi:.3g}] rad/s, x {waves.n_directions} directions, "
+                             f"from {src}); their tables would need {n * 96 / 1e6:.3g} MB and "
+                             "every time step would sum them all")
+    wind = env.wind
+    if wind is not None and wind.n_frequencies is None and wind.spectrum != "constant":
+        lo = 0.0 if wind.f_min is None else wind.f_min
+        hi = _default_f_max(wind, SPECTRAL_CUTOFF) if wind.f_max is None else wind.f_max
+        n = max(16, math.ceil((hi - lo) * duration))
+        if n > MAX_FREQUENCIES:
+            raise SceneError(scene.file, "analysis.duration", "a duration whose wind "
+                             f"realisation has at most {MAX_FREQUENCIES:,} frequencies",
+                             duration, f"{n:,} frequencies (one per 1/duration up to "
+                             f"{hi:.3g} Hz, from {src})")
+
+
 SCENE_CHECKS: tuple[Callable[["Scene"], None], ...] = (
+    check_realisation_size,
     check_time_step_resolves_waves,
     check_wave_resolution,
 )

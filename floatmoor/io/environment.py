@@ -73,6 +73,17 @@ about 2-2.5 m/s; typed knots are the usual cause)."""
 
 
 # -- reading -----------------------------------------------------------------------------------
+MAX_FREQUENCIES = 50_000
+"""Most frequencies of a wave or wind discretisation (a 3-hour storm needs a few thousand for
+its wave series not to repeat)."""
+
+MAX_DIRECTIONS = 360
+"""Most wave directions of a spread sea (one per degree)."""
+
+MAX_WAVE_COMPONENTS = 200_000
+"""Most wave components (frequencies x directions) of one realisation."""
+
+
 def load_environment(path: str | os.PathLike, *, water_depth: float | None = None,
                      gravity: float = GRAVITY) -> Environment:
     """Read an environment file into an :class:`~floatmoor.metocean.config.Environment`.
@@ -161,7 +172,7 @@ def parse_waves(node: Node, *, water_depth: float | None = None,
     else:
         spreading_s = node.float("spreading_s", WaveSpec.__dataclass_fields__["spreading_s"].default,
                                  gt=0.0)
-        n_directions = node.int("n_directions", ge=2)
+        n_directions = node.int("n_directions", ge=2, le=MAX_DIRECTIONS)
 
     omega_min = omega_max = n_frequencies = None
     if "discretisation" in node:
@@ -170,7 +181,14 @@ def parse_waves(node: Node, *, water_depth: float | None = None,
         omega_p = 2.0 * math.pi / tp
         omega_min = disc.float("omega_min", None, gt=0.0, unit="rad/s")
         omega_max = disc.float("omega_max", None, gt=0.0, unit="rad/s")
-        n_frequencies = disc.int("n_frequencies", None, ge=2)
+        n_frequencies = disc.int("n_frequencies", None, ge=2, le=MAX_FREQUENCIES)
+        if n_frequencies is not None and n_frequencies * n_directions > MAX_WAVE_COMPONENTS:
+            n = n_frequencies * n_directions
+            raise disc.error("n_frequencies", f"at most {MAX_WAVE_COMPONENTS:,} wave components "
+                             "(n_frequencies x n_directions)", n_frequencies,
+                             f"{n_frequencies} x {n_directions} directions = {n:,} components; "
+                             f"their excitation tables alone would need {n * 96 / 1e6:.3g} MB "
+                             "and every time step would sum them all")
         peak = (f"the spectral peak 2 pi/Tp = {omega_p:.4g} rad/s must lie inside "
                 "[omega_min, omega_max]")
         if omega_min is not None and not omega_min < omega_p:
@@ -210,7 +228,7 @@ def parse_wind(node: Node) -> WindSpec:
         disc.reject_unknown(("f_min", "f_max", "n_frequencies"))
         f_min = disc.float("f_min", None, gt=0.0, unit="Hz")
         f_max = disc.float("f_max", None, gt=0.0, unit="Hz")
-        n_frequencies = disc.int("n_frequencies", None, ge=2)
+        n_frequencies = disc.int("n_frequencies", None, ge=2, le=MAX_FREQUENCIES)
         if f_min is not None and f_max is not None and not f_max > f_min:
             raise disc.error("f_max", f"a number > f_min = {f_min:g} (in Hz)", f_max)
     return WindSpec(spectrum=spectrum, u10=u10, heading=heading,

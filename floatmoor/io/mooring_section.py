@@ -36,15 +36,14 @@ attribute ``line_models`` (:class:`~floatmoor.mooring.fe.options.LineModels`) of
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
 from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
-from ..core.errors import ConvergenceError, FloatmoorWarning, SceneError
+from ..core.errors import ConvergenceError, SceneError
 from ..mooring.fe.options import parse_line_models
-from ..mooring.line_types import LineTypeLibrary, default_library
+from ..mooring.line_types import MAX_DIAMETER, LineTypeLibrary, default_library
 from ..mooring.system import LineDef, MooringSystem, Segment
 
 __all__ = ["parse_mooring"]
@@ -55,19 +54,25 @@ _LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction", "mode
 _SEG_KEYS = {"type", "diameter", "length", "clump_weight", "buoy_net_buoyancy"}
 
 
+MAX_LENGTH_RATIO = 5.0
+"""Longest line accepted, as a multiple of its anchor-fairlead distance at zero pose (catenary
+moorings use 1.0-1.5; the rest of a longer line would only lie on the seabed)."""
+
+
 def _point(node: Node, key: str, *, default_z=None, what: str):
     """A point given as [x, y, z], {x, y, z} or {radius, azimuth_deg, z}."""
     raw = node.raw(key, expected=f"the {what} as [x, y, z] or {{radius, azimuth_deg, z}}")
     if isinstance(raw, list):
         return tuple(node.array(key, shape=(3,), unit="m"))
     p = node.child(key)
+    extra = {"above_seabed"} if key == "anchor" else set()
     if "radius" in p:
-        p.reject_unknown({"radius", "azimuth_deg", "z"})
+        p.reject_unknown({"radius", "azimuth_deg", "z"} | extra)
         r = p.float("radius", ge=0.0, unit="m")
         a = p.angle_deg("azimuth_deg")
         z = p.float("z", default_z, unit="m") if default_z is not None else p.float("z", unit="m")
         return (r * math.cos(a), r * math.sin(a), z)
-    p.reject_unknown({"x", "y", "z"})
+    p.reject_unknown({"x", "y", "z"} | extra)
     x = p.float("x", unit="m")
     y = p.float("y", unit="m")
     z = p.float("z", default_z, unit="m") if default_z is not None else p.float("z", unit="m")
@@ -134,13 +139,26 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                                      f"{fairlead[2]:g} m)", list(anchor),
                            f"line {name!r}: the anchor must be lower than the fairlead")
         on_seabed = abs(anchor[2] + water_depth) <= 1e-6 * max(water_depth, 1.0)
+        if not on_seabed:
+            a_src = src_anchor = (ln if "anchor" in ln or defaults is None
+                                  or "anchor" not in defaults else defaults)
+            a_raw = src_anchor.raw("anchor", None)
+            declared = isinstance(a_raw, dict) and a_raw.get("above_seabed") is True
+            if not declared:
+                where = a_src.child("anchor") if isinstance(a_raw, dict) else a_src
+                raise where.error("z" if isinstance(a_raw, dict) else "anchor",
+                                  f"an anchor on the seabed (z = {-water_depth:g} m; an anchor "
+                                  "above it must be declared with above_seabed: true)",
+                                  anchor[2] if isinstance(a_raw, dict) else list(anchor),
+                                  f"line {name!r}: the anchor is "
+                                  f"{anchor[2] + water_depth:.4g} m above the seabed")
         src = ln if "segments" in ln or defaults is None else defaults
         seg_nodes = src.item_nodes("segments", min_len=1)
         segs = []
         for k, sn in enumerate(seg_nodes):
             sn.reject_unknown(_SEG_KEYS)
             tname = sn.str("type")
-            d = sn.float("diameter", None, gt=0.0, unit="m")
+            d = sn.float("diameter", None, gt=0.0, le=MAX_DIAMETER, unit="m")
             lt, w_override = lib.get(tname, diameter=d, node=sn, key="type",
                                      water_density=water_density, gravity=gravity)
             used_types.setdefault(lt.name, lt)
@@ -155,6 +173,13 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
             segs.append(Segment(length=length, ea=lt.ea, w=w, mbs=lt.mbs, line_type=lt.name,
                                 point_load=clump - buoy, ea_dynamic=lt.ea_dynamic,
                                 mass_per_length=lt.mass_per_length, diameter=lt.diameter))
+        total = sum(sg.length for sg in segs)
+        dist = math.dist(anchor, fairlead)
+        if total > MAX_LENGTH_RATIO * dist:
+            raise seg_nodes[-1].error("length", f"a line at most {MAX_LENGTH_RATIO:g} x its "
+                                      f"anchor-fairlead distance ({dist:.6g} m) long",
+                                      segs[-1].length, f"line {name!r}: unstretched length "
+                                      f"{total:.6g} m in total; a length in mm typed for m?")
         cb = ln.float("seabed_friction", defaults.float("seabed_friction", cb_default, ge=0.0)
                       if defaults is not None else cb_default, ge=0.0)
         lines.append(LineDef(name=name, anchor=anchor, fairlead=fairlead, segments=tuple(segs),
@@ -164,8 +189,11 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
         if f not in names:
             raise SceneError(node.file, f"{node.key('failed_lines')}[{i}]",
                              "a line name, one of: " + ", ".join(names), f)
+    if failed and len(set(failed)) >= len(names):
+        raise node.error("failed_lines", "some lines left intact (every line is listed as "
+                         "failed: nothing would hold the floater)", failed)
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
-                       gravity=gravity, source=str(node.file) if node.file else "<scene>",
+                       gravity=gravity, source=str(node.file) if node.file else "mooring (given in Python)",
                        failed=failed, line_models=line_models, line_types=used_types)
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
@@ -182,6 +210,13 @@ def _check_at_zero_pose(ms: MooringSystem, node: Node, line_nodes):
                                       f"line {line.name!r}: {exc}") from None
         tf = float(t["fairlead_tension"][0])
         if tf > line.mbs:
-            warnings.warn(f"{node.file or '<scene>'}: line {line.name!r} has {tf / 1e3:.1f} kN at "
-                          f"the fairlead at zero offset, above its MBS {line.mbs / 1e3:.1f} kN "
-                          f"(too short, or anchor too far)", FloatmoorWarning, stacklevel=3)
+            a, f = np.asarray(line.anchor, float), np.asarray(line.fairlead, float)
+            dist = float(np.linalg.norm(f - a))
+            length = float(sum(sg.length for sg in line.segments))
+            raise line_nodes[i].error(
+                "segments", f"a line whose tension at zero offset is below its MBS "
+                f"{line.mbs / 1e3:.1f} kN", f"{tf / 1e3:.1f} kN at the fairlead",
+                f"line {line.name!r}: unstretched length {length:.6g} m, anchor-fairlead "
+                f"distance {dist:.6g} m"
+                + (f" (a stretch of {100 * (dist / length - 1):.3g} %)" if dist > length else "")
+                + "; the line is too short or its anchor too far")

@@ -60,6 +60,19 @@ STEEL_DENSITY = 7850.0
 POLYESTER_DENSITY = 1380.0
 
 
+MATERIALS = ("chain", "wire", "polyester", "nylon", "hmpe", "user")
+"""Line materials a line-type entry may name (``material:``); the material sets defaults
+(``chain``: area_factor 2), so a misspelt name must not pass as ``user``."""
+
+
+STEEL_MATERIALS = ("chain", "wire")
+"""Materials whose ``density`` must be that of steel (a chain lighter than water is a typo)."""
+
+MAX_DIAMETER = 0.5
+"""Largest nominal line diameter accepted, m (the largest chains and ropes are about 0.2-0.3 m;
+a diameter in mm typed for m is refused)."""
+
+
 @dataclass(frozen=True, kw_only=True)
 class LineType:
     """Properties of one line type (SI units).
@@ -249,7 +262,7 @@ class LineTypeLibrary:
         if "family" in e:
             e.reject_unknown(_FAMILY_KEYS)
             family = e.choice("family", FAMILIES, what="line type family")
-            d = e.float("diameter", None, gt=0.0, unit="m")
+            d = e.float("diameter", None, gt=0.0, le=MAX_DIAMETER, unit="m")
             if d is None:
                 d = diameter
             if d is None:
@@ -272,9 +285,9 @@ class LineTypeLibrary:
             over.update(_tn_fields(e))
             return (replace(lt, **over) if over else lt), None
         e.reject_unknown(_USER_KEYS | {"area_factor"})
-        d = e.float("diameter", gt=0.0, unit="m")
+        d = e.float("diameter", gt=0.0, le=MAX_DIAMETER, unit="m")
         mass = e.float("mass_per_length", gt=0.0, unit="kg/m")
-        material = e.str("material", "user")
+        material = e.str("material", "user", choices=MATERIALS)
         if "ea" in e and "elastic_modulus" in e:
             raise e.error("elastic_modulus", "either ea or elastic_modulus, not both",
                           e.raw("elastic_modulus"))
@@ -295,7 +308,11 @@ class LineTypeLibrary:
         if given[0] == "displaced_volume":
             vol = e.float("displaced_volume", ge=0.0, unit="m^3/m")
         elif given[0] == "density":
-            vol = mass / e.float("density", gt=0.0, unit="kg/m^3")
+            rho_m = e.float("density", gt=0.0, unit="kg/m^3")
+            if material in STEEL_MATERIALS and not 6000.0 <= rho_m <= 9000.0:
+                raise e.error("density", f"the density of steel {material} in kg/m^3 (about "
+                              f"{STEEL_DENSITY:g}; 6000-9000 accepted)", rho_m)
+            vol = mass / rho_m
         elif given[0] == "volumetric_diameter":
             dv = e.float("volumetric_diameter", gt=0.0, unit="m")
             vol = math.pi * dv * dv / 4

@@ -11,7 +11,7 @@ from floatmoor.core.errors import SceneError, argument_error, check_positive
 def test_argument_error_names_the_argument_and_no_file():
     e = argument_error("cutoff", "a cut-off frequency > 0 in Hz", -1.0)
     assert isinstance(e, SceneError) and e.file is None
-    assert str(e) == "<scene>: cutoff: expected a cut-off frequency > 0 in Hz, found -1.0"
+    assert str(e) == "(given in Python): cutoff: expected a cut-off frequency > 0 in Hz, found -1.0"
     missing = argument_error("hs", "a number > 0")
     assert missing.found is SceneError.MISSING and "key is missing" in str(missing)
     back = pickle.loads(pickle.dumps(e))      # crosses worker processes unchanged

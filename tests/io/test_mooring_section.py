@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from floatmoor.core.config import Node
-from floatmoor.core.errors import FloatmoorWarning, SceneError
+from floatmoor.core.errors import SceneError
 from floatmoor.io.mooring_section import parse_mooring
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -124,12 +124,14 @@ def test_anchor_below_seabed(tmp_path):
         load(tmp_path, text)
 
 
-def test_line_too_short_is_solved_and_warns_tension_against_mbs(tmp_path):
-    """800 m anchor radius, 200 m depth: a 780 m line must stretch; it is solved and the warning
-    gives the tension against the MBS."""
-    with pytest.warns(FloatmoorWarning, match=r"line 'L1' has [0-9.]+ kN .* above its MBS 9000.0 kN"):
-        ms = load(tmp_path, BASE % "780.0")
-    assert float(ms.tensions()["utilisation"][0]) > 1.0
+def test_line_too_short_is_refused_with_tension_against_mbs(tmp_path):
+    """800 m anchor radius, 200 m depth: a 780 m line must stretch beyond its MBS at rest; the
+    SceneError gives the tension against the MBS, the length and the anchor-fairlead distance
+    (a design tool must not go on to a heave of -184 m with exit status 0)."""
+    with pytest.raises(SceneError, match=r"lines\[0\]\.segments: expected a line whose tension "
+                       r"at zero offset is below its MBS 9000.0 kN.*'L1': unstretched length "
+                       r"780 m, anchor-fairlead distance"):
+        load(tmp_path, BASE % "780.0")
 
 
 def test_buoyant_segment_on_the_seabed_is_refused(tmp_path):
