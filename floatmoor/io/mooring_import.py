@@ -14,9 +14,8 @@ import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import yaml
 
-from ..core.config import Node
+from ..core.config import Node, parse_yaml_text
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import FloatmoorWarning, SceneError
 
@@ -321,7 +320,7 @@ def build(m: ImportedMooring, *, water_depth=None, water_density=None, gravity=N
 
     text, depth, rho, g = to_yaml(m, water_depth=water_depth, water_density=water_density,
                                   gravity=gravity, model=model)
-    node = Node(yaml.safe_load(text), file=m.file)
+    node = Node(parse_yaml_text(text, m.file), file=m.file)
     system = parse_mooring(node, water_depth=depth, water_density=rho, gravity=g)
     unmapped = list(m.unmapped)
     unmapped.append("MBS: not in the file; the line types carry mbs = 1e30 N (replace before "

@@ -282,7 +282,7 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static") -> OpenFASTImp
     if hd.float("PtfmRefztRot", 0.0):
         unmapped.append("PtfmRefztRot: a rotated WAMIT body frame")
     ds = read_wamit(root, ulen=ulen, rho=rho, g=g, water_depth=depth)
-    no_excitation = "wave_direction" not in ds.dims
+    no_excitation = "excitation_force" not in ds.data_vars
     if no_excitation:
         unmapped.append(f"WAMIT {Path(root).name}.3 not found: the database has no wave "
                         f"excitation, so the scene is written without waves")
