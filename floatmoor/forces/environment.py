@@ -139,11 +139,8 @@ class Wind(_FlowModel):
         return ["force", "wind_speed"]
 
     def contribute(self, asm: KernelAssembly):
-        asm.has_wind = True
-        asm.wind_speed = self.speed
-        asm.wind_heading = self.heading
-        asm.wind_table_heading = self.table_heading
-        asm.wind_table = self.table
+        asm.add_relative_flow(self.name, speed=self.speed, heading=self.heading,
+                              table_heading=self.table_heading, table=self.table)
 
 
 @register
@@ -167,8 +164,5 @@ class Current(_FlowModel):
         return self.mean_speed
 
     def contribute(self, asm: KernelAssembly):
-        asm.has_current = True
-        asm.current_speed = self.mean_speed
-        asm.current_heading = self.heading
-        asm.current_table_heading = self.table_heading
-        asm.current_table = self.table
+        asm.add_relative_flow(self.name, speed=self.mean_speed, heading=self.heading,
+                              table_heading=self.table_heading, table=self.table)

@@ -45,8 +45,7 @@ class Hydrostatics(ForceModel):
         return self.const_force.copy()
 
     def contribute(self, asm: KernelAssembly):
-        asm.restoring = self.restoring
-        asm.const_force = self.const_force
+        asm.add_restoring(self.name, self.const_force, self.restoring)
 
 
 @register
@@ -68,8 +67,7 @@ class LinearDamping(ForceModel):
         return self.matrix.copy()
 
     def contribute(self, asm: KernelAssembly):
-        asm.damping_linear = self.matrix
-        asm.has_damping_linear = True
+        asm.add_damping(self.name, self.matrix)
 
 
 @register
@@ -92,5 +90,4 @@ class QuadraticDamping(ForceModel):
         return self.matrix * (np.sqrt(8.0 / np.pi) * s)[None, :]
 
     def contribute(self, asm: KernelAssembly):
-        asm.damping_quadratic = self.matrix
-        asm.has_damping_quadratic = True
+        asm.add_quadratic_damping(self.name, self.matrix)

@@ -116,6 +116,4 @@ class Radiation(ForceModel):
         out += to_earth(f, yaw)
 
     def contribute(self, asm: KernelAssembly):
-        asm.ret_kernel = self.kernel
-        asm.ret_i = self.pair_i
-        asm.ret_j = self.pair_j
+        asm.add_memory(self.name, self.kernel, self.pair_i, self.pair_j)

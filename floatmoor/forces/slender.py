@@ -448,7 +448,7 @@ class SlenderElements(ForceModel):
                 self.ramp)
 
     def contribute(self, asm: KernelAssembly):
-        asm.slender = self.kernel_arrays()
+        asm.add_strips(self.name, self.kernel_arrays())
 
 
 def hull_current_table(ctx, table: np.ndarray, vessel) -> np.ndarray:

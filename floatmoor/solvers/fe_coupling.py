@@ -1,4 +1,4 @@
-"""Finite-element mooring lines coupled to the 6-DOF time-domain solver (issue 9, coupling a).
+"""Finite-element mooring lines coupled to the 6-DOF time-domain solver (staggered coupling).
 
 A scene selects FE lines with ``mooring: {model: finite-element}`` (all lines) or per line
 ``lines[i].model`` (:mod:`floatmoor.mooring.fe.options`).  :func:`setup` builds them
@@ -75,8 +75,9 @@ from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import add_line_wrench, body_accept, body_advance, typed_lists
-from ..mooring.system import system_force_kernel
-from .td_kernel import _pose_rate, start_state, td_scratch, td_steps
+from ..mooring.system import catenary_force_kernel
+from .td_kernel import (STATUS_CATENARY, STATUS_OK, STATUS_TENSION, _pose_rate, new_run_state,
+                        set_status, td_steps)
 
 __all__ = ["FECoupling", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
 
@@ -224,13 +225,7 @@ def _release_failed(t, fe_index, fail_time, on, active_fe, arm, forces, Q):
 
 
 @njit(cache=True)
-def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
-                 has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
-                 wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
-                 has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur,
-                 sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
-                 cb, seabed, active, fail_time, mbs, warm, guard, tension_guard, record_parts,
-                 motion, velocity, t_fair, t_anchor, parts_out, status,
+def td_fe_kernel(body, terms, lines, state, out,
                  fe_index, active_fe, warm_fe, Q, nsub, max_split, fair_b, R, rf_all, vf_all,
                  arm, forces, fail, on, counters, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA,
                  l_fnA, l_fs1, l_rB, l_vB, l_aB, l_fA, l_rfk, l_vfk, l_P, l_E, l_S, l_cur_z,
@@ -238,8 +233,10 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
                  w_Rk, w_W, w_Yk, w_T1, w_da, w_info, w_stats, zc, s_nodes, fe_out):
     """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring).
 
-    Arguments up to ``status`` as for ``td_kernel`` (``status`` (4,) here; the catenary data
-    hold every line, FE lines included, ``active`` their state).  FE part: ``fe_index`` (n_fe,)
+    Body side: the bundles of :func:`floatmoor.solvers.td_kernel.td_steps` (``body``,
+    ``terms``, ``lines``, ``state`` at the start state with ``has_mcorr``, ``out`` with
+    ``out.status`` (4,) here; the catenary data hold every line, FE lines included,
+    ``lines.active`` their state).  FE part: ``fe_index`` (n_fe,)
     positions of the FE lines among all lines, ``active_fe`` (n_lines,) True for them,
     ``warm_fe`` (n_lines, 2) catenary warm starts, ``Q`` (6,) the generalised force of the FE
     lines in the started state (updated every step), ``nsub`` line steps per body step, then the
@@ -251,11 +248,17 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
     FE lines.  Status 5 (:data:`STATUS_FE`): FE step failed, ``status[2]`` the FE line,
     ``status[3]`` the kernel code, the line's ``info`` the time and node.
     """
-    (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
-     a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])
-    x = x0.copy()
-    v = v0.copy()
-    start_state(x0, v0, x, v, hist)
+    n_steps = body.n_steps
+    dt = body.dt
+    tension_guard = body.tension_guard
+    x = state.x
+    v = state.v
+    mcorr = state.mcorr
+    fail_time = lines.fail_time
+    mbs = lines.mbs
+    t_fair = out.t_fair
+    t_anchor = out.t_anchor
+    status = out.status
     for k in range(status.shape[0]):
         status[k] = 0
     n_fe = fe_index.shape[0]
@@ -267,26 +270,15 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
         _release_failed(n * dt, fe_index, fail_time, on, active_fe, arm, forces, Q)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
-        bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
-                                  line_start, cb, seabed, active_fe, warm_fe, False, work, rot,
-                                  line_out, fq, stiff)
+        bad = catenary_force_kernel(lines.cat, x, active_fe, warm_fe, False, state.work,
+                                    state.rot, state.line_out, fq, state.stiff)
         if bad >= 0:
-            status[0] = 4
-            status[1] = n
-            status[2] = bad
+            set_status(status, STATUS_CATENARY, n, bad)
             return
         for k in range(6):
             mcorr[k] = Q[k] - fq[k]
-        td_steps(n, n + 1, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
-                 dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
-                 wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th,
-                 cur_tab, has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par,
-                 sl_cur, sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
-                 line_start, cb, seabed, active, fail_time, mbs, warm, guard, tension_guard,
-                 record_parts, motion, velocity, t_fair, t_anchor, parts_out, status, True, mcorr,
-                 x, v, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom,
-                 g, q, a)
-        if status[0] != 0:
+        td_steps(n, n + 1, body, terms, lines, state, out)
+        if status[0] != STATUS_OK:
             return
         # row n: the FE tensions at t_n replace the catenary's for the FE lines
         _record_fe(n, fe_index, on, l_r, l_fn, w_tens, zc, s_nodes, rec, t_fair, t_anchor,
@@ -294,9 +286,7 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         for i in range(n_fe):
             j = fe_index[i]
             if t_fair[n, j] > tension_guard * mbs[j]:
-                status[0] = 3
-                status[1] = n
-                status[2] = j
+                set_status(status, STATUS_TENSION, n, j)
                 return
         if n == n_steps:
             return
@@ -327,10 +317,11 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         body_accept(on, l_r, l_v, l_a, l_fn, l_fs, l_rA, l_vA, l_aA, l_fnA, l_fs1)
 
 
-def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
-    """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the arguments of
-    ``td_kernel`` (``td_args``, status last).  Returns ``(status (4,), fe_out (3, n+1,
-    n_lines))``; the FE channels are NaN for quasi-static lines.
+def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int):
+    """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
+    ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``; the outputs are filled, their
+    status left alone).  Returns ``(status (4,), fe_out (3, n+1, n_lines))``; the FE channels
+    are NaN for quasi-static lines.
 
     Raises
     ------
@@ -351,7 +342,7 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     # generalised force of the started lines (dynamic EA), as body_advance will report it
     ends = np.array([ln.fn[-1] for ln in lines])
     Q = np.ascontiguousarray(fm._sum(np.asarray(x0, float), ends))
-    n_steps = td_args[0]
+    n_steps = body.n_steps
     status = np.zeros(4, np.int64)
     active_fe = np.zeros(n_lines, np.bool_)
     active_fe[c.index] = True
@@ -373,15 +364,17 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     nf = len(lines)
     fe_out = np.full((3, n_steps + 1, n_lines), np.nan)
     fm.counters = np.zeros((nf, 2))
-    args = td_args[:-1] + (
-        status, np.ascontiguousarray(c.index), active_fe, np.zeros((n_lines, 2)), Q,
+    out = out._replace(status=status)
+    st = new_run_state(body, terms, moor, out, has_mcorr=True)
+    args = (body, terms, moor, st, out) + (
+        np.ascontiguousarray(c.index), active_fe, np.zeros((n_lines, 2)), Q,
         int(c.substeps), int(FELine.MAX_SPLIT),
         np.ascontiguousarray(fm.fairleads_body), np.zeros((3, 3)), np.zeros((nf, 3)),
         np.zeros((nf, 3)), arm, forces, np.zeros(1, np.int64), on, fm.counters, *per_line,
         fric, coef, tol, maxit, *work, zc, s_nodes, fe_out)
     td_fe_kernel(*args)
     fm.on[:] = on
-    t_end = int(status[1]) * td_args[1]
+    t_end = int(status[1]) * body.dt
     for ln in lines:
         ln.time = t_end
         ln._trial = False
