@@ -153,8 +153,9 @@ class Current(_FlowModel):
         spec = scene.environment.current
         v = ctx.built.vessel
         self.table_heading, self.table = _table(v, "current_coefficients", "current")
-        from .slender import hull_current_table  # double counting (seed 002 section 6.1.2)
-        self.table = hull_current_table(ctx, self.table, v)
+        inputs = ctx.inputs  # the scene's rules (double counting, Wang (2016) section 6.1.2)
+        if inputs is not None and inputs.current_table is not None:
+            self.table = np.ascontiguousarray(inputs.current_table, float)
         self.mean_speed = float(np.asarray(current_speed(spec, np.array([0.0]),
                                                           scene.site.water_depth)).reshape(-1)[0])
         self.heading = float(spec.heading)

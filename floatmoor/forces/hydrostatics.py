@@ -54,8 +54,9 @@ class LinearDamping(ForceModel):
     description = "linear damping matrix of the vessel file"
 
     def setup(self, ctx: SetupContext):
-        from .slender import linear_damping_matrix  # extra damping, seed 002 section 6.6
-        self.matrix = linear_damping_matrix(ctx, np.array(ctx.built.vessel.linear_damping, float))
+        inputs = ctx.inputs  # the scene's rules (extra damping, Wang (2016) section 6.6)
+        D = None if inputs is None else inputs.linear_damping
+        self.matrix = np.array(ctx.built.vessel.linear_damping if D is None else D, float)
         self._freeze()
 
     def force(self, t, pose, velocity, out):

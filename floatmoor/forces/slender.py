@@ -41,7 +41,7 @@ __all__ = ["SlenderGeometry", "KinematicsTable", "slender_geometry", "build_kine
            "slender_force", "covered_current_dofs", "current_table_without",
            "angular_velocity_earth", "DOF_NAMES", "SlenderElements", "hull_current_table",
            "drift_database", "linear_damping_matrix", "viscous_spec",
-           "corrected_drift_database", "viscous_linear_damping"]
+           "corrected_drift_database", "viscous_linear_damping", "hull_current_coefficients"]
 
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
@@ -452,9 +452,14 @@ class SlenderElements(ForceModel):
 
 
 def hull_current_table(ctx, table: np.ndarray, vessel) -> np.ndarray:
+    """:func:`hull_current_coefficients` with the options of a :class:`SetupContext`."""
+    return hull_current_coefficients(viscous_spec(ctx), table, vessel)
+
+
+def hull_current_coefficients(spec, table: np.ndarray, vessel) -> np.ndarray:
     """The hull current coefficients to use: zeroed in the DOFs the slender elements cover when
-    the scene uses them with ``double_counting: true`` (seed 002 section 6.1.2)."""
-    spec = viscous_spec(ctx)
+    ``spec`` (the scene's ``viscous_drift`` options or None) selects them with
+    ``double_counting: true`` (Wang (2016) section 6.1.2); else ``table`` itself."""
     if spec is None or getattr(spec, "model", "none") != "slender_elements" \
             or not getattr(spec, "double_counting", True):
         return table
