@@ -34,7 +34,7 @@ from ..core.errors import SceneError
 from .terms import (KINDS, SINGLE_TERM_KINDS, FlowTerms, ForceTerms, MatrixTerms, MemoryTerm,
                     RestoringTerms, StripTerm, as_kernel_array, empty_strips)
 
-__all__ = ["ForceModel", "SetupContext", "KernelAssembly", "REGISTRY", "register", "model_class"]
+__all__ = ["REGISTRY", "ForceModel", "KernelAssembly", "SetupContext", "model_class", "register"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -98,7 +98,7 @@ class ForceModel:
     def force(self, t: float, pose, velocity, out) -> None:  # pragma: no cover
         raise NotImplementedError
 
-    def contribute(self, asm: "KernelAssembly") -> None:  # pragma: no cover
+    def contribute(self, asm: KernelAssembly) -> None:  # pragma: no cover
         raise NotImplementedError
 
     def mean_force(self) -> np.ndarray:

@@ -1,6 +1,6 @@
 """Wind and current forces, quadratic in the velocity of the flow relative to the body.
 
-``F = C(theta_rel) |U - v|^2`` (seed 002 eq. 2.24 and 2.26 without their linearisation, so that
+``F = C(theta_rel) |U - v|^2`` (Wang (2016) eq. 2.24 and 2.26 without their linearisation, so that
 the wind and current damping ``-2 C U v`` come out of the model): ``U`` the flow velocity
 (horizontal, earth axes), ``v`` the horizontal low-frequency velocity of the body reference
 point (by default the solver removes its linear wave-frequency velocity from the body velocity,
@@ -57,7 +57,7 @@ class _FlowModel(ForceModel):
         """Add the force at time t (s) for the pose and the pose rate ``velocity`` (earth).
 
         ``wf_velocity`` (6,), optional: the wave-frequency part of ``velocity`` to remove, so that
-        the flow is taken relative to the low-frequency velocity (seed 002 eq. 2.24, 2.26; the
+        the flow is taken relative to the low-frequency velocity (Wang (2016) eq. 2.24, 2.26; the
         solver passes its linear WF velocity, see :mod:`floatmoor.solvers.wf_velocity`)."""
         coef = np.zeros(6)
         vx, vy = float(velocity[0]), float(velocity[1])

@@ -35,8 +35,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["KINDS", "RestoringTerms", "MatrixTerms", "MemoryTerm", "FlowTerms", "StripTerm",
-           "ForceTerms", "as_kernel_array"]
+__all__ = ["KINDS", "FlowTerms", "ForceTerms", "MatrixTerms", "MemoryTerm", "RestoringTerms",
+           "StripTerm", "as_kernel_array"]
 
 KINDS = ("restoring", "mooring", "damping", "quadratic_damping", "memory", "relative_flow",
          "strips", "series")

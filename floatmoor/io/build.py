@@ -20,7 +20,7 @@ from ..mooring.system import MooringSystem
 from .mooring_section import parse_mooring
 from .scene import Scene, load_scene
 
-__all__ = ["BuiltScene", "build", "net_buoyancy_force", "ModelInputs", "model_inputs"]
+__all__ = ["BuiltScene", "ModelInputs", "build", "model_inputs", "net_buoyancy_force"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -40,7 +40,7 @@ class BuiltScene:
     static_force: np.ndarray = field(default_factory=lambda: np.zeros(6))
     displaced_volume: float | None = None
 
-    def model_inputs(self, options, names, *, yaw: float = 0.0) -> "ModelInputs":
+    def model_inputs(self, options, names, *, yaw: float = 0.0) -> ModelInputs:
         """:func:`model_inputs` of this scene (the solvers call it without importing io)."""
         return model_inputs(self, options, names, yaw=yaw)
 

@@ -39,8 +39,7 @@ from ..core.frames import rotation_matrix_into
 from .catenary import (OUT_HA, OUT_HF, OUT_ITER, OUT_K11, OUT_K12, OUT_K21, OUT_K22, OUT_LB,
                        OUT_SIZE, OUT_VA, OUT_VF, STATUS_MESSAGES, line_kernel, line_profile)
 
-__all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays",
-           "catenary_force_kernel"]
+__all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -245,14 +244,6 @@ class CatenaryArrays(NamedTuple):
     line_start: np.ndarray
     cb: np.ndarray
     seabed: np.ndarray
-
-
-@njit(cache=True)
-def catenary_force_kernel(cat, pose, active, warm, want_k, work, rot, line_out, force, stiff):
-    """:func:`system_force_kernel` on a :class:`CatenaryArrays` bundle ``cat``."""
-    return system_force_kernel(pose, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA, cat.seg_w,
-                               cat.seg_P, cat.line_start, cat.cb, cat.seabed, active, warm,
-                               want_k, work, rot, line_out, force, stiff)
 
 
 @njit(cache=True)

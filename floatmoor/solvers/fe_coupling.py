@@ -75,7 +75,7 @@ from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import add_line_wrench, body_accept, body_advance, typed_lists
-from ..mooring.system import catenary_force_kernel
+from ..mooring.system import system_force_kernel
 from .td_kernel import (STATUS_CATENARY, STATUS_OK, STATUS_TENSION, _pose_rate, new_run_state,
                         set_status, td_steps)
 
@@ -270,8 +270,11 @@ def td_fe_kernel(body, terms, lines, state, out,
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
         _release_failed(n * dt, fe_index, fail_time, on, active_fe, arm, forces, Q)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
-        bad = catenary_force_kernel(lines.cat, x, active_fe, warm_fe, False, state.work,
-                                    state.rot, state.line_out, fq, state.stiff)
+        cat = lines.cat
+        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                                  active_fe, warm_fe, False, state.work, state.rot,
+                                  state.line_out, fq, state.stiff)
         if bad >= 0:
             set_status(status, STATUS_CATENARY, n, bad)
             return
@@ -319,8 +322,8 @@ def td_fe_kernel(body, terms, lines, state, out,
 
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
-    ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``; the outputs are filled, their
-    status left alone).  Returns ``(status (4,), fe_out (3, n+1, n_lines))``; the FE channels
+    ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
+    the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3, n+1, n_lines))``; the FE channels
     are NaN for quasi-static lines.
 
     Raises

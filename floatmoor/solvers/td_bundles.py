@@ -17,7 +17,7 @@ import numpy as np
 from ..mooring.catenary import OUT_SIZE
 from ..mooring.system import CatenaryArrays
 
-__all__ = ["Body", "Lines", "State", "Outputs", "no_lines", "new_state", "new_outputs"]
+__all__ = ["Body", "Lines", "Outputs", "State", "new_outputs", "new_state", "no_lines"]
 
 
 class Body(NamedTuple):

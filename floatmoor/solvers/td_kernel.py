@@ -40,7 +40,10 @@ Structure of a step (:func:`td_steps`): line failures and the convolution sum, t
 stage at t_n (:func:`_stage`), the record and its tension guard (:func:`_record`), the rest of
 the RK4 step (:func:`rk4_step`), the state guards (:func:`_state_status`) and the velocity
 history.  Status codes (named constants, :data:`STATUS_NAMES`) in ``status[0]``, the step in
-``status[1]``, the DOF or line in ``status[2]``.
+``status[1]``, the DOF or line in ``status[2]``.  The helpers of a step are compiled inline
+(``inline='always'``, numba IR): as separate functions taking the bundles each one cost a full
+compilation with its Python wrapper (+40 % compile time of the first run, measured), inline
+they cost what the one loop did before; they stay callable on their own from Python.
 """
 
 from __future__ import annotations
@@ -52,7 +55,7 @@ from numba import njit
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import slender_packed_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
-from ..mooring.system import catenary_force_kernel
+from ..mooring.system import system_force_kernel
 from .td_bundles import new_state
 
 __all__ = ["td_kernel", "td_steps", "rk4_step", "start_state", "STATUS_OK", "STATUS_NAN",
@@ -72,7 +75,7 @@ STATUS_NAMES = {STATUS_OK: "ok", STATUS_NAN: "nan", STATUS_GUARD: "guard",
                 STATUS_TENSION: "tension", STATUS_CATENARY: "catenary"}
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def set_status(status, code, step, index):
     """``status[:3] = code, step, index``."""
     status[0] = code
@@ -109,8 +112,11 @@ def _rhs(j, c, dt, x, v, terms, lines, st):
         r += 1
     # mooring (earth axes)
     if lines.on:
-        bad = catenary_force_kernel(lines.cat, x, lines.active, lines.warm, False, st.work,
-                                    st.rot, st.line_out, st.fm, st.stiff)
+        cat = lines.cat
+        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                                  lines.active, lines.warm, False, st.work, st.rot,
+                                  st.line_out, st.fm, st.stiff)
         if bad >= 0:
             return bad
         for i in range(6):
@@ -241,7 +247,7 @@ def _pose_rate(x, v, out):
         out[k] = v[k]
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _stage(j, c, x, v, k, body, terms, lines, st):
     """Stage ``k`` of RK4 at sample j, fraction c, state (x, v): the force (``st.f``,
     ``st.parts``), the pose rate ``st.q[k]`` and the acceleration ``st.a[k]``.  Returns -1 or
@@ -254,7 +260,7 @@ def _stage(j, c, x, v, k, body, terms, lines, st):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def rk4_step(n, body, terms, lines, st):
     """Stages 2, 3 and 4 (at t + dt/2, t + dt/2 and t + dt: force samples 2n+1, 2n+1, 2n+2)
     and the update of ``st.x``, ``st.v`` to t_{n+1}, the first stage at t_n being evaluated
@@ -285,7 +291,7 @@ def rk4_step(n, body, terms, lines, st):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _fail_lines(t, lines):
     """Lines whose failure time is reached at ``t`` become inactive."""
     if lines.on:
@@ -294,7 +300,7 @@ def _fail_lines(t, lines):
                 lines.active[i] = False
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _memory_sum(n, mem, st):
     """Convolution sum S_{n+1} = sum_{j=1}^{n_k-1} K_j v_{n+1-j} into ``st.s1``; the history
     is stored twice (columns p and p + n_k) so that the window is contiguous without a
@@ -310,7 +316,7 @@ def _memory_sum(n, mem, st):
         st.s1[p] = s
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _push_history(n1, st):
     """Step velocity ``st.v`` at step n1 into the ring buffer; S_{n1} becomes the sum of the
     step (``s0 = s1``)."""
@@ -324,7 +330,7 @@ def _push_history(n1, st):
         st.s0[p] = st.s1[p]
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _record(n, body, lines, st, out):
     """Row ``n`` of the outputs from the first stage at t_n (pose, pose rate, line tensions,
     the force of every term).  Returns -1, or the first line whose fairlead tension exceeds
@@ -348,7 +354,7 @@ def _record(n, body, lines, st, out):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _state_status(x, v, x0, guard):
     """(code, DOF) of the first DOF with a NaN/inf state (STATUS_NAN) or beyond its guard
     (STATUS_GUARD); (STATUS_OK, -1) when none."""

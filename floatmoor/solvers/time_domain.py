@@ -53,9 +53,9 @@ import numpy as np
 from ..core.dofs import DOF_NAMES
 from ..core.errors import NumericalError, SceneError
 from ..forces.base import KernelAssembly, SetupContext, model_class
-from ..forces.terms import as_kernel_array
 from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.slender import refuse_qtf_with_correction
+from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
 from .statics import equilibrium
 from .td_bundles import Body, Lines, new_outputs, no_lines
@@ -63,8 +63,8 @@ from .td_kernel import (STATUS_CATENARY, STATUS_GUARD, STATUS_NAN, STATUS_OK, ST
                         td_kernel)
 from .wf_velocity import RELATIVE_VELOCITY_MODES, wf_velocity_series
 
-__all__ = ["assemble", "integrate", "TimeDomainResult", "Assembly", "default_models",
-           "RK4_LIMIT"]
+__all__ = ["RK4_LIMIT", "Assembly", "TimeDomainResult", "assemble", "default_models",
+           "integrate"]
 
 RK4_LIMIT = 2.78
 """RK4 is stable for purely imaginary eigenvalues lambda dt up to 2 sqrt(2) = 2.83."""
@@ -248,7 +248,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         K_lin = K_lin + built.mooring.stiffness(x0)
     lam = np.linalg.eigvals(np.linalg.solve(inertia, K_lin))
     omega_max = float(np.sqrt(np.max(np.abs(lam))))
-    # linear wave-frequency velocity for the wind and current relative velocity (seed 002
+    # linear wave-frequency velocity for the wind and current relative velocity (Wang (2016)
     # eq. 2.24, 2.26: relative to the low-frequency body velocity)
     mode = getattr(options, "relative_velocity", "low_frequency")
     if mode not in RELATIVE_VELOCITY_MODES:
@@ -334,7 +334,8 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     if a.fe is None:
         td_kernel(body, terms, lines, out)
     else:
-        from .fe_coupling import FE_RECORDS, raise_fe_status, run as fe_run
+        from .fe_coupling import FE_RECORDS, raise_fe_status
+        from .fe_coupling import run as fe_run
         fe_status, fe_out = fe_run(a.fe, body, terms, lines, out, x0=x0, n_lines=n_lines)
         raise_fe_status(a.fe, fe_status)
         status[:] = fe_status[:3]
