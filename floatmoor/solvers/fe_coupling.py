@@ -323,8 +323,8 @@ def td_fe_kernel(body, terms, lines, state, out,
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
     ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
-    the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3, n+1, n_lines))``; the FE channels
-    are NaN for quasi-static lines.
+    the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
+    n+1, n_lines))``; the FE channels are NaN for quasi-static lines.
 
     Raises
     ------
