@@ -11,7 +11,9 @@ current) is a :class:`ForceModel`:
 * ``stiffness(pose)`` (optional) the analytic Jacobian ``-dF/dpose`` (6x6).
 * ``damping_linearized(...)`` (optional) for the frequency domain.
 * ``mean_force()`` the force at rest averaged over time (wind and current at their mean speed,
-  mean wave drift), used for the static start.
+  mean wave drift), used for the static start.  The constants and matrices of ``restoring``
+  terms already enter the static start (:attr:`KernelAssembly.const_force`,
+  :attr:`KernelAssembly.restoring`): such a model keeps ``mean_force`` zero.
 * ``channels()`` the output channels the model can report (``force`` by default).
 * ``contribute(asm)`` adds the model's force terms to the :class:`KernelAssembly`, each of one
   kind (:mod:`floatmoor.forces.terms`: restoring, mooring, damping, quadratic damping, memory,
