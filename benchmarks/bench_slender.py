@@ -1,9 +1,9 @@
-"""Viscous-drift benchmark (issue 8): cost of slender elements in the flagship storm.
+"""Viscous-drift benchmark: cost of slender elements in the flagship storm.
 
 The Floatel-like semi in the 100-year storm (``scenes/floatel_100yr.yaml``: Hs 16 m, Tp 18.2 s,
 NPD wind, current 0.94 m/s, 12 quasi-static lines, radiation memory, RK4 dt = 0.1 s), 10800 s,
 run without a viscous model (case 1), with the six slender elements of the vessel file (case 2,
-seed 002 table 6.1/6.3) and with the correction formula (case 5).  Prints, per case, the setup
+Wang (2016) table 6.1/6.3) and with the correction formula (case 5).  Prints, per case, the setup
 time (scene models, FFT series, kinematics table, static equilibrium), the time loop and the
 total, and the added fraction against case 1; the kinematics table's size; the single-seed
 surge statistics (not a study: one seed).  Runs are interleaved (1, 2, 5, 1, 2, 5) and the

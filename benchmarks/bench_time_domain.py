@@ -1,4 +1,4 @@
-"""Time-domain benchmark: a 3-hour storm of the Floatel-like semi (issue 5).
+"""Time-domain benchmark: a 3-hour storm of the Floatel-like semi.
 
 12 quasi-static lines, first-order waves, Newman drift, NPD wind, current, radiation memory,
 dt = 0.1 s, 10800 s simulated.  Prints

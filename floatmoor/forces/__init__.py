@@ -11,7 +11,15 @@ One interface (:class:`ForceModel`: ``setup``, ``force``, optional ``stiffness``
 * ``drift_newman``      mean + slow drift, Newman's approximation
 * ``drift_qtf``         mean + slow drift from the full difference-frequency QTF
 * ``wind``, ``current`` quadratic in the relative velocity (NPD gust for wind)
-* ``slender_elements`` Morison drag strips on the hull (viscous drift, seed 002 ch. 6)
+* ``slender_elements`` Morison drag strips on the hull (viscous drift, Wang (2016) ch. 6)
+
+A model's ``contribute`` adds its force terms, each of one kind (:mod:`floatmoor.forces.terms`:
+restoring, mooring, damping, quadratic damping, memory, relative flow, strips, series); the
+time-domain kernel sums the terms kind by kind and knows no model.  A new model of an existing
+kind is one new module here (a registered :class:`ForceModel`) and its name in the import line
+below.  Rules that combine models (viscous drift: extra damping, current double counting,
+corrected drift) are applied where the scene's models are chosen
+(:func:`floatmoor.io.build.model_inputs`) and reach the models as ``SetupContext.inputs``.
 """
 
 from .base import (REGISTRY, ForceModel, KernelAssembly, SetupContext, model_class, register)

@@ -11,11 +11,14 @@ current) is a :class:`ForceModel`:
 * ``stiffness(pose)`` (optional) the analytic Jacobian ``-dF/dpose`` (6x6).
 * ``damping_linearized(...)`` (optional) for the frequency domain.
 * ``mean_force()`` the force at rest averaged over time (wind and current at their mean speed,
-  mean wave drift), used for the static start.
+  mean wave drift), used for the static start.  The constants and matrices of ``restoring``
+  terms already enter the static start (:attr:`KernelAssembly.const_force`,
+  :attr:`KernelAssembly.restoring`): such a model keeps ``mean_force`` zero.
 * ``channels()`` the output channels the model can report (``force`` by default).
-* ``contribute(asm)`` writes the model's arrays into the :class:`KernelAssembly`, the one bag of
-  plain arrays the numba time loop reads.  A model that the scene does not name is never
-  constructed, so its arrays stay empty and the kernel skips it.
+* ``contribute(asm)`` adds the model's force terms to the :class:`KernelAssembly`, each of one
+  kind (:mod:`floatmoor.forces.terms`: restoring, mooring, damping, quadratic damping, memory,
+  relative flow, strips, series) with ``asm.add_<kind>(name, ...)``.  A model that the scene
+  does not name is never constructed, so it adds no term and the kernel does no work for it.
 
 Models are registered by name in :data:`REGISTRY` with :func:`register`; :func:`model_class`
 turns a name into its class and raises :class:`~floatmoor.core.errors.SceneError` listing the
@@ -30,25 +33,10 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..core.errors import SceneError
+from .terms import (KINDS, SINGLE_TERM_KINDS, FlowTerms, ForceTerms, MatrixTerms, MemoryTerm,
+                    RestoringTerms, StripTerm, as_kernel_array, empty_strips)
 
-__all__ = ["ForceModel", "SetupContext", "KernelAssembly", "REGISTRY", "register", "model_class",
-           "PART_NAMES", "N_PARTS"]
-
-# Slots of the per-model force array the kernel fills at every evaluation.  Time-series models
-# (first-order waves, drift) occupy the slots from PART_SERIES on, in their order of assembly.
-PART_HYDROSTATICS = 0
-PART_MOORING = 1
-PART_DAMPING_LINEAR = 2
-PART_DAMPING_QUADRATIC = 3
-PART_RADIATION = 4
-PART_WIND = 5
-PART_CURRENT = 6
-PART_SLENDER = 7
-PART_SERIES = 8
-MAX_SERIES = 4
-N_PARTS = PART_SERIES + MAX_SERIES
-PART_NAMES = ("hydrostatics", "mooring", "damping_linear", "damping_quadratic", "radiation",
-              "wind", "current", "slender_elements")
+__all__ = ["REGISTRY", "ForceModel", "KernelAssembly", "SetupContext", "model_class", "register"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -62,6 +50,10 @@ class SetupContext:
     yaw0 : float, the body heading (rad) at which the wave loads are evaluated.
     options : the ``forces:`` settings (:class:`floatmoor.io.forces_section.ForcesSpec` or None).
     waves : :class:`floatmoor.forces.waves.WaveComponents` shared by the wave models, or None.
+    inputs : :class:`floatmoor.io.build.ModelInputs`, the vessel data after the scene's rules
+        that combine models (viscous drift: extra linear damping, hull current coefficients
+        without double counting, corrected mean drift), applied once where the scene's models
+        are chosen; None: the vessel's data as they are (a model set up on its own).
     """
 
     built: Any
@@ -72,6 +64,7 @@ class SetupContext:
     yaw0: float = 0.0
     options: Any = None
     waves: Any = None
+    inputs: Any = None
 
     @property
     def n_samples(self) -> int:
@@ -107,7 +100,7 @@ class ForceModel:
     def force(self, t: float, pose, velocity, out) -> None:  # pragma: no cover
         raise NotImplementedError
 
-    def contribute(self, asm: "KernelAssembly") -> None:  # pragma: no cover
+    def contribute(self, asm: KernelAssembly) -> None:  # pragma: no cover
         raise NotImplementedError
 
     def mean_force(self) -> np.ndarray:
@@ -156,62 +149,166 @@ def model_class(name: str, *, file=None, key: str = "forces") -> type[ForceModel
                          name) from None
 
 
-def _empty(*shape, dtype=float):
-    return np.zeros(shape, dtype=dtype)
+def _sum(arrays, shape):
+    """Sum of ``arrays`` in their order (the array itself for one: no arithmetic)."""
+    if not arrays:
+        return np.zeros(shape)
+    out = arrays[0]
+    for a in arrays[1:]:
+        out = out + a
+    return out
 
 
 @dataclass(kw_only=True)
 class KernelAssembly:
-    """The plain arrays the time-domain kernel reads, filled by the models' ``contribute``.
+    """The force terms of a run, by kind (:mod:`floatmoor.forces.terms`), filled by the models'
+    ``contribute``; :meth:`force_terms` stacks them into the kernel's bundle.
 
-    Everything absent stays empty (size 0) and the kernel skips it.  Units SI; matrices 6x6
-    about the body reference point.
+    ``inertia`` M + A_inf (6, 6); ``wf_velocity`` (n_samples, 6) the linear wave-frequency body
+    velocity removed from the body velocity in the relative-flow terms when
+    ``has_wf_velocity``.  Units SI; matrices 6x6 about the body reference point.
     """
 
     n_samples: int
     sample_dt: float
-    inertia: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))      # M + A_inf
-    const_force: np.ndarray = field(default_factory=lambda: np.zeros(6))       # buoyancy - weight
-    restoring: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))    # C (force -C x)
-    damping_linear: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
-    damping_quadratic: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
-    has_damping_linear: bool = False
-    has_damping_quadratic: bool = False
-    # radiation memory: K[p, j] = K_{i(p) j(p)}(j dt), j = 0..n_k-1
-    ret_kernel: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
-    ret_i: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
-    ret_j: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
-    # time series (n_series, n_samples, 6), ramp included
-    series: np.ndarray | None = None
-    series_names: list = field(default_factory=list)
-    # wind and current: speed series / constant, heading (rad, earth), coefficient table
-    wind_speed: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    wind_heading: float = 0.0
-    wind_table_heading: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    wind_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
-    current_speed: float = 0.0
-    current_heading: float = 0.0
-    current_table_heading: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    current_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
-    has_wind: bool = False
-    has_current: bool = False
-    # linear wave-frequency body velocity (n_samples, 6), earth axes: removed from the body
-    # velocity in the wind and current relative velocity (seed 002 eq. 2.24, 2.26); empty: none
+    inertia: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     wf_velocity: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
     has_wf_velocity: bool = False
-    # mooring (quasi-static)
-    mooring: Any = None
-    fail_time: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    # slender elements: (fel, iel, eta, u, a, par, cur, ramp), see floatmoor.forces.slender
-    slender: Any = None
+    terms: dict = field(default_factory=lambda: {k: [] for k in KINDS})
+    """kind -> list of (model name, arrays) in the order of contribution."""
+
+    # -- adding terms (called by the models' contribute) ----------------------------------------
+    def _add(self, kind: str, name: str, payload) -> None:
+        if kind in SINGLE_TERM_KINDS and self.terms[kind]:
+            raise ValueError(f"{name}: a second {kind} term ({self.terms[kind][0][0]} has one); "
+                             f"the kernel takes one {kind} term")
+        if name in self.part_names:
+            raise ValueError(f"{name}: a model adds one force term")
+        self.terms[kind].append((name, payload))
+
+    def add_restoring(self, name: str, const, matrix) -> None:
+        """``T (const - matrix x)`` (N, N m; yaw-following frame, turned to earth axes)."""
+        self._add("restoring", name, (np.asarray(const, float).reshape(6),
+                                      np.asarray(matrix, float).reshape(6, 6)))
+
+    def add_mooring(self, name: str, system, fail_time) -> None:
+        """Quasi-static lines of a :class:`floatmoor.mooring.MooringSystem`, each inactive from
+        its ``fail_time`` (s; inf: intact) on."""
+        self._add("mooring", name, (system, np.asarray(fail_time, float)))
+
+    def add_damping(self, name: str, matrix) -> None:
+        """``-T matrix nu`` (N s/m ...), on the yaw-frame velocity."""
+        self._add("damping", name, np.asarray(matrix, float).reshape(6, 6))
+
+    def add_quadratic_damping(self, name: str, matrix) -> None:
+        """``F_i = -T sum_j matrix_ij nu_j |nu_j|`` on the yaw-frame velocity."""
+        self._add("quadratic_damping", name, np.asarray(matrix, float).reshape(6, 6))
+
+    def add_memory(self, name: str, kernel, i, j) -> None:
+        """Radiation memory: ``kernel`` (n_pairs, n_k) K_ij at 0, dt, 2 dt, ... for the DOF
+        pairs ``i``, ``j``."""
+        self._add("memory", name, (np.asarray(kernel, float), np.asarray(i, np.int64),
+                                   np.asarray(j, np.int64)))
+
+    def add_relative_flow(self, name: str, *, speed, heading: float, table_heading,
+                          table) -> None:
+        """``C(theta_rel) |U - v|^2``: ``speed`` (m/s) a constant or (n_samples,) at the
+        half-step samples, ``heading`` (rad, earth), body-axis table (n, 6) at
+        ``table_heading`` (n,) rad."""
+        speed = np.asarray(speed, float)
+        if speed.ndim and speed.shape != (self.n_samples,):
+            raise ValueError(f"{name}: speed shape {speed.shape}, expected ({self.n_samples},)")
+        self._add("relative_flow", name, (speed, float(heading),
+                                          np.asarray(table_heading, float),
+                                          np.asarray(table, float)))
+
+    def add_strips(self, name: str, arrays: tuple) -> None:
+        """A strip set: the packed arrays (fel, iel, eta, u, a, par, cur, ramp) of
+        :func:`floatmoor.forces.slender_kernels.slender_packed_into`."""
+        self._add("strips", name, tuple(arrays))
 
     def add_series(self, name: str, values: np.ndarray) -> None:
         """Add a precomputed force series (n_samples, 6) (N, N m), ramp already applied."""
         values = np.asarray(values, float)
         if values.shape != (self.n_samples, 6):
             raise ValueError(f"series {name}: shape {values.shape}, expected ({self.n_samples}, 6)")
-        if len(self.series_names) >= MAX_SERIES:
-            raise ValueError(f"at most {MAX_SERIES} time-series force models")
-        s = values[None]
-        self.series = s if self.series is None else np.concatenate([self.series, s])
-        self.series_names.append(name)
+        self._add("series", name, values)
+
+    # -- what the solver reads ------------------------------------------------------------------
+    @property
+    def part_names(self) -> list:
+        """Model name of each row of the kernel's per-term force array (kind order)."""
+        return [name for k in KINDS for name, _ in self.terms[k]]
+
+    @property
+    def part_kinds(self) -> list:
+        return [k for k in KINDS for _ in self.terms[k]]
+
+    @property
+    def restoring(self) -> np.ndarray:
+        """Total restoring matrix (6, 6) of the restoring terms (statics, stability)."""
+        return _sum([m for _, (_, m) in self.terms["restoring"]], (6, 6))
+
+    @property
+    def const_force(self) -> np.ndarray:
+        """Total constant force (6,) of the restoring terms (yaw-following frame)."""
+        return _sum([c for _, (c, _) in self.terms["restoring"]], (6,))
+
+    @property
+    def damping_linear(self) -> np.ndarray:
+        return _sum([m for _, m in self.terms["damping"]], (6, 6))
+
+    @property
+    def damping_quadratic(self) -> np.ndarray:
+        return _sum([m for _, m in self.terms["quadratic_damping"]], (6, 6))
+
+    @property
+    def has_damping_quadratic(self) -> bool:
+        return bool(self.terms["quadratic_damping"])
+
+    @property
+    def mooring(self):
+        """The :class:`floatmoor.mooring.MooringSystem` of the mooring term, or None."""
+        t = self.terms["mooring"]
+        return t[0][1][0] if t else None
+
+    @property
+    def fail_time(self) -> np.ndarray:
+        t = self.terms["mooring"]
+        return t[0][1][1] if t else np.zeros(0)
+
+    def force_terms(self) -> ForceTerms:
+        """The numba bundle of every term but the mooring's (built once per run)."""
+        c = as_kernel_array
+        t = self.terms
+        rest = RestoringTerms(c(np.array([a for _, (a, _) in t["restoring"]]).reshape(-1, 6)),
+                              c(np.array([m for _, (_, m) in t["restoring"]]).reshape(-1, 6, 6)))
+        damp = MatrixTerms(c(np.array([m for _, m in t["damping"]]).reshape(-1, 6, 6)))
+        quad = MatrixTerms(c(np.array([m for _, m in t["quadratic_damping"]]).reshape(-1, 6, 6)))
+        if t["memory"]:
+            kernel, i, j = t["memory"][0][1]
+            mem = MemoryTerm(True, c(kernel if kernel.size else np.zeros((0, 1))), c(i), c(j))
+        else:
+            mem = MemoryTerm(False, np.zeros((0, 1)), np.zeros(0, np.int64),
+                             np.zeros(0, np.int64))
+        flows = [p for _, p in t["relative_flow"]]
+        n = len(flows)
+        varies = np.array([p[0].ndim == 1 for p in flows], np.bool_)
+        m = self.n_samples if varies.any() else 1
+        nh = np.array([p[2].shape[0] for p in flows], np.int64)
+        n_max = int(nh.max()) if n else 1
+        speed = np.zeros((n, m))
+        th = np.zeros((n, n_max))
+        tab = np.zeros((n, n_max, 6))
+        for q, (sp, _, h, tb) in enumerate(flows):
+            speed[q] = sp
+            th[q, :h.shape[0]] = h
+            tab[q, :h.shape[0]] = tb
+        wf = self.wf_velocity if self.has_wf_velocity else np.zeros((1, 6))
+        flow = FlowTerms(speed, varies, np.array([p[1] for p in flows], float).reshape(n), th,
+                         tab, nh, bool(self.has_wf_velocity), c(wf, float))
+        strips = (StripTerm(True, *(c(a) for a in t["strips"][0][1])) if t["strips"]
+                  else empty_strips())
+        series = (c(np.array([s for _, s in t["series"]])) if t["series"]
+                  else np.zeros((0, 1, 6)))
+        return ForceTerms(rest, damp, quad, mem, flow, strips, series)

@@ -1,6 +1,6 @@
 """Wind and current forces, quadratic in the velocity of the flow relative to the body.
 
-``F = C(theta_rel) |U - v|^2`` (seed 002 eq. 2.24 and 2.26 without their linearisation, so that
+``F = C(theta_rel) |U - v|^2`` (Wang (2016) eq. 2.24 and 2.26 without their linearisation, so that
 the wind and current damping ``-2 C U v`` come out of the model): ``U`` the flow velocity
 (horizontal, earth axes), ``v`` the horizontal low-frequency velocity of the body reference
 point (by default the solver removes its linear wave-frequency velocity from the body velocity,
@@ -57,7 +57,7 @@ class _FlowModel(ForceModel):
         """Add the force at time t (s) for the pose and the pose rate ``velocity`` (earth).
 
         ``wf_velocity`` (6,), optional: the wave-frequency part of ``velocity`` to remove, so that
-        the flow is taken relative to the low-frequency velocity (seed 002 eq. 2.24, 2.26; the
+        the flow is taken relative to the low-frequency velocity (Wang (2016) eq. 2.24, 2.26; the
         solver passes its linear WF velocity, see :mod:`floatmoor.solvers.wf_velocity`)."""
         coef = np.zeros(6)
         vx, vy = float(velocity[0]), float(velocity[1])
@@ -139,11 +139,8 @@ class Wind(_FlowModel):
         return ["force", "wind_speed"]
 
     def contribute(self, asm: KernelAssembly):
-        asm.has_wind = True
-        asm.wind_speed = self.speed
-        asm.wind_heading = self.heading
-        asm.wind_table_heading = self.table_heading
-        asm.wind_table = self.table
+        asm.add_relative_flow(self.name, speed=self.speed, heading=self.heading,
+                              table_heading=self.table_heading, table=self.table)
 
 
 @register
@@ -156,8 +153,9 @@ class Current(_FlowModel):
         spec = scene.environment.current
         v = ctx.built.vessel
         self.table_heading, self.table = _table(v, "current_coefficients", "current")
-        from .slender import hull_current_table  # double counting (seed 002 section 6.1.2)
-        self.table = hull_current_table(ctx, self.table, v)
+        inputs = ctx.inputs  # the scene's rules (double counting, Wang (2016) section 6.1.2)
+        if inputs is not None and inputs.current_table is not None:
+            self.table = np.ascontiguousarray(inputs.current_table, float)
         self.mean_speed = float(np.asarray(current_speed(spec, np.array([0.0]),
                                                           scene.site.water_depth)).reshape(-1)[0])
         self.heading = float(spec.heading)
@@ -167,8 +165,5 @@ class Current(_FlowModel):
         return self.mean_speed
 
     def contribute(self, asm: KernelAssembly):
-        asm.has_current = True
-        asm.current_speed = self.mean_speed
-        asm.current_heading = self.heading
-        asm.current_table_heading = self.table_heading
-        asm.current_table = self.table
+        asm.add_relative_flow(self.name, speed=self.mean_speed, heading=self.heading,
+                              table_heading=self.table_heading, table=self.table)

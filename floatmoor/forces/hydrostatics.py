@@ -45,8 +45,7 @@ class Hydrostatics(ForceModel):
         return self.const_force.copy()
 
     def contribute(self, asm: KernelAssembly):
-        asm.restoring = self.restoring
-        asm.const_force = self.const_force
+        asm.add_restoring(self.name, self.const_force, self.restoring)
 
 
 @register
@@ -55,8 +54,9 @@ class LinearDamping(ForceModel):
     description = "linear damping matrix of the vessel file"
 
     def setup(self, ctx: SetupContext):
-        from .slender import linear_damping_matrix  # extra damping, seed 002 section 6.6
-        self.matrix = linear_damping_matrix(ctx, np.array(ctx.built.vessel.linear_damping, float))
+        inputs = ctx.inputs  # the scene's rules (extra damping, Wang (2016) section 6.6)
+        D = None if inputs is None else inputs.linear_damping
+        self.matrix = np.array(ctx.built.vessel.linear_damping if D is None else D, float)
         self._freeze()
 
     def force(self, t, pose, velocity, out):
@@ -68,8 +68,7 @@ class LinearDamping(ForceModel):
         return self.matrix.copy()
 
     def contribute(self, asm: KernelAssembly):
-        asm.damping_linear = self.matrix
-        asm.has_damping_linear = True
+        asm.add_damping(self.name, self.matrix)
 
 
 @register
@@ -92,5 +91,4 @@ class QuadraticDamping(ForceModel):
         return self.matrix * (np.sqrt(8.0 / np.pi) * s)[None, :]
 
     def contribute(self, asm: KernelAssembly):
-        asm.damping_quadratic = self.matrix
-        asm.has_damping_quadratic = True
+        asm.add_quadratic_damping(self.name, self.matrix)

@@ -54,5 +54,4 @@ class QuasiStaticMooring(ForceModel):
         return ["force", "line_tension", "anchor_tension"]
 
     def contribute(self, asm: KernelAssembly):
-        asm.mooring = self.system
-        asm.fail_time = self.fail_time
+        asm.add_mooring(self.name, self.system, self.fail_time)

@@ -1,6 +1,6 @@
 """Radiation memory (Cummins): ``F = -int_0^t K(t - tau) x'(tau) dtau`` and ``A_inf``.
 
-``K(t) = (2/pi) int B(w) cos(w t) dw`` (seed 002 eq. 2.58) from the database's radiation damping
+``K(t) = (2/pi) int B(w) cos(w t) dw`` (Wang (2016) eq. 2.58) from the database's radiation damping
 (:func:`floatmoor.hydro.retardation_function`), sampled at ``t_j = j dt`` up to the cut-off
 time (where every significant K_ij has decayed below 0.1 % of its peak,
 :func:`floatmoor.hydro.cutoff_time`; at most ``max_memory`` s, default 120 s).  DOF pairs whose peak is below
@@ -116,6 +116,4 @@ class Radiation(ForceModel):
         out += to_earth(f, yaw)
 
     def contribute(self, asm: KernelAssembly):
-        asm.ret_kernel = self.kernel
-        asm.ret_i = self.pair_i
-        asm.ret_j = self.pair_j
+        asm.add_memory(self.name, self.kernel, self.pair_i, self.pair_j)

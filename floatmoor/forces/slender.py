@@ -1,4 +1,4 @@
-"""Slender elements: Morison drag strips on the hull (viscous drift, seed 002 chapter 6).
+"""Slender elements: Morison drag strips on the hull (viscous drift, Wang (2016) chapter 6).
 
 The physics and the kernel are in :mod:`floatmoor.forces.slender_kernels`; the vessel-file
 section in :mod:`floatmoor.forces.slender_config`.  This module builds
@@ -41,7 +41,7 @@ __all__ = ["SlenderGeometry", "KinematicsTable", "slender_geometry", "build_kine
            "slender_force", "covered_current_dofs", "current_table_without",
            "angular_velocity_earth", "DOF_NAMES", "SlenderElements", "hull_current_table",
            "drift_database", "linear_damping_matrix", "viscous_spec",
-           "corrected_drift_database", "viscous_linear_damping"]
+           "corrected_drift_database", "viscous_linear_damping", "hull_current_coefficients"]
 
 DOF_NAMES = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 
@@ -313,7 +313,7 @@ def covered_current_dofs(geom: SlenderGeometry, *, rel_tol: float = 0.01) -> tup
 def current_table_without(table: np.ndarray, dofs, *, vessel_file=None, warn: bool = True
                           ) -> np.ndarray:
     """The hull current coefficient table (n_heading, 6) with the columns ``dofs`` zeroed (all
-    headings), seed 002 section 6.1.2; a :class:`FloatmoorWarning` names the DOFs."""
+    headings), Wang (2016) section 6.1.2; a :class:`FloatmoorWarning` names the DOFs."""
     out = np.array(table, float, copy=True)
     dofs = tuple(dofs)
     for d in dofs:
@@ -321,7 +321,7 @@ def current_table_without(table: np.ndarray, dofs, *, vessel_file=None, warn: bo
     if warn and dofs:
         warnings.warn(f"slender elements carry the current: the current coefficients of "
                       f"{vessel_file or 'the vessel'} are set to zero in "
-                      f"{', '.join(DOF_NAMES[d] for d in dofs)} (double counting, seed 002 "
+                      f"{', '.join(DOF_NAMES[d] for d in dofs)} (double counting, Wang (2016) "
                       f"section 6.1.2; forces: viscous_drift: double_counting: false keeps them)",
                       FloatmoorWarning, stacklevel=2)
     return out
@@ -448,13 +448,18 @@ class SlenderElements(ForceModel):
                 self.ramp)
 
     def contribute(self, asm: KernelAssembly):
-        asm.slender = self.kernel_arrays()
+        asm.add_strips(self.name, self.kernel_arrays())
 
 
 def hull_current_table(ctx, table: np.ndarray, vessel) -> np.ndarray:
+    """:func:`hull_current_coefficients` with the options of a :class:`SetupContext`."""
+    return hull_current_coefficients(viscous_spec(ctx), table, vessel)
+
+
+def hull_current_coefficients(spec, table: np.ndarray, vessel) -> np.ndarray:
     """The hull current coefficients to use: zeroed in the DOFs the slender elements cover when
-    the scene uses them with ``double_counting: true`` (seed 002 section 6.1.2)."""
-    spec = viscous_spec(ctx)
+    ``spec`` (the scene's ``viscous_drift`` options or None) selects them with
+    ``double_counting: true`` (Wang (2016) section 6.1.2); else ``table`` itself."""
     if spec is None or getattr(spec, "model", "none") != "slender_elements" \
             or not getattr(spec, "double_counting", True):
         return table
@@ -519,13 +524,13 @@ def refuse_qtf_with_correction(spec, drift, *, file, key: str) -> bool:
 
 def linear_damping_matrix(ctx, D: np.ndarray) -> np.ndarray:
     """The vessel's linear damping, raised in surge and sway by ``extra_damping`` (fraction)
-    for the correction-formula case (seed 002 section 6.6)."""
+    for the correction-formula case (Wang (2016) section 6.6)."""
     return viscous_linear_damping(viscous_spec(ctx), D)
 
 
 def viscous_linear_damping(spec, D: np.ndarray) -> np.ndarray:
     """``D`` raised in surge and sway by ``spec.extra_damping`` when ``spec`` selects the
-    correction formula (seed 002 section 6.6, table 6.10); else ``D`` itself."""
+    correction formula (Wang (2016) section 6.6, table 6.10); else ``D`` itself."""
     if spec is None or getattr(spec, "model", "none") != "correction_formula" \
             or not getattr(spec, "extra_damping", 0.0):
         return D

@@ -4,7 +4,7 @@
 slender_elements:
   n_strips: 10                    # optional default strips per element (over its wetted part)
   quadratic_drag_per_length:      # SIMO-style C = 0.5 rho C_D D per local axis, N s^2/m^3
-    column:  {c2x: 0.0, c2y: 7687.5, c2z: 8610.0}        # (seed 002 table 6.3)
+    column:  {c2x: 0.0, c2y: 7687.5, c2z: 8610.0}        # (Wang (2016) table 6.3)
   drag_coefficients:              # or: C_D and the width D (m) per local axis (y, z; x optional)
     pontoon: {cdy: 0.4, dy: 8.625, cdz: 1.6, dz: 14.0}
   dnv_rounded_rectangle:          # or: C_D from DNV-RP-C205 (rectangle with rounded corners,
@@ -22,7 +22,7 @@ End points in body coordinates (m, about the vessel's reference point).  Local a
 :mod:`floatmoor.forces.slender_kernels` (local x from p1 to p2; a pontoon along body y has local
 y = body x and local z = up; a vertical column has local y = body x, local z = body -y).
 
-DNV-RP-C205 (2010) figure 6-? / seed 002 figure 6.2, "4. Rectangle with rounded corners"
+DNV-RP-C205 (2010) figure 6-? / Wang (2016) figure 6.2, "4. Rectangle with rounded corners"
 (Re ~ 1e5): C_D by L/D (rows 0.5, 1, 2, 6) and R/D.  The lookup takes the nearest L/D row and
 the nearest tabulated R/D, as the seed does for its table 6.2 (e.g. L/D 1, R/D 0.24 -> 0.167 ->
 C_D 1.2); ``interpolation: linear`` interpolates in R/D within the nearest row instead.
@@ -42,7 +42,7 @@ __all__ = ["SlenderElementSpec", "parse_slender_elements", "dnv_rounded_rectangl
            "DNV_ROUNDED_RECTANGLE"]
 
 DNV_ROUNDED_RECTANGLE = {
-    # L/D: [(R/D, C_D), ...]  (DNV-RP-C205, as reproduced in seed 002 figure 6.2)
+    # L/D: [(R/D, C_D), ...]  (DNV-RP-C205, as reproduced in Wang (2016) figure 6.2)
     0.5: [(0.0, 2.5), (0.021, 2.2), (0.083, 1.9), (0.250, 1.6)],
     1.0: [(0.0, 2.2), (0.021, 2.0), (0.167, 1.2), (0.333, 1.0)],
     2.0: [(0.0, 1.6), (0.042, 1.4), (0.167, 0.7), (0.50, 0.4)],
@@ -58,7 +58,7 @@ def dnv_rounded_rectangle_cd(l_over_d: float, r_over_d: float, *,
     ----------
     l_over_d : L/D, length along the flow over the width facing it.
     r_over_d : corner radius over the width.
-    interpolation : ``nearest`` (nearest tabulated R/D, as seed 002 table 6.2) or ``linear``
+    interpolation : ``nearest`` (nearest tabulated R/D, as Wang (2016) table 6.2) or ``linear``
         (linear in R/D inside the row, clamped).
 
     The L/D row is the nearest tabulated one (0.5, 1, 2, 6; nearest in log(L/D)).
@@ -151,7 +151,7 @@ def parse_slender_elements(raw, *, file=None, key: str = "slender_elements",
     file : the vessel file (for messages).
     rho : water density (kg/m^3) for C = 0.5 rho C_D D.
     scale : optional {type: (cx, cy, cz)} or {type: {"c2y": value, ...}} overriding all or
-        some coefficients of a type (scene-level tuning, e.g. seed 002 cases 3 and 4).
+        some coefficients of a type (scene-level tuning, e.g. Wang (2016) cases 3 and 4).
 
     Returns
     -------

@@ -1,6 +1,6 @@
 """Numba kernels of the slender-element (Morison strip) drag force, and its kinematics table.
 
-Slender elements (seed 002 section 6.1; SIMO-style): straight line elements fixed to the body,
+Slender elements (Wang (2016) section 6.1; SIMO-style): straight line elements fixed to the body,
 end points ``p1``, ``p2`` in body coordinates (m, about the body reference point).  Local axes:
 ``x`` from p1 to p2; for an element that is not vertical, local ``z`` is the body's ``z`` axis
 made perpendicular to ``x`` ("up") and ``y = z x x``; for a vertical element (|x . z_body| >
@@ -11,7 +11,7 @@ Inertia (optional, off by default: the potential-flow database already carries i
 per unit length, ``cm_j = rho C_M A_j`` (kg/m) and ``a_j`` the wave particle acceleration along
 local axis j (no body-acceleration term).
 
-Force per unit length, quadratic drag per local axis (seed 002 eq. 6.3 and 6.7-6.8)::
+Force per unit length, quadratic drag per local axis (Wang (2016) eq. 6.3 and 6.7-6.8)::
 
     f = sum_j C_j |v_j| v_j e_j,    v_j = e_j . (u_current + u_wave - v_body)
 
@@ -30,7 +30,7 @@ step ``H``, at fixed *levels* z' of the stretched vertical coordinate:
 * Wheeler stretching (default): a point at height z under the surface eta is evaluated at
   ``z' = (z - eta) d / (d + eta)`` (deep water ``z - eta``);
 * constant stretching (``wheeler=False``): ``z' = min(z, 0)``, i.e. linear theory below the
-  mean water line and the MWL velocity in the splash zone (seed 002 section 2.1.2, Chakrabarti).
+  mean water line and the MWL velocity in the splash zone (Wang (2016) section 2.1.2, Chakrabarti).
 
 In the loop the velocity at a strip is interpolated linearly in time, along the element between
 its stations, and in z' between levels (clamped to the deepest level below it).  As for the

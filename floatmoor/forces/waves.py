@@ -210,8 +210,9 @@ class DriftNewman(_SeriesModel):
     def setup(self, ctx: SetupContext):
         v = ctx.built.vessel
         comp = ctx.waves
-        from .slender import drift_database  # viscous correction formula, eq. 6.6
-        db = drift_database(ctx, v.database)
+        inputs = ctx.inputs  # the scene's rules (correction formula, Wang (2016) eq. 6.6)
+        db = v.database if inputs is None or inputs.drift_database is None \
+            else inputs.drift_database
         if "mean_drift_force" not in db:
             raise SceneError(v.file, "database", "a database with mean_drift_force for the "
                              "drift model (or exclude drift in the forces section)")

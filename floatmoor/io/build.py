@@ -20,7 +20,7 @@ from ..mooring.system import MooringSystem
 from .mooring_section import parse_mooring
 from .scene import Scene, load_scene
 
-__all__ = ["BuiltScene", "build", "net_buoyancy_force"]
+__all__ = ["BuiltScene", "ModelInputs", "build", "model_inputs", "net_buoyancy_force"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -39,6 +39,10 @@ class BuiltScene:
     mooring: MooringSystem | None = None
     static_force: np.ndarray = field(default_factory=lambda: np.zeros(6))
     displaced_volume: float | None = None
+
+    def model_inputs(self, options, names, *, yaw: float = 0.0) -> ModelInputs:
+        """:func:`model_inputs` of this scene (the solvers call it without importing io)."""
+        return model_inputs(self, options, names, yaw=yaw)
 
 
 def net_buoyancy_force(vessel: Vessel, water_density: float, gravity: float = GRAVITY):
@@ -107,3 +111,41 @@ def build(scene: Scene | str | os.PathLike, *, failed_lines=None, need_vessel: b
         static_force, vol = net_buoyancy_force(vessel, scene.site.water_density, scene.site.gravity)
     return BuiltScene(scene=scene, vessel=vessel, mooring=mooring, static_force=static_force,
                       displaced_volume=vol)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ModelInputs:
+    """Vessel data for the force models after the scene's rules that combine models.
+
+    The viscous-drift rules (``forces: viscous_drift``, Wang (2016) chapter 6): with the
+    correction formula, the mean drift coefficients corrected by eq. 6.6 (``drift_database``,
+    used by Newman's drift) and the linear damping raised in surge and sway (section 6.6,
+    ``linear_damping``); with slender elements and ``double_counting: true``, the hull current
+    coefficients zeroed in the DOFs the elements carry (section 6.1.2, ``current_table``).
+    A field is None when its model is not in the run (the model then reads the vessel).
+    """
+
+    linear_damping: np.ndarray | None = None
+    current_table: np.ndarray | None = None
+    drift_database: object = None
+
+
+def model_inputs(built: BuiltScene, options, names, *, yaw: float = 0.0) -> ModelInputs:
+    """The :class:`ModelInputs` of a run with the force models ``names`` (the scene's
+    ``forces`` settings ``options``, body heading ``yaw`` in rad): the one place where the
+    rules combining models are applied."""
+    from ..forces.slender import (corrected_drift_database, hull_current_coefficients,
+                                  viscous_linear_damping)
+
+    v = built.vessel
+    spec = getattr(options, "viscous_drift", None)
+    names = set(names)
+    damping = current = drift = None
+    if "damping_linear" in names:
+        damping = viscous_linear_damping(spec, np.array(v.linear_damping, float))
+    if "current" in names and v.current_coefficients is not None:
+        current = hull_current_coefficients(
+            spec, np.ascontiguousarray(v.current_coefficients.coefficients, float), v)
+    if "drift_newman" in names:
+        drift = corrected_drift_database(built, spec, v.database, yaw=yaw)
+    return ModelInputs(linear_damping=damping, current_table=current, drift_database=drift)

@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import Iterable, NamedTuple, Sequence
 
 import numpy as np
 import xarray as xr
@@ -39,7 +39,7 @@ from ..core.frames import rotation_matrix_into
 from .catenary import (OUT_HA, OUT_HF, OUT_ITER, OUT_K11, OUT_K12, OUT_K21, OUT_K22, OUT_LB,
                        OUT_SIZE, OUT_VA, OUT_VF, STATUS_MESSAGES, line_kernel, line_profile)
 
-__all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel"]
+__all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -231,6 +231,21 @@ def system_force_kernel(pose, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, l
     return -1
 
 
+class CatenaryArrays(NamedTuple):
+    """The lines of a :class:`MooringSystem` as the numba bundle of the time loop (the
+    arguments of :func:`system_force_kernel` from ``anchors`` to ``seabed``)."""
+
+    anchors: np.ndarray
+    fairleads: np.ndarray
+    seg_L: np.ndarray
+    seg_EA: np.ndarray
+    seg_w: np.ndarray
+    seg_P: np.ndarray
+    line_start: np.ndarray
+    cb: np.ndarray
+    seabed: np.ndarray
+
+
 @njit(cache=True)
 def _cx(v, a, b):
     """Entry (a, b) of the cross-product matrix of v."""
@@ -372,6 +387,14 @@ class MooringSystem:
         """Both at once (one catenary solve per line)."""
         self._evaluate(pose, True)
         return self._force.copy(), self._stiff.copy()
+
+    def catenary_arrays(self) -> CatenaryArrays:
+        """The lines as a :class:`CatenaryArrays` bundle (C-contiguous writeable copies)."""
+        c = np.ascontiguousarray
+        return CatenaryArrays(c(self.anchors, float).copy(), c(self.fairleads, float).copy(),
+                              self.seg_L.copy(), self.seg_EA.copy(), self.seg_w.copy(),
+                              self.seg_P.copy(), c(self.line_start, np.int64).copy(),
+                              self.cb.copy(), c(self.seabed, np.bool_).copy())
 
     def fairlead_positions(self, pose) -> np.ndarray:
         """Earth coordinates of the fairleads at ``pose``, (n, 3)."""

@@ -1,4 +1,4 @@
-"""Finite-element mooring lines coupled to the 6-DOF time-domain solver.
+"""Finite-element mooring lines coupled to the 6-DOF time-domain solver (staggered coupling).
 
 A scene selects FE lines with ``mooring: {model: finite-element}`` (all lines) or per line
 ``lines[i].model`` (:mod:`floatmoor.mooring.fe.options`).  :func:`setup` builds them
@@ -77,7 +77,8 @@ from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import FEBody, add_line_wrench, body_accept, body_advance, line_list
 from ..mooring.system import system_force_kernel
-from .td_kernel import _pose_rate, start_state, td_scratch, td_steps
+from .td_kernel import (STATUS_CATENARY, STATUS_OK, STATUS_TENSION, _pose_rate, new_run_state,
+                        set_status, td_steps)
 
 __all__ = ["FECoupling", "FERun", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
 
@@ -252,39 +253,39 @@ def _release_failed(t, fe, fail_time, body):
 
 
 @njit(cache=True)
-def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
-                 has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
-                 wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
-                 has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur,
-                 sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
-                 cb, seabed, active, fail_time, mbs, warm, guard, tension_guard, record_parts,
-                 motion, velocity, t_fair, t_anchor, parts_out, status,
-                 fe, body, lines):
+def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
     """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring).
 
-    Arguments up to ``status`` as for ``td_kernel`` (``status`` (4,) here; the catenary data
-    hold every line, FE lines included, ``active`` their state).  FE part: ``fe``
-    (:class:`FERun`: positions of the FE lines, their catenary mask and warm starts, line
-    steps per body step, the records out), ``body``
-    (:class:`~floatmoor.mooring.fe.multi.FEBody`: ``Q`` the generalised force of the FE lines
-    in the started state, updated every step; ``arm`` and ``forces`` the lever arms and end
-    forces of the started state; ``on`` True for the intact FE lines, set False at their
-    ``fail_time``) and ``lines`` (typed list of
+    Body side: the bundles of :func:`floatmoor.solvers.td_kernel.td_steps` (``body``,
+    ``terms``, ``lines``, ``state`` at the start state with ``has_mcorr``, ``out`` with
+    ``out.status`` (4,) here; the catenary data hold every line, FE lines included,
+    ``lines.active`` their state).  FE side: ``fe`` (:class:`FERun`: positions of the FE lines,
+    their catenary mask and warm starts, line steps per body step, the records out),
+    ``fe_body`` (:class:`~floatmoor.mooring.fe.multi.FEBody`: ``Q`` the generalised force of
+    the FE lines in the started state, updated every step; ``arm`` and ``forces`` the lever arms
+    and end forces of the started state; ``on`` True for the intact FE lines, set False at their
+    ``fail_time``) and ``fe_lines`` (typed list of
     :class:`~floatmoor.mooring.fe.bundles.LineBundle`).  Status 5 (:data:`STATUS_FE`): FE
     step failed, ``status[2]`` the FE line, ``status[3]`` the kernel code, the line's
     ``work.info`` the time and node.
     """
-    (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
-     a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])
-    x = x0.copy()
-    v = v0.copy()
-    start_state(x0, v0, x, v, hist)
+    n_steps = body.n_steps
+    dt = body.dt
+    tension_guard = body.tension_guard
+    x = state.x
+    v = state.v
+    mcorr = state.mcorr
+    fail_time = lines.fail_time
+    mbs = lines.mbs
+    t_fair = out.t_fair
+    t_anchor = out.t_anchor
+    status = out.status
     for k in range(status.shape[0]):
         status[k] = 0
     fe_index = fe.index
     active_fe = fe.active
     warm_fe = fe.warm
-    Q = body.Q
+    Q = fe_body.Q
     n_fe = fe_index.shape[0]
     rec = np.zeros(13)
     prate = np.zeros(6)
@@ -292,37 +293,27 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
     fq = np.zeros(6)
     for n in range(n_steps + 1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
-        _release_failed(n * dt, fe, fail_time, body)
+        _release_failed(n * dt, fe, fail_time, fe_body)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
-        bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
-                                  line_start, cb, seabed, active_fe, warm_fe, False, work, rot,
-                                  line_out, fq, stiff)
+        cat = lines.cat
+        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                                  active_fe, warm_fe, False, state.work, state.rot,
+                                  state.line_out, fq, state.stiff)
         if bad >= 0:
-            status[0] = 4
-            status[1] = n
-            status[2] = bad
+            set_status(status, STATUS_CATENARY, n, bad)
             return
         for k in range(6):
             mcorr[k] = Q[k] - fq[k]
-        td_steps(n, n + 1, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
-                 dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
-                 wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th,
-                 cur_tab, has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par,
-                 sl_cur, sl_ramp, has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P,
-                 line_start, cb, seabed, active, fail_time, mbs, warm, guard, tension_guard,
-                 record_parts, motion, velocity, t_fair, t_anchor, parts_out, status, True, mcorr,
-                 x, v, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom,
-                 g, q, a)
-        if status[0] != 0:
+        td_steps(n, n + 1, body, terms, lines, state, out)
+        if status[0] != STATUS_OK:
             return
         # row n: the FE tensions at t_n replace the catenary's for the FE lines
-        _record_fe(n, fe, body.on, lines, rec, t_fair, t_anchor)
+        _record_fe(n, fe, fe_body.on, fe_lines, rec, t_fair, t_anchor)
         for i in range(n_fe):
             j = fe_index[i]
             if t_fair[n, j] > tension_guard * mbs[j]:
-                status[0] = 3
-                status[1] = n
-                status[2] = j
+                set_status(status, STATUS_TENSION, n, j)
                 return
         if n == n_steps:
             return
@@ -338,20 +329,22 @@ def td_fe_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl,
         vel[3] = prate[3] * cps * cph - prate[4] * sps
         vel[4] = prate[3] * sps * cph + prate[4] * cps
         vel[5] = prate[5] - prate[3] * sph
-        st = body_advance((n + 1) * dt, dt, fe.nsub, fe.max_split, x, vel, body, lines)
+        st = body_advance((n + 1) * dt, dt, fe.nsub, fe.max_split, x, vel, fe_body,
+                          fe_lines)
         if st < 0:
             status[0] = STATUS_FE
             status[1] = n + 1
-            status[2] = body.fail[0]
+            status[2] = fe_body.fail[0]
             status[3] = st
             return
-        body_accept(body.on, lines)
+        body_accept(fe_body.on, fe_lines)
 
 
-def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
-    """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the arguments of
-    ``td_kernel`` (``td_args``, status last).  Returns ``(status (4,), fe_out (3, n+1,
-    n_lines))``; the FE channels are NaN for quasi-static lines.
+def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int):
+    """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
+    ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
+    the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
+    n+1, n_lines))``; the FE channels are NaN for quasi-static lines.
 
     Raises
     ------
@@ -371,7 +364,7 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     # generalised force of the started lines (dynamic EA), as body_advance will report it
     ends = np.array([ln.fn[-1] for ln in lines])
     Q = np.ascontiguousarray(fm._sum(np.asarray(x0, float), ends))
-    n_steps = td_args[0]
+    n_steps = body.n_steps
     status = np.zeros(4, np.int64)
     active_fe = np.zeros(n_lines, np.bool_)
     active_fe[c.index] = True
@@ -384,16 +377,18 @@ def run(c: FECoupling, td_args: tuple, *, x0, n_lines: int):
     nf = len(lines)
     on = np.ones(nf, np.bool_)
     fm.counters = np.zeros((nf, 2))
-    body = FEBody(fair_b=np.ascontiguousarray(fm.fairleads_body), R=np.zeros((3, 3)),
-                  rf=np.zeros((nf, 3)), vf=np.zeros((nf, 3)), arm=arm, Q=Q, forces=forces,
-                  on=on, fail=np.zeros(1, np.int64), counters=fm.counters)
+    out = out._replace(status=status)
+    st = new_run_state(body, terms, moor, out, has_mcorr=True)
+    fe_body = FEBody(fair_b=np.ascontiguousarray(fm.fairleads_body), R=np.zeros((3, 3)),
+                     rf=np.zeros((nf, 3)), vf=np.zeros((nf, 3)), arm=arm, Q=Q, forces=forces,
+                     on=on, fail=np.zeros(1, np.int64), counters=fm.counters)
     fe = FERun(index=np.ascontiguousarray(c.index), active=active_fe,
                warm=np.zeros((n_lines, 2)), nsub=int(c.substeps),
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan))
-    td_fe_kernel(*td_args[:-1], status, fe, body, line_list(lines))
+    td_fe_kernel(body, terms, moor, st, out, fe, fe_body, line_list(lines))
     fm.on[:] = on
-    t_end = int(status[1]) * td_args[1]
+    t_end = int(status[1]) * body.dt
     for ln in lines:
         ln.set_time(t_end)
     return status, fe.records

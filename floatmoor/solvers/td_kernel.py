@@ -1,11 +1,11 @@
 """The numba time loop of the coupled 6-DOF time-domain solver (one kernel, no allocation).
 
-Equation of motion (seed 002 eq. 2.56; Cummins form) for the pose ``x`` = [x, y, z, roll,
+Equation of motion (Wang (2016) eq. 2.56; Cummins form) for the pose ``x`` = [x, y, z, roll,
 pitch, yaw] of the body reference point and its velocity ``nu`` in the yaw-following frame
 (``x'`` = [Rz(yaw) nu_xy, nu_z, nu_roll, nu_pitch, nu_yaw], small roll and pitch):
 
     (M + A_inf) nu' + c(nu) = T' (F_0 - C x) + T' F_moor(x) - D_l nu - D_q nu|nu|
-        - int_0^t K(t - s) nu(s) ds + T' (F_wave1 + F_drift + F_wind + F_current)
+        - int_0^t K(t - s) nu(s) ds + T' (F_wave1 + F_drift + F_wind + F_current + ...)
 
 with P = (M + A_inf) nu, c = [-r P_sway, r P_surge, 0, 0, 0, u P_sway - v P_surge] the terms of
 the frame turning at the yaw rate r (no work, earth-frame horizontal momentum kept), and T'
@@ -31,115 +31,163 @@ above ~5 s, so dt = 0.1 s is far inside the stability limit and the step is set 
 (wave periods), where a 4th-order method is cheap.  Implicit Newmark-type schemes pay off only
 for stiff FE line models (not used with quasi-static lines).
 
-Status codes returned in ``status[0]`` (``status[1]`` the step, ``status[2]`` the DOF or line):
-0 ok, 1 NaN/inf in the state, 2 a DOF beyond its guard limit, 3 a line tension beyond
-``tension_guard`` x MBS, 4 a catenary solve failed.
+The forces are summed by kind of term (:mod:`floatmoor.forces.terms`): the kernel loops over
+the kinds in a fixed order and over each kind's terms, writing one row of ``parts`` per term;
+the total force is the sum of the rows in that order.  The kernels take the bundles of
+:mod:`floatmoor.forces.terms` and :mod:`floatmoor.solvers.td_bundles`.
+
+Structure of a step (:func:`td_steps`): line failures and the convolution sum, the first
+stage at t_n (:func:`_stage`), the record and its tension guard (:func:`_record`), the rest of
+the RK4 step (:func:`rk4_step`), the state guards (:func:`_state_status`) and the velocity
+history.  Status codes (named constants, :data:`STATUS_NAMES`) in ``status[0]``, the step in
+``status[1]``, the DOF or line in ``status[2]``.  The helpers of a step are compiled inline
+(``inline='always'``, numba IR): as separate functions taking the bundles each one cost a full
+compilation with its Python wrapper (+40 % compile time of the first run, measured), inline
+they cost what the one loop did before; they stay callable on their own from Python.
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
-from ..forces.base import (PART_CURRENT, PART_DAMPING_LINEAR, PART_DAMPING_QUADRATIC,
-                           PART_HYDROSTATICS, PART_MOORING, PART_RADIATION, PART_SERIES,
-                           PART_SLENDER, PART_WIND)
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import slender_packed_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.system import system_force_kernel
+from .td_bundles import new_state
 
-__all__ = ["td_kernel", "td_steps", "td_scratch", "start_state", "STATUS_OK", "STATUS_NAN", "STATUS_GUARD", "STATUS_TENSION",
-           "STATUS_CATENARY"]
+__all__ = ["td_kernel", "td_steps", "rk4_step", "start_state", "STATUS_OK", "STATUS_NAN",
+           "STATUS_GUARD", "STATUS_TENSION", "STATUS_CATENARY", "STATUS_NAMES"]
 
-STATUS_OK, STATUS_NAN, STATUS_GUARD, STATUS_TENSION, STATUS_CATENARY = range(5)
+STATUS_OK = 0
+"""Every step done."""
+STATUS_NAN = 1
+"""NaN or inf in the state (``status[2]`` the DOF)."""
+STATUS_GUARD = 2
+"""A DOF beyond its guard limit |x - x0| > guard (``status[2]`` the DOF)."""
+STATUS_TENSION = 3
+"""A line tension beyond ``tension_guard`` x MBS (``status[2]`` the line)."""
+STATUS_CATENARY = 4
+"""A catenary solve failed (``status[2]`` the line)."""
+STATUS_NAMES = {STATUS_OK: "ok", STATUS_NAN: "nan", STATUS_GUARD: "guard",
+                STATUS_TENSION: "tension", STATUS_CATENARY: "catenary"}
+
+
+@njit(cache=True, inline='always')
+def set_status(status, code, step, index):
+    """``status[:3] = code, step, index``."""
+    status[0] = code
+    status[1] = step
+    status[2] = index
 
 
 @njit(cache=True)
-def _rhs(j, c, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq, ret_kernel, ret_i,
-         ret_j, s0, s1, series, has_wind, wind_speed, wind_heading, wind_th, wind_tab, has_cur,
-         cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf,
-         has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
-         has_moor, anchors, fairleads,
-         seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work, rot, line_out, fm, stiff, coef,
-         has_mcorr, mcorr, parts, f):
-    """Total force ``f`` (6,) and its parts (N_PARTS, 6), all in earth axes (moments about
-    the displaced reference point), at sample j (time j dt/2), stage fraction c, pose ``x`` and
-    yaw-frame velocity ``v``.  ``mcorr`` (6,) is added to the mooring force when ``has_mcorr``
-    (the dynamic part of coupled FE lines, :mod:`floatmoor.solvers.fe_coupling`).  Returns -1,
-    or the index of a line whose catenary failed."""
+def _rhs(j, c, dt, x, v, terms, lines, st):
+    """Total force ``st.f`` (6,) and the force of every term ``st.parts`` (n_terms, 6), earth
+    axes (moments about the displaced reference point), at sample j (time j dt/2), stage
+    fraction c, pose ``x`` and yaw-frame velocity ``v``: the kinds in the order of
+    :data:`floatmoor.forces.terms.KINDS`, each over its terms.  ``st.mcorr`` is added to the
+    mooring force when ``st.has_mcorr`` (the dynamic part of coupled FE lines,
+    :mod:`floatmoor.solvers.fe_coupling`).  Returns -1, or the index of a line whose catenary
+    failed."""
+    parts = st.parts
     cy = math.cos(x[5])
     sy = math.sin(x[5])
     for p in range(parts.shape[0]):
         for k in range(6):
             parts[p, k] = 0.0
-    # hydrostatics (yaw-following frame: roll and pitch are about its axes), then to earth
-    for i in range(6):
-        s = const_force[i]
-        for k in range(6):
-            s -= restoring[i, k] * x[k]
-        parts[PART_HYDROSTATICS, i] = s
-    turn_horizontal(parts[PART_HYDROSTATICS], cy, sy)
+    r = 0
+    # restoring: constant and matrix on the pose, yaw-following frame (roll and pitch are
+    # about its axes), then to earth
+    rest = terms.restoring
+    for t in range(rest.matrix.shape[0]):
+        for i in range(6):
+            s = rest.const[t, i]
+            for k in range(6):
+                s -= rest.matrix[t, i, k] * x[k]
+            parts[r, i] = s
+        turn_horizontal(parts[r], cy, sy)
+        r += 1
     # mooring (earth axes)
-    if has_moor:
-        bad = system_force_kernel(x, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start,
-                                  cb, seabed, active, warm, False, work, rot, line_out, fm, stiff)
+    if lines.on:
+        cat = lines.cat
+        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                                  lines.active, lines.warm, False, st.work, st.rot,
+                                  st.line_out, st.fm, st.stiff)
         if bad >= 0:
             return bad
         for i in range(6):
-            parts[PART_MOORING, i] = fm[i]
-        if has_mcorr:
+            parts[r, i] = st.fm[i]
+        if st.has_mcorr:
             for i in range(6):
-                parts[PART_MOORING, i] += mcorr[i]
-    # damping on the yaw-frame velocities
-    if has_dl:
+                parts[r, i] += st.mcorr[i]
+        r += 1
+    # damping on the yaw-frame velocities: linear, then quadratic
+    dl = terms.damping.matrix
+    for t in range(dl.shape[0]):
         for i in range(6):
             s = 0.0
             for k in range(6):
-                s += dl[i, k] * v[k]
-            parts[PART_DAMPING_LINEAR, i] = -s
-        turn_horizontal(parts[PART_DAMPING_LINEAR], cy, sy)
-    if has_dq:
+                s += dl[t, i, k] * v[k]
+            parts[r, i] = -s
+        turn_horizontal(parts[r], cy, sy)
+        r += 1
+    dq = terms.quadratic_damping.matrix
+    for t in range(dq.shape[0]):
         for i in range(6):
             s = 0.0
             for k in range(6):
-                s += dq[i, k] * v[k] * abs(v[k])
-            parts[PART_DAMPING_QUADRATIC, i] = -s
-        turn_horizontal(parts[PART_DAMPING_QUADRATIC], cy, sy)
+                s += dq[t, i, k] * v[k] * abs(v[k])
+            parts[r, i] = -s
+        turn_horizontal(parts[r], cy, sy)
+        r += 1
     # radiation memory on the yaw-frame velocity history
-    if ret_i.shape[0] > 0:
-        for p in range(ret_i.shape[0]):
-            i = ret_i[p]
-            jj = ret_j[p]
-            parts[PART_RADIATION, i] -= dt * (0.5 * ret_kernel[p, 0] * v[jj] + (1.0 - c) * s0[p]
-                                              + c * s1[p])
-        turn_horizontal(parts[PART_RADIATION], cy, sy)
-    # wind and current: relative to the earth velocity of the reference point, less the linear
-    # wave-frequency velocity when given (the low-frequency velocity, seed 002 eq. 2.24, 2.26)
+    mem = terms.memory
+    if mem.on:
+        n_pairs = mem.i.shape[0]
+        for p in range(n_pairs):
+            i = mem.i[p]
+            jj = mem.j[p]
+            parts[r, i] -= dt * (0.5 * mem.kernel[p, 0] * v[jj] + (1.0 - c) * st.s0[p]
+                                 + c * st.s1[p])
+        if n_pairs > 0:
+            turn_horizontal(parts[r], cy, sy)
+        r += 1
+    # relative flow (wind, current): relative to the earth velocity of the reference point,
+    # less the linear wave-frequency velocity when given (the low-frequency velocity, Wang
+    # (2016) eq. 2.24, 2.26)
+    flow = terms.flow
     vx = cy * v[0] - sy * v[1]
     vy = sy * v[0] + cy * v[1]
-    if has_vwf:
-        vx -= v_wf[j, 0]
-        vy -= v_wf[j, 1]
-    if has_wind:
-        relative_flow_force_into(wind_speed[j], wind_heading, vx, vy, x[5], 1.0, wind_th,
-                                 wind_tab, coef, parts[PART_WIND])
-    if has_cur:
-        relative_flow_force_into(cur_speed, cur_heading, vx, vy, x[5], 1.0, cur_th, cur_tab,
-                                 coef, parts[PART_CURRENT])
-    # slender elements: drag strips with the total body velocity (seed 002 eq. 6.7-6.8)
-    if has_sl:
-        slender_packed_into(j, x, v, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp,
-                            rot, sl_sc, parts[PART_SLENDER])
+    if flow.has_wf:
+        vx -= flow.wf_velocity[j, 0]
+        vy -= flow.wf_velocity[j, 1]
+    for t in range(flow.heading.shape[0]):
+        nh = flow.n_heading[t]
+        js = j if flow.varies[t] else 0
+        relative_flow_force_into(flow.speed[t, js], flow.heading[t], vx, vy, x[5], 1.0,
+                                 flow.table_heading[t, :nh], flow.table[t, :nh], st.coef,
+                                 parts[r])
+        r += 1
+    # strips (slender elements): drag with the total body velocity (Wang (2016) eq. 6.7-6.8)
+    sl = terms.strips
+    if sl.on:
+        slender_packed_into(j, x, v, sl.fel, sl.iel, sl.eta, sl.u, sl.a, sl.par, sl.cur,
+                            sl.ramp, st.rot, st.sl_sc, parts[r])
+        r += 1
     # precomputed series
+    series = terms.series
     for q in range(series.shape[0]):
         for i in range(6):
-            parts[PART_SERIES + q, i] = series[q, j, i]
+            parts[r, i] = series[q, j, i]
+        r += 1
+    f = st.f
     for i in range(6):
         s = 0.0
-        for p in range(parts.shape[0]):
+        for p in range(r):
             s += parts[p, i]
         f[i] = s
     return -1
@@ -187,45 +235,172 @@ def _pose_rate(x, v, out):
         out[k] = v[k]
 
 
-def td_kernel(n_steps, dt, inertia, minv, x0, v0, const_force, restoring, dl, has_dl, dq,
-              has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed, wind_heading,
-              wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf, v_wf,
-              has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, has_moor,
-              anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active,
-              fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity, t_fair,
-              t_anchor, parts_out, status):
-    """Integrate ``n_steps`` RK4 steps from pose ``x0`` and pose rate ``v0``; fill the outputs
-    at every step.
+@njit(cache=True)
+def _pose_rate(x, v, out):
+    """Pose rate from the yaw-frame velocity: horizontal velocity turned by yaw; heave and the
+    (small-angle) roll, pitch and yaw rates as they are."""
+    cy = math.cos(x[5])
+    sy = math.sin(x[5])
+    out[0] = cy * v[0] - sy * v[1]
+    out[1] = sy * v[0] + cy * v[1]
+    for k in range(2, 6):
+        out[k] = v[k]
 
-    ``inertia`` = M + A_inf and ``minv`` its inverse (6, 6), yaw-following frame.  Outputs:
-    motion (pose) and velocity (pose rate) (n_steps+1, 6); t_fair, t_anchor (n_steps+1,
-    n_lines) in N; parts_out (n_steps+1, N_PARTS, 6) (earth axes) when ``record_parts`` else
-    (1, N_PARTS, 6) scratch; status (3,) int64.  ``hist`` (6, 2 n_k) ring buffer of the
-    yaw-frame step velocities, stored twice (zeros on entry); ``guard`` (6,) largest
-    |x - x0| allowed per DOF.  ``v_wf`` (n_samples, 6) the linear wave-frequency velocity
-    (earth axes) removed from the body velocity in the wind and current relative velocity when
-    ``has_vwf`` (else a (1, 6) dummy).
 
-    A Python function: the allocation, the start state and the loop are three numba calls
-    (:func:`td_scratch`, :func:`start_state`, :func:`td_steps`), so the loop is compiled once
-    (a numba wrapper around it would compile the step code a second time).
+@njit(cache=True, inline='always')
+def _stage(j, c, x, v, k, body, terms, lines, st):
+    """Stage ``k`` of RK4 at sample j, fraction c, state (x, v): the force (``st.f``,
+    ``st.parts``), the pose rate ``st.q[k]`` and the acceleration ``st.a[k]``.  Returns -1 or
+    the index of a line whose catenary failed."""
+    bad = _rhs(j, c, body.dt, x, v, terms, lines, st)
+    if bad >= 0:
+        return bad
+    _pose_rate(x, v, st.q[k])
+    _accel(x, v, st.f, body.inertia, body.minv, st.mom, st.g, st.a[k])
+    return -1
+
+
+@njit(cache=True, inline='always')
+def rk4_step(n, body, terms, lines, st):
+    """Stages 2, 3 and 4 (at t + dt/2, t + dt/2 and t + dt: force samples 2n+1, 2n+1, 2n+2)
+    and the update of ``st.x``, ``st.v`` to t_{n+1}, the first stage at t_n being evaluated
+    (:func:`_stage` with k = 0, whose forces the caller records).  Returns -1 or the index of
+    a line whose catenary failed."""
+    dt = body.dt
+    x = st.x
+    v = st.v
+    xs = st.xs
+    vs = st.vs
+    q = st.q
+    a = st.a
+    for k in range(1, 4):
+        c = 0.5
+        j = 2 * n + 1
+        if k == 3:
+            c = 1.0
+            j = 2 * n + 2
+        for i in range(6):
+            xs[i] = x[i] + c * dt * q[k - 1, i]
+            vs[i] = v[i] + c * dt * a[k - 1, i]
+        bad = _stage(j, c, xs, vs, k, body, terms, lines, st)
+        if bad >= 0:
+            return bad
+    for i in range(6):
+        x[i] += dt / 6.0 * (q[0, i] + 2.0 * q[1, i] + 2.0 * q[2, i] + q[3, i])
+        v[i] += dt / 6.0 * (a[0, i] + 2.0 * a[1, i] + 2.0 * a[2, i] + a[3, i])
+    return -1
+
+
+@njit(cache=True, inline='always')
+def _fail_lines(t, lines):
+    """Lines whose failure time is reached at ``t`` become inactive."""
+    if lines.on:
+        for i in range(lines.active.shape[0]):
+            if lines.active[i] and t >= lines.fail_time[i]:
+                lines.active[i] = False
+
+
+@njit(cache=True, inline='always')
+def _memory_sum(n, mem, st):
+    """Convolution sum S_{n+1} = sum_{j=1}^{n_k-1} K_j v_{n+1-j} into ``st.s1``; the history
+    is stored twice (columns p and p + n_k) so that the window is contiguous without a
+    modulo."""
+    hist = st.hist
+    n_k = hist.shape[1] // 2
+    b = (n + 1) % n_k + n_k
+    for p in range(mem.i.shape[0]):
+        jj = mem.j[p]
+        s = 0.0
+        for m in range(1, n_k):
+            s += mem.kernel[p, m] * hist[jj, b - m]
+        st.s1[p] = s
+
+
+@njit(cache=True, inline='always')
+def _push_history(n1, st):
+    """Step velocity ``st.v`` at step n1 into the ring buffer; S_{n1} becomes the sum of the
+    step (``s0 = s1``)."""
+    hist = st.hist
+    n_k = hist.shape[1] // 2
+    c0 = n1 % n_k
+    for k in range(6):
+        hist[k, c0] = st.v[k]
+        hist[k, c0 + n_k] = st.v[k]
+    for p in range(st.s0.shape[0]):
+        st.s0[p] = st.s1[p]
+
+
+@njit(cache=True, inline='always')
+def _record(n, body, lines, st, out):
+    """Row ``n`` of the outputs from the first stage at t_n (pose, pose rate, line tensions,
+    the force of every term).  Returns -1, or the first line whose fairlead tension exceeds
+    ``tension_guard`` x MBS (nothing recorded after it)."""
+    x = st.x
+    for k in range(6):
+        out.motion[n, k] = x[k]
+        out.velocity[n, k] = st.q[0, k]
+    line_out = st.line_out
+    for i in range(line_out.shape[0]):
+        tf = math.sqrt(line_out[i, OUT_HF] ** 2 + line_out[i, OUT_VF] ** 2)
+        out.t_fair[n, i] = tf
+        out.t_anchor[n, i] = math.sqrt(line_out[i, OUT_HA] ** 2 + line_out[i, OUT_VA] ** 2)
+        if tf > body.tension_guard * lines.mbs[i]:
+            return i
+    r = n if body.record_parts else 0
+    parts = st.parts
+    for p in range(parts.shape[0]):
+        for k in range(6):
+            out.parts[r, p, k] = parts[p, k]
+    return -1
+
+
+@njit(cache=True, inline='always')
+def _state_status(x, v, x0, guard):
+    """(code, DOF) of the first DOF with a NaN/inf state (STATUS_NAN) or beyond its guard
+    (STATUS_GUARD); (STATUS_OK, -1) when none."""
+    for k in range(6):
+        if not (math.isfinite(x[k]) and math.isfinite(v[k])):
+            return STATUS_NAN, k
+        if abs(x[k] - x0[k]) > guard[k]:
+            return STATUS_GUARD, k
+    return STATUS_OK, -1
+
+
+@njit(cache=True)
+def td_steps(n_first, n_last, body, terms, lines, st, out):
+    """Steps ``n_first .. n_last - 1`` of the loop of :func:`td_kernel` (resumable: the state
+    is carried in ``st`` and the line states in ``lines``).
+
+    Step ``n``: line failures, the convolution sum, the first stage at ``t_n = n dt``, the
+    record of row ``n``, then (unless ``n == body.n_steps``) the rest of the RK4 step to
+    ``t_{n+1}`` and the state guards.  Bundles: ``body`` :class:`~.td_bundles.Body`, ``terms``
+    :class:`~floatmoor.forces.terms.ForceTerms`, ``lines`` :class:`~.td_bundles.Lines`, ``st``
+    :class:`~.td_bundles.State`, ``out`` :class:`~.td_bundles.Outputs`.  On failure sets
+    ``out.status`` (code, step, DOF or line) and returns.
     """
-    (mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
-     a) = td_scratch(parts_out.shape[1], anchors.shape[0], ret_i.shape[0])
-    x = x0.copy()
-    v = v0.copy()
-    start_state(x0, v0, x, v, hist)
-    status[0] = 0
-    status[1] = 0
-    status[2] = 0
-    td_steps(0, n_steps + 1, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
-             dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
-             wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
-             has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp,
-             has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-             active, fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity,
-             t_fair, t_anchor, parts_out, status, False, mcorr, x, v, s0, s1, parts, work, rot,
-             line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q, a)
+    status = out.status
+    for n in range(n_first, n_last):
+        _fail_lines(n * body.dt, lines)
+        _memory_sum(n, terms.memory, st)
+        bad = _stage(2 * n, 0.0, st.x, st.v, 0, body, terms, lines, st)
+        if bad >= 0:
+            set_status(status, STATUS_CATENARY, n, bad)
+            return
+        bad = _record(n, body, lines, st, out)
+        if bad >= 0:
+            set_status(status, STATUS_TENSION, n, bad)
+            return
+        if n == body.n_steps:
+            break
+        bad = rk4_step(n, body, terms, lines, st)
+        if bad >= 0:
+            set_status(status, STATUS_CATENARY, n, bad)
+            return
+        code, k = _state_status(st.x, st.v, body.x0, body.guard)
+        if code != STATUS_OK:
+            set_status(status, code, n + 1, k)
+            return
+        _push_history(n + 1, st)
 
 
 @njit(cache=True)
@@ -246,126 +421,23 @@ def start_state(x0, v0, x, v, hist):
         hist[k, n_k] = v[k]
 
 
-@njit(cache=True)
-def td_scratch(n_parts, n_lines, n_pairs):
-    """Work arrays of :func:`td_steps` (allocated once per run, outside the step loop):
-    ``(mcorr, s0, s1, parts, work, rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q,
-    a)`` in the order of its arguments."""
-    return (np.zeros(6), np.zeros(n_pairs), np.zeros(n_pairs), np.zeros((n_parts, 6)),
-            np.zeros(64), np.zeros((3, 3)), np.zeros((n_lines, 10)), np.zeros(6),
-            np.zeros((6, 6)), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6),
-            np.zeros(6), np.zeros(6), np.zeros((4, 6)), np.zeros((4, 6)))
+def new_run_state(body, terms, lines, out, *, has_mcorr: bool = False):
+    """The :class:`~.td_bundles.State` of a run, at the start state of ``body``."""
+    mem = terms.memory
+    st = new_state(out.parts.shape[1], lines.cat.anchors.shape[0], mem.i.shape[0],
+                   max(1, mem.kernel.shape[1]), has_mcorr=has_mcorr)
+    start_state(body.x0, body.v0, st.x, st.v, st.hist)
+    return st
 
 
-@njit(cache=True)
-def td_steps(n_first, n_last, n_steps, dt, inertia, minv, x0, const_force, restoring, dl, has_dl,
-             dq, has_dq, ret_kernel, ret_i, ret_j, hist, series, has_wind, wind_speed,
-             wind_heading, wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab,
-             has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp,
-             has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-             active, fail_time, mbs, warm, guard, tension_guard, record_parts, motion, velocity,
-             t_fair, t_anchor, parts_out, status, has_mcorr, mcorr, x, v, s0, s1, parts, work,
-             rot, line_out, fm, stiff, coef, sl_sc, xs, vs, f, mom, g, q, a):
-    """Steps ``n_first .. n_last - 1`` of the loop of :func:`td_kernel` (resumable: the state
-    ``x, v, hist, s0`` and the line states ``active, warm`` are carried in the arrays).
+def td_kernel(body, terms, lines, out):
+    """Integrate ``body.n_steps`` RK4 steps from pose ``body.x0`` and pose rate ``body.v0``;
+    fill ``out`` (:class:`~.td_bundles.Outputs`) at every step; ``out.status`` the outcome.
 
-    Step ``n``: record the outputs at ``t_n = n dt`` (row ``n``), then (unless ``n ==
-    n_steps``) one RK4 step to ``t_{n+1}``.  ``mcorr`` (6,), when ``has_mcorr``, is added to the
-    mooring force at every stage of these steps (held constant).  Sets ``status`` and returns on
-    failure.  The remaining arguments are scratch arrays (:func:`td_scratch`).
+    A Python function: the allocation and the start state are done here and the loop is one
+    numba call (:func:`td_steps`), so the loop is compiled once (a numba wrapper around it
+    would compile the step code a second time).
     """
-    n_parts = parts_out.shape[1]
-    n_lines = anchors.shape[0]
-    n_pairs = ret_i.shape[0]
-    n_k = hist.shape[1] // 2
-    for n in range(n_first, n_last):
-        t = n * dt
-        if has_moor:
-            for i in range(n_lines):
-                if active[i] and t >= fail_time[i]:
-                    active[i] = False
-        # convolution sum S_{n+1} = sum_{j=1}^{n_k-1} K_j v_{n+1-j}; the history is stored
-        # twice (columns p and p + n_k) so that the window is contiguous without a modulo
-        b = (n + 1) % n_k + n_k
-        for p in range(n_pairs):
-            jj = ret_j[p]
-            s = 0.0
-            for m in range(1, n_k):
-                s += ret_kernel[p, m] * hist[jj, b - m]
-            s1[p] = s
-        # stage 1 (also the record at t_n)
-        bad = _rhs(2 * n, 0.0, dt, x, v, const_force, restoring, dl, has_dl, dq, has_dq,
-                   ret_kernel, ret_i, ret_j, s0, s1, series, has_wind, wind_speed, wind_heading,
-                   wind_th, wind_tab, has_cur, cur_speed, cur_heading, cur_th, cur_tab, has_vwf,
-                   v_wf, has_sl, sl_fel, sl_iel, sl_eta, sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc,
-                   has_moor, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed,
-                   active, warm, work, rot, line_out, fm, stiff, coef, has_mcorr, mcorr, parts, f)
-        if bad >= 0:
-            status[0] = 4
-            status[1] = n
-            status[2] = bad
-            return
-        _pose_rate(x, v, q[0])
-        for k in range(6):
-            motion[n, k] = x[k]
-            velocity[n, k] = q[0, k]
-        for i in range(n_lines):
-            tf = math.sqrt(line_out[i, OUT_HF] ** 2 + line_out[i, OUT_VF] ** 2)
-            t_fair[n, i] = tf
-            t_anchor[n, i] = math.sqrt(line_out[i, OUT_HA] ** 2 + line_out[i, OUT_VA] ** 2)
-            if tf > tension_guard * mbs[i]:
-                status[0] = 3
-                status[1] = n
-                status[2] = i
-                return
-        r = n if record_parts else 0
-        for p in range(n_parts):
-            for k in range(6):
-                parts_out[r, p, k] = parts[p, k]
-        if n == n_steps:
-            break
-        _accel(x, v, f, inertia, minv, mom, g, a[0])
-        # stages 2, 3 and 4: at t + dt/2, t + dt/2 and t + dt (force samples 2n+1, 2n+1, 2n+2)
-        for st in range(1, 4):
-            c = 0.5
-            j = 2 * n + 1
-            if st == 3:
-                c = 1.0
-                j = 2 * n + 2
-            for k in range(6):
-                xs[k] = x[k] + c * dt * q[st - 1, k]
-                vs[k] = v[k] + c * dt * a[st - 1, k]
-            bad = _rhs(j, c, dt, xs, vs, const_force, restoring, dl,
-                       has_dl, dq, has_dq, ret_kernel, ret_i, ret_j, s0, s1, series, has_wind,
-                       wind_speed, wind_heading, wind_th, wind_tab, has_cur, cur_speed,
-                       cur_heading, cur_th, cur_tab, has_vwf, v_wf, has_sl, sl_fel, sl_iel, sl_eta,
-                       sl_u, sl_a, sl_par, sl_cur, sl_ramp, sl_sc, has_moor, anchors, fairleads,
-                       seg_L, seg_EA, seg_w, seg_P, line_start, cb, seabed, active, warm, work,
-                       rot, line_out, fm, stiff, coef, has_mcorr, mcorr, parts, f)
-            if bad >= 0:
-                status[0] = 4
-                status[1] = n
-                status[2] = bad
-                return
-            _pose_rate(xs, vs, q[st])
-            _accel(xs, vs, f, inertia, minv, mom, g, a[st])
-        for k in range(6):
-            x[k] += dt / 6.0 * (q[0, k] + 2.0 * q[1, k] + 2.0 * q[2, k] + q[3, k])
-            v[k] += dt / 6.0 * (a[0, k] + 2.0 * a[1, k] + 2.0 * a[2, k] + a[3, k])
-        for k in range(6):
-            if not (math.isfinite(x[k]) and math.isfinite(v[k])):
-                status[0] = 1
-                status[1] = n + 1
-                status[2] = k
-                return
-            if abs(x[k] - x0[k]) > guard[k]:
-                status[0] = 2
-                status[1] = n + 1
-                status[2] = k
-                return
-        c0 = (n + 1) % n_k
-        for k in range(6):
-            hist[k, c0] = v[k]
-            hist[k, c0 + n_k] = v[k]
-        for p in range(n_pairs):
-            s0[p] = s1[p]
+    st = new_run_state(body, terms, lines, out)
+    out.status[:] = 0
+    td_steps(0, body.n_steps + 1, body, terms, lines, st, out)

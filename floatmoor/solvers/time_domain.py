@@ -30,7 +30,7 @@ Assumptions (documented limits)
   realisation, :mod:`floatmoor.solvers.wf_velocity`) is removed from the body velocity there;
   scene option ``forces: {relative_velocity: total}`` keeps the total velocity.
 * Start: the static equilibrium under buoyancy - weight, mooring, mean wind and current at rest
-  and mean wave drift (:func:`floatmoor.solvers.statics.equilibrium`); the fluctuating loads
+  and mean wave drift (:func:`floatmoor.solvers.statics.solve_equilibrium`); the fluctuating loads
   (first-order waves, slow drift, gust) are ramped in over ``ramp`` seconds, so the run starts
   without a jump; statistics should skip ``transient`` seconds.
 * Finite-element lines (scene ``mooring: {model: finite-element}`` or per line): coupled by
@@ -52,17 +52,19 @@ import numpy as np
 
 from ..core.dofs import DOF_NAMES
 from ..core.errors import NumericalError, SceneError
-from ..forces.base import (N_PARTS, PART_NAMES, PART_SERIES, KernelAssembly, SetupContext,
-                           model_class)
+from ..forces.base import KernelAssembly, SetupContext, model_class
 from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.slender import refuse_qtf_with_correction
+from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
 from .statics import solve_equilibrium as equilibrium
-from .td_kernel import td_kernel
+from .td_bundles import Body, Lines, new_outputs, no_lines
+from .td_kernel import (STATUS_CATENARY, STATUS_GUARD, STATUS_NAN, STATUS_OK, STATUS_TENSION,
+                        td_kernel)
 from .wf_velocity import RELATIVE_VELOCITY_MODES, wf_velocity_series
 
-__all__ = ["assemble", "integrate", "TimeDomainResult", "Assembly", "default_models",
-           "RK4_LIMIT"]
+__all__ = ["RK4_LIMIT", "Assembly", "TimeDomainResult", "assemble", "default_models",
+           "integrate"]
 
 RK4_LIMIT = 2.78
 """RK4 is stable for purely imaginary eigenvalues lambda dt up to 2 sqrt(2) = 2.83."""
@@ -198,7 +200,8 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         waves = wave_components(built.scene.environment.waves, duration=n_steps * dt, seed=seed,
                                 h=0.5 * dt, water_depth=site.water_depth, gravity=site.gravity)
     ctx = SetupContext(built=built, seed=int(seed), dt=float(dt), n_steps=n_steps,
-                       ramp=float(ramp), yaw0=0.0, options=options, waves=waves)
+                       ramp=float(ramp), yaw0=0.0, options=options, waves=waves,
+                       inputs=built.model_inputs(options, names, yaw=0.0))
     active = {}
     for name in names:
         m = model_class(name, key="forces")()
@@ -245,7 +248,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         K_lin = K_lin + built.mooring.stiffness(x0)
     lam = np.linalg.eigvals(np.linalg.solve(inertia, K_lin))
     omega_max = float(np.sqrt(np.max(np.abs(lam))))
-    # linear wave-frequency velocity for the wind and current relative velocity (seed 002
+    # linear wave-frequency velocity for the wind and current relative velocity (Wang (2016)
     # eq. 2.24, 2.26: relative to the low-frequency body velocity)
     mode = getattr(options, "relative_velocity", "low_frequency")
     if mode not in RELATIVE_VELOCITY_MODES:
@@ -306,96 +309,53 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     minv = np.linalg.inv(a.inertia)
     moor = asm.mooring
     if moor is not None:
-        anchors, fairleads = moor.anchors, moor.fairleads
-        seg = (moor.seg_L, moor.seg_EA, moor.seg_w, moor.seg_P)
-        line_start, cb, seabed = moor.line_start, moor.cb, moor.seabed
-        active = moor.active.copy()
-        mbs = moor.mbs
-        warm = np.zeros((moor.n_lines, 2))
-        fail_time = np.asarray(asm.fail_time, float)
+        lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
+                      np.zeros((moor.n_lines, 2)), as_kernel_array(asm.fail_time, float),
+                      as_kernel_array(moor.mbs, float))
         line_names = list(moor.names)
     else:
-        anchors = np.zeros((0, 3))
-        fairleads = np.zeros((0, 3))
-        seg = (np.zeros(0),) * 4
-        line_start = np.zeros(1, np.int64)
-        cb = np.zeros(0)
-        seabed = np.zeros(0, np.bool_)
-        active = np.zeros(0, np.bool_)
-        mbs = np.zeros(0)
-        warm = np.zeros((0, 2))
-        fail_time = np.zeros(0)
+        lines = no_lines()
         line_names = []
+    mbs = lines.mbs
     n_lines = len(line_names)
-    n_k = max(1, asm.ret_kernel.shape[1]) if asm.ret_kernel.size else 1
-    ret_kernel = asm.ret_kernel if asm.ret_kernel.size else np.zeros((0, 1))
-    hist = np.zeros((6, 2 * n_k))
-    series = asm.series if asm.series is not None else np.zeros((0, asm.n_samples, 6))
-    wind_speed = asm.wind_speed if asm.has_wind else np.zeros(asm.n_samples)
-    wind_th = asm.wind_table_heading if asm.has_wind else np.zeros(1)
-    wind_tab = asm.wind_table if asm.has_wind else np.zeros((1, 6))
-    cur_th = asm.current_table_heading if asm.has_current else np.zeros(1)
-    cur_tab = asm.current_table if asm.has_current else np.zeros((1, 6))
-    v_wf = asm.wf_velocity if asm.has_wf_velocity else np.zeros((1, 6))
-    sl = getattr(asm, "slender", None)
-    sl_args = ((True,) + tuple(sl) if sl is not None else
-               (False, np.zeros((0, 21)), np.zeros((0, 3), np.int64),
-                np.zeros((2, 0), np.float32), np.zeros((2, 0, 2, 3), np.float32),
-                np.zeros((2, 1, 2, 3), np.float32), np.ones(9), np.zeros((0, 2)), np.zeros(1)))
-    motion = np.zeros((n + 1, 6))
-    velocity = np.zeros((n + 1, 6))
-    t_fair = np.zeros((n + 1, n_lines))
-    t_anchor = np.zeros((n + 1, n_lines))
-    parts = np.zeros((n + 1 if record_forces else 1, N_PARTS, 6))
-    status = np.zeros(3, np.int64)
-    x0 = np.ascontiguousarray(a.x0, float)
-    v0 = np.zeros(6) if v0 is None else np.ascontiguousarray(v0, float)
+    terms = asm.force_terms()
+    part_names = asm.part_names
+    out = new_outputs(n, n_lines, len(part_names), record_parts=bool(record_forces))
+    x0 = as_kernel_array(a.x0, float)
+    v0 = np.zeros(6) if v0 is None else as_kernel_array(v0, float)
     guard = _guard_limits(built) if built is not None else np.array([1e4, 1e4, 1e3, 1.0, 1.0, 1e3])
+    body = Body(int(n), float(dt), as_kernel_array(a.inertia, float), minv, x0, v0, guard,
+                float(tension_guard), bool(record_forces))
     setup_time = _time.perf_counter() - t_start
     t0 = _time.perf_counter()
-    args = (int(n), float(dt), np.asarray(a.inertia, float), minv, x0, v0, asm.const_force, asm.restoring, asm.damping_linear,
-            bool(asm.has_damping_linear), asm.damping_quadratic, bool(asm.has_damping_quadratic),
-            ret_kernel, asm.ret_i, asm.ret_j, hist, series, bool(asm.has_wind), wind_speed,
-            float(asm.wind_heading), wind_th, wind_tab, bool(asm.has_current),
-            float(asm.current_speed), float(asm.current_heading), cur_th, cur_tab,
-            bool(asm.has_wf_velocity), v_wf, *sl_args, moor is not None, anchors, fairleads,
-            seg[0], seg[1], seg[2], seg[3], line_start, cb, seabed, active, fail_time, mbs,
-            warm, guard, float(tension_guard), bool(record_forces), motion, velocity, t_fair,
-            t_anchor, parts, status)
-    # one compiled signature: C-contiguous, writeable arrays (frozen model arrays are read-only)
-    args = tuple(np.require(x, requirements=("C", "W")) if isinstance(x, np.ndarray) else x
-                 for x in args)
     fe_records = None
     fe_info = {}
+    status = out.status
     if a.fe is None:
-        td_kernel(*args)
+        td_kernel(body, terms, lines, out)
     else:
-        from .fe_coupling import FE_RECORDS, raise_fe_status, run as fe_run
-        fe_status, fe_out = fe_run(a.fe, args, x0=x0, n_lines=n_lines)
+        from .fe_coupling import FE_RECORDS, raise_fe_status
+        from .fe_coupling import run as fe_run
+        fe_status, fe_out = fe_run(a.fe, body, terms, lines, out, x0=x0, n_lines=n_lines)
         raise_fe_status(a.fe, fe_status)
-        status = args[-1]
         status[:] = fe_status[:3]
         fe_records = dict(zip(FE_RECORDS, fe_out))
         fe_info = {"fe_substeps": int(a.fe.substeps),
                    "fe_newton_iterations": int(a.fe.mooring.counters[:, 0].sum()),
                    "fe_step_halvings": int(a.fe.mooring.counters[:, 1].sum()),
                    "fe_elements": [int(ln.n_nodes - 1) for ln in a.fe.mooring.lines]}
-    (motion, velocity, t_fair, t_anchor, parts, status) = args[-6:]
+    motion, velocity, t_fair, t_anchor, parts = out[:5]
     wall = _time.perf_counter() - t0
     _raise_on_status(status, dt, line_names, mbs, tension_guard, guard)
     time = np.arange(n + 1) * dt
     forces = None
     force_models = []
     if record_forces:
-        slots = []
-        for name in a.models:
-            if name in PART_NAMES:
-                slots.append(PART_NAMES.index(name))
-                force_models.append(name)
-        for q, name in enumerate(asm.series_names):
-            slots.append(PART_SERIES + q)
-            force_models.append(name)
-        forces = parts[:, slots, :]
+        # the models' order, the precomputed series last
+        kinds = dict(zip(part_names, asm.part_kinds))
+        force_models = ([m for m in a.models if m in kinds and kinds[m] != "series"]
+                        + [m for m in part_names if kinds[m] == "series"])
+        forces = parts[:, [part_names.index(m) for m in force_models], :]
     eta = None
     if a.waves is not None:
         eta = a.waves.elevation(2 * n + 1, 0.5 * dt)[::2]
@@ -413,27 +373,27 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
 
 def _raise_on_status(status, dt, line_names, mbs, tension_guard, guard):
     code, step, idx = (int(s) for s in status)
-    if code == 0:
+    if code == STATUS_OK:
         return
     t = step * dt
-    if code == 1:
+    if code == STATUS_NAN:
         raise NumericalError("NaN or infinite value in the state", time=t,
                              where=f"DOF {DOF_NAMES[idx]}",
                              remedy="reduce dt, or add damping to that DOF")
-    if code == 2:
+    if code == STATUS_GUARD:
         unit = "m" if idx < 3 else "rad"
         raise NumericalError(f"the motion exploded (|{DOF_NAMES[idx]} - start| > "
                              f"{guard[idx]:g} {unit})", time=t, where=f"DOF {DOF_NAMES[idx]}",
                              remedy="reduce dt; check that the DOF has restoring and damping "
                                     "(mooring, hydrostatics) and the loads are not far beyond "
                                     "the mooring capacity")
-    if code == 3:
+    if code == STATUS_TENSION:
         raise NumericalError(f"line tension above {tension_guard:g} x MBS "
                              f"({tension_guard * mbs[idx] / 1e3:.0f} kN)", time=t,
                              where=f"line {line_names[idx]!r}",
                              remedy="reduce dt; check the line lengths, EA and anchor "
                                     "positions, or the loads against the mooring capacity")
-    if code == 4:
+    if code == STATUS_CATENARY:
         raise NumericalError("the catenary solve failed", time=t,
                              where=f"line {line_names[idx]!r}",
                              remedy="reduce dt; the line may be overstretched (offset beyond "

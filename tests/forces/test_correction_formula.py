@@ -1,4 +1,4 @@
-"""EXWAVE correction formula (seed 002 eq. 6.6) against hand-computed values.
+"""EXWAVE correction formula (Wang (2016) eq. 6.6) against hand-computed values.
 
 Hand computation (g = 9.80665 m/s^2, C_p = 0.25 s/m, G = 10 s, B0 = 1 kN/m^3):
 
@@ -121,7 +121,7 @@ def test_bad_input():
 
 
 def test_extra_damping_table_6_10():
-    # seed 002 table 6.10: 1.5e6 N s/m raised by 50 %, 100 %, 200 %, 300 %
+    # Wang (2016) table 6.10: 1.5e6 N s/m raised by 50 %, 100 %, 200 %, 300 %
     B0 = np.diag([1.5e6, 1.5e6, 1.9e6, 1.2e9, 1.2e9, 0.0])
     for inc, new in ((0.5, 2.25e6), (1.0, 3.0e6), (2.0, 4.5e6), (3.0, 6.0e6)):
         B = extra_linear_damping(B0, increase=inc)

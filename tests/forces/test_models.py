@@ -55,7 +55,7 @@ def test_table_interpolation_periodic():
 
 
 def test_relative_flow_force_closed_form():
-    """Seed 002 eq. 2.24/2.26: F = C (U - x')^2 along the flow; its derivative in x' is the
+    """Wang (2016) eq. 2.24/2.26: F = C (U - x')^2 along the flow; its derivative in x' is the
     flow damping -2 C (U - x'); turning the body by yaw turns the relative heading."""
     th = np.radians(np.arange(0, 360, 30.0))
     C0 = 1500.0

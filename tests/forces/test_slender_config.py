@@ -18,7 +18,7 @@ VESSEL = ROOT / "vessels" / "floatel_like" / "vessel.yaml"
 
 
 def test_dnv_table_reproduces_seed_table_6_2():
-    # seed 002 table 6.2: (L/D, R/D) -> C_DS, nearest tabulated values
+    # Wang (2016) table 6.2: (L/D, R/D) -> C_DS, nearest tabulated values
     assert dnv_rounded_rectangle_cd(1.0, 0.24) == 1.2      # column, y
     assert dnv_rounded_rectangle_cd(1.0, 0.21) == 1.2      # column, z
     assert dnv_rounded_rectangle_cd(2.0, 0.347) == 0.4     # pontoon, y
@@ -55,7 +55,7 @@ def test_floatel_vessel_file_section():
     assert els[0].c2 == (0.0, 7687.5, 8610.0)
     assert els[5].c2 == (0.0, 1768.1, 11480.0)
     assert els[4].p1 == (-25.25, 45.0, -8.6875)
-    # seed 002 eq. 6.5: 4 C_col + 2 C_pont ... with the tuned case b of table 6.4
+    # Wang (2016) eq. 6.5: 4 C_col + 2 C_pont ... with the tuned case b of table 6.4
     tuned = parse_slender_elements(raw, file=VESSEL, scale={"column": (0, 0, 0),
                                                             "pontoon": (0, 1738.33, 11480.0)})
     assert tuned[0].c2 == (0.0, 0.0, 0.0) and tuned[4].c2[1] == 1738.33

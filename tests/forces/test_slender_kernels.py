@@ -1,4 +1,4 @@
-"""Slender-element drag strips against closed forms (seed 002 section 2.1, eq. 2.1-2.15).
+"""Slender-element drag strips against closed forms (Wang (2016) section 2.1, eq. 2.1-2.15).
 
 The kernel is driven through the same kinematics table the time domain uses; the regular waves
 here are tabulated by direct sums.
@@ -116,7 +116,7 @@ def test_surface_piercing_column_mean_force(wheeler):
 
 
 def test_surface_piercing_column_cubic_growth():
-    """Velocity constant across the splash zone (seed 002 section 2.1.2): the mean force is
+    """Velocity constant across the splash zone (Wang (2016) section 2.1.2): the mean force is
     exactly (4 / 3 pi) c2 u0^2 a (u0 = a w / tanh kd the MWL velocity amplitude; the mean of
     |cos|^3 is 4 / 3 pi), i.e. c2 g k H^3 / (6 pi tanh kd): cubic in the wave height (eq. 2.9,
     leading term; the seed prints 1/sinh 2kd in eq. 2.9, which would vanish in deep water --

@@ -373,7 +373,7 @@ def test_large_yaw_kirchhoff_invariants(tmp_path):
 
 
 def test_correction_formula_picks_newman_drift_even_with_a_qtf():
-    # eq. 6.6 (seed 002) corrects the mean drift coefficients, which only Newman's
+    # Wang (2016) eq. 6.6 corrects the mean drift coefficients, which only Newman's
     # approximation uses: with a QTF in the database the default must switch to Newman (as in
     # the frequency domain) and an explicit qtf must be refused instead of silently dropping
     # the correction.

@@ -1,10 +1,10 @@
-"""Wind and current relative to the low-frequency body velocity (seed 002 eq. 2.24, 2.26).
+"""Wind and current relative to the low-frequency body velocity (Wang (2016) eq. 2.24, 2.26).
 
 The solver removes the linear wave-frequency velocity (motion RAOs x the run's wave realisation,
 :mod:`floatmoor.solvers.wf_velocity`) from the body velocity in the wind and current forces
 (``forces: {relative_velocity: low_frequency}``, the default); ``total`` keeps the total body
 velocity.  Floatel-like semi, 10-year current 0.94 m/s along +x, 100-year sea Hs 16 m Tp 18.2 s
-(seed 002 section 5.2) in head seas.
+(Wang (2016) section 5.2) in head seas.
 """
 
 from __future__ import annotations
