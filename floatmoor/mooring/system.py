@@ -14,7 +14,7 @@ Frames and conventions
   yaw it equals minus the derivative with respect to the pose vector itself.  With moments about
   the displaced reference point the coupling ``K51`` equals ``K15`` (OC3: both about -2.82e6 N);
   moments about the fixed earth origin would add ``-V_total`` to ``K51`` (see
-  ``reference/README.txt``).  ``K`` is analytic: per line the 2x2 catenary stiffness is turned
+  ``docs/PUBLISHED_VALUES.md``).  ``K`` is analytic: per line the 2x2 catenary stiffness is turned
   into the 3x3 fairlead stiffness ``Kf`` and
 
       K_tt = Kf,  K_tr = -Kf [r]x,  K_rt = [r]x Kf,  K_rr = -[r]x Kf [r]x - [f]x [r]x

@@ -24,7 +24,7 @@ def floatel():
     return parse_mooring(Node.load(ROOT / "vessels/floatel_like/mooring.yaml"), water_depth=150.0)
 
 
-# OC3 hydrostatics (reference/README.txt): C33 = 332,941 N/m; C44 = C55 = -4.99918e9 N m/rad
+# OC3 hydrostatics (docs/PUBLISHED_VALUES.md): C33 = 332,941 N/m; C44 = C55 = -4.99918e9 N m/rad
 # from the water plane and buoyancy, plus -m g zG = 7,466,330 * 9.80665 * 89.9155 for the platform
 # alone (the tower and RNA are left out here: a test input, not the full OC3 model); yaw spring
 # 98,340,000 N m/rad (HydroDyn AddCLin).

@@ -81,7 +81,7 @@ def _period_from_crossings(t, y):
 
 
 # Published natural frequencies of the OC3-Hywind system (Jonkman 2010, NREL/TP-500-47535, full
-# system; quoted in shared/reference/PUBLISHED.md, marked there as second-hand): surge 0.0080 Hz,
+# system; quoted in docs/PUBLISHED_VALUES.md, marked there as second-hand): surge 0.0080 Hz,
 # heave 0.0324 Hz, roll = pitch 0.0342 Hz, yaw 0.1210 Hz.
 PUBLISHED_HZ = {0: 0.0080, 2: 0.0324, 4: 0.0342, 5: 0.1210}
 

@@ -1,4 +1,4 @@
-"""FE mooring lines coupled to the 6-DOF time domain (issue 9, coupling a;
+"""FE mooring lines coupled to the 6-DOF time domain (staggered coupling;
 floatmoor/solvers/fe_coupling.py).
 
 The Floatel-like semi with its 12 chain-polyester-chain lines (scenes/floatel_100yr_fe.yaml),
@@ -505,7 +505,7 @@ def test_femooring_release_packed_and_line_by_line(tmp_path):
 
 def test_explicit_integrator_is_refused_for_coupled_lines(tmp_path):
     """The explicit line scheme is for decoupled comparison runs (axial-wave step limit of
-    milliseconds, seed 003): a coupled scene asking for it is a SceneError naming the mooring
+    milliseconds, Zhu & Yoo (2016)): a coupled scene asking for it is a SceneError naming the mooring
     source and the key, raised when the run is assembled (before any statics)."""
     p = _scene(tmp_path, n_elements=8, fe_extra={"integrator": "explicit"})
     b = _built(p)

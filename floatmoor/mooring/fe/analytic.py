@@ -12,9 +12,9 @@ import math
 import numpy as np
 from scipy.optimize import fsolve
 
-__all__ = ["transverse_friction_static", "SEED000_CASES"]
+__all__ = ["transverse_friction_static", "LU2012_CASES"]
 
-SEED000_CASES = {
+LU2012_CASES = {
     1: dict(length=711.3, ea=1.69e9, weight_air=3.587e3, weight_water=3.202e3, diameter=0.14,
             span=683.26, height=82.5, depth=95.0),
     2: dict(length=902.2, ea=3.84e8, weight_air=7.623e2, weight_water=6.981e2, diameter=0.09,

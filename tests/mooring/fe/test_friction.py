@@ -24,7 +24,7 @@ def _case2_line(friction):
     return FELine(spec)
 
 
-def test_seed000_static_transverse_friction_analytic_solution():
+def test_lu2012_static_transverse_friction_analytic_solution():
     """Fairlead moved sideways 0 to 24 m: total fairlead tension within 1 % and sway component
     within 20 % of Lu (2012) eq. 10-19 (inextensible line, transverse Coulomb friction mu N).
     Measured: tension -0.001 %, sway -0.06 % at 24 m."""
@@ -79,7 +79,7 @@ def test_lateral_friction_dissipates_energy_and_holds_the_grounded_part(model):
     assert res[model][2].max() == pytest.approx(res["none"][2].max(), rel=0.01)
 
 
-def test_seed000_case1_shallow_line_static_transverse_friction():
+def test_lu2012_case1_shallow_line_static_transverse_friction():
     """Lu (2012) case 1 (95 m water, more than 500 m on the seabed), fairlead moved sideways
     8, 16, 24 m: total tension within 1 %, sway component within 20 % of eq. 10-19.  EA raised
     to 100 x the table value for the inextensible analytic solution.  Measured: tension
@@ -87,17 +87,17 @@ def test_seed000_case1_shallow_line_static_transverse_friction():
     import math
 
     from floatmoor.mooring.fe import FELineSpec, FESegment, Seabed
-    from floatmoor.mooring.fe.analytic import SEED000_CASES
+    from floatmoor.mooring.fe.analytic import LU2012_CASES
     from floatmoor.mooring.line_types import LineType
 
-    c = SEED000_CASES[1]
+    c = LU2012_CASES[1]
     g, rho = 9.80665, 1025.0
     mass = c["weight_air"] / g
     vol = (c["weight_air"] - c["weight_water"]) / (rho * g)
     lt = LineType(name="case1", material="chain", diameter=c["diameter"], mass_per_length=mass,
                   displaced_volume=vol, ea=c["ea"] * 1e2, ea_dynamic=c["ea"] * 1e2, mbs=1e7)
     zf = -c["depth"] + c["height"]
-    spec = FELineSpec(name="seed000_case1", anchor=(0.0, 0.0, -c["depth"]),
+    spec = FELineSpec(name="lu2012_case1", anchor=(0.0, 0.0, -c["depth"]),
                       fairlead=(c["span"], 0.0, zf),
                       segments=(FESegment(line_type=lt, length=c["length"], n_elements=100),),
                       seabed=Seabed(depth=c["depth"]),
