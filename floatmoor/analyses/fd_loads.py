@@ -8,19 +8,10 @@ import math
 
 import numpy as np
 
+from ..core.frames import yaw_rotation6 as rot6
 from ..hydro.database import interpolate_heading
 
 __all__ = ["rot6", "interp0", "coeff_slope", "relative_flow_damping", "qtf_function"]
-
-
-def rot6(yaw: float) -> np.ndarray:
-    """Block-diagonal rotation body -> earth about z for force/moment 6-vectors."""
-    c, s = math.cos(yaw), math.sin(yaw)
-    R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-    T = np.zeros((6, 6))
-    T[:3, :3] = R
-    T[3:, 3:] = R
-    return T
 
 
 def interp0(x_new, x, y):

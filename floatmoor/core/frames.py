@@ -15,10 +15,12 @@ run inside time loops.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
-__all__ = ["rotation_matrix", "rotation_matrix_into", "body_points_to_earth"]
+__all__ = ["rotation_matrix", "rotation_matrix_into", "body_points_to_earth", "yaw_rotation6"]
 
 
 @njit(cache=True)
@@ -57,3 +59,13 @@ def body_points_to_earth(pose, points_body, r, out):
         for k in range(3):
             out[i, k] = pose[k] + r[k, 0] * points_body[i, 0] + r[k, 1] * points_body[i, 1] \
                 + r[k, 2] * points_body[i, 2]
+
+
+def yaw_rotation6(yaw: float) -> np.ndarray:
+    """Block-diagonal rotation (6, 6) about z by ``yaw`` (rad) for force/moment (or
+    translation/rotation) 6-vectors: body axes -> earth axes."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    T = np.eye(6)
+    for a, b in ((0, 1), (3, 4)):
+        T[a, a], T[a, b], T[b, a], T[b, b] = c, -s, s, c
+    return T

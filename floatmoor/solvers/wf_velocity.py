@@ -25,10 +25,9 @@ alone, B_eq = sqrt(8/pi) sigma_WF B_q (iterated).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from ..core.frames import yaw_rotation6
 from ..forces.series import complex_envelope
 from ..forces.waves import body_axes_to_earth, transfer_at
 from .frequency_domain import equivalent_quadratic_damping, wave_frequency_rao
@@ -36,14 +35,6 @@ from .frequency_domain import equivalent_quadratic_damping, wave_frequency_rao
 __all__ = ["wf_velocity_rao", "wf_velocity_series", "RELATIVE_VELOCITY_MODES"]
 
 RELATIVE_VELOCITY_MODES = ("low_frequency", "total")
-
-
-def _rot6(yaw: float) -> np.ndarray:
-    c, s = math.cos(yaw), math.sin(yaw)
-    T = np.eye(6)
-    for a, b in ((0, 1), (3, 4)):
-        T[a, a], T[a, b], T[b, a], T[b, b] = c, -s, s, c
-    return T
 
 
 def _interp_matrix(omega, w_db, tab):
@@ -78,7 +69,7 @@ def wf_velocity_rao(db, omega, direction, *, mass, stiffness, linear_damping,
     """
     omega = np.asarray(omega, float)
     direction = np.asarray(direction, float)
-    T = _rot6(yaw0)
+    T = yaw_rotation6(yaw0)
     X = transfer_at(db, "excitation_force", omega, direction - yaw0, file=file)  # body axes
     K = T.T @ np.asarray(stiffness, float) @ T                                       # body axes
     if radiation:
