@@ -22,7 +22,7 @@ from floatmoor.forces import REGISTRY, ForceModel, register
 from floatmoor.forces.kernels import to_earth
 from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
-from floatmoor.solvers.statics import equilibrium
+from floatmoor.solvers.statics import solve_equilibrium as equilibrium
 from floatmoor.solvers.time_domain import assemble, integrate
 
 ROOT = Path(__file__).resolve().parents[2]
