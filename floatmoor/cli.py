@@ -188,6 +188,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("convergence", "floatmoor.commands.convergence"),
     ("report", "floatmoor.commands.report"),
     ("lines", "floatmoor.commands.lines"),
+    ("campaign", "floatmoor.commands.campaign"),
 ]
 """The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
 ``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""

@@ -102,15 +102,49 @@ class Progress:
 
 
 # -- executors --------------------------------------------------------------------------------
+SINGLE_THREAD_ENV = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1",
+                     "OPENBLAS_NUM_THREADS": "1"}
+"""The environment of every task process (as Dask's nanny gives its workers): a multi-threaded
+BLAS sums in a different order and changes the last bits of the statics and eigen-solutions, so
+a serial run in a process with several BLAS threads would not be bit-identical to a cluster."""
+
+
 class SerialExecutor:
+    """One task after the other in one spawned worker process with :data:`SINGLE_THREAD_ENV`
+    (a worker that dies is replaced and its task recorded as failed)."""
+
     workers = 1
 
+    def __init__(self):
+        self._saved = {k: os.environ.get(k) for k in SINGLE_THREAD_ENV}
+        os.environ.update(SINGLE_THREAD_ENV)
+        self.pool = None
+
+    def _pool(self):
+        if self.pool is None:
+            import multiprocessing
+            from concurrent.futures import ProcessPoolExecutor
+            self.pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
+        return self.pool
+
     def map(self, fn, arg_list):
+        from concurrent.futures.process import BrokenProcessPool
         for args in arg_list:
-            yield args, fn(*args)
+            try:
+                res = self._pool().submit(fn, *args).result()
+            except BrokenProcessPool as exc:
+                self.pool = None
+                res = exc
+            yield args, res
 
     def close(self):
-        pass
+        if self.pool is not None:
+            self.pool.shutdown()
+        for k, v in self._saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
 
 
 class DaskExecutor:
