@@ -230,14 +230,18 @@ def screen(spec, cases, out_dir) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if np.isfinite(fd["mbs"][i]).all():
             u[i] = utilisation(fd["tension_static"][i], fd["tension_max_total"][i],
                                fd["mbs"][i], c.limit_state, spec.design)
-    keep, reason = select_cases(u, [c.limit_state for c in cases], spec.screening)
+    import dataclasses
+    states = [c.limit_state for c in cases]
+    rule = dataclasses.replace(spec.screening, time_domain="screened")
+    screened, reason = select_cases(u, states, rule)   # what the rule keeps, in every mode
     fd_missing = ~np.isfinite(u).any(axis=1)
-    if spec.screening.time_domain == "screened":
-        keep |= fd_missing  # no FD result: cannot be screened out
+    screened |= fd_missing  # no FD result: cannot be screened out
+    keep = {"screened": screened, "all": np.ones(len(cases), bool),
+            "none": np.zeros(len(cases), bool)}[spec.screening.time_domain]
     lines = [f"u_fd_{j + 1}" for j in range(u.shape[1])]
-    rows = ["case,limit_state,td," + ",".join(lines)]
+    rows = ["case,limit_state,td,screened," + ",".join(lines)]
     for i, c in enumerate(cases):
-        rows.append(f"{c.id},{c.limit_state},{int(keep[i])}," +
+        rows.append(f"{c.id},{c.limit_state},{int(keep[i])},{int(screened[i])}," +
                     ",".join("" if not np.isfinite(x) else f"{x:.6f}" for x in u[i]))
     (Path(out_dir) / "screening.csv").write_text("\n".join(rows) + "\n")
     return u, keep, reason

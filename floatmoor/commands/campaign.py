@@ -79,3 +79,20 @@ def run(args: argparse.Namespace) -> int:
                   + f": {err}", file=sys.stderr)
         return EXIT_NUMERICAL_ERROR
     return EXIT_OK
+
+
+def report_campaign(args: argparse.Namespace) -> int:
+    """``floatmoor report DIR`` on a campaign folder (called by :mod:`.report`): the report
+    across the matrix; exit status 0 when every governing check passes, 1 otherwise."""
+    from ..campaign.report import write_report
+    a = write_report(args.results_dir, args.out)
+    for line in a["summary_lines"]:
+        print(line)
+    print("governing case per line and limit state:")
+    for g in a["governing"]:
+        print(f"  {g['limit_state']} {g['line']:>8s}: {g['case']}  utilisation "
+              f"{g['utilisation']:.3f} {'PASS' if g['passed'] else 'FAIL'}")
+    rd = a["report_dir"]
+    print(f"report: {rd / 'report.html'}  (also report.md, governing.csv, td_cases.csv, "
+          "summary.nc)")
+    return 0 if all(g["passed"] for g in a["governing"]) else 1
