@@ -291,12 +291,14 @@ def line_names(out_dir) -> list[str]:
 
 def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | None = None,
                  client=None, echo=print, bar: bool | None = None, verify: bool = False,
-                 seeds=None, analysis_overrides: dict | None = None) -> CampaignOutcome:
+                 seeds=None, analysis_overrides: dict | None = None,
+                 on_outcome=None) -> CampaignOutcome:
     """Run (or resume) a campaign into ``out_dir``; see the module docstring.
 
     ``campaign`` is a campaign file or a :class:`CampaignSpec`; ``seeds`` and
     ``analysis_overrides`` (duration, dt, transient, ramp) replace the campaign's (smoke runs);
-    ``verify`` checks the SHA-256 of finished files before skipping them."""
+    ``verify`` checks the SHA-256 of finished files before skipping them; ``on_outcome(dict)``
+    is called after each task outcome is in the manifest (progress hooks)."""
     t_start = time.perf_counter()
     spec = campaign if isinstance(campaign, CampaignSpec) else load_campaign(campaign)
     out_dir = Path(out_dir).resolve()
@@ -341,6 +343,8 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
                     prog.update(o["status"] == "done", 1,
                                 "" if o["status"] == "done" else
                                 f"{o['case']} seed {o['seed']}: {o['error']}")
+                    if on_outcome is not None:
+                        on_outcome(o)
             prog.close()
 
         # (1) frequency domain, every case (also with time_domain all or none: the report

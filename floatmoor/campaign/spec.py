@@ -111,6 +111,7 @@ class Storage:
     precision: str = "float32"
     compression: int = 4
     sampling: tuple = tuple(DEFAULT_SAMPLING.items())
+    sampling_given: bool = field(default=False, compare=False)  # else intervals are rounded
 
     @property
     def sampling_dict(self) -> dict:
@@ -256,7 +257,7 @@ def _storage(node: Node) -> Storage:
     return Storage(mode=s.str("mode", "full", choices=("full", "statistics")),
                    precision=s.str("precision", "float32", choices=("float32", "float64")),
                    compression=s.int("compression", 4, ge=0, le=9),
-                   sampling=tuple(sampling.items()))
+                   sampling=tuple(sampling.items()), sampling_given="sampling" in s)
 
 
 def _analysis(node: Node) -> tuple:
@@ -331,7 +332,7 @@ def _check_analysis(spec: CampaignSpec, scene, node: Node) -> None:
             raise node.error("conditions.line_failure.time", f"a time < the duration "
                              f"({an['duration']:g} s)", c.break_time)
     for k, dt_out in spec.storage.sampling:
-        if dt_out > 0 and abs(dt_out / an["dt"] - round(dt_out / an["dt"])) > 1e-9:
+        if spec.storage.sampling_given and dt_out > 0 and abs(dt_out / an["dt"] - round(dt_out / an["dt"])) > 1e-9:
             raise node.error(f"storage.sampling.{k}", f"0 or a multiple of dt ({an['dt']:g} s)",
                              dt_out)
     if len(spec.seeds) < 3 and spec.screening.time_domain != "none":
