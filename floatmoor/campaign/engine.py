@@ -160,7 +160,7 @@ class DaskExecutor:
             import logging
             n = workers or len(os.sched_getaffinity(0))
             self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                        dashboard_address=None, silence_logs=logging.ERROR)
+                                        dashboard_address=":0", silence_logs=logging.ERROR)
             self.client = Client(self.cluster)
         else:
             self.client = Client(scheduler)
@@ -309,6 +309,7 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
     by_id = {c.id: c for c in cases}
     seeds = tuple(int(s) for s in (seeds or spec.seeds))
     analysis = campaign_analysis(spec, analysis_overrides)
+    _check_same_campaign(spec, analysis, out_dir)
     _record(spec, cases, seeds, analysis, out_dir)
     from ._api import load_scene
     import warnings
@@ -388,6 +389,25 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
         executor.close()
     result.wall_time = time.perf_counter() - t_start
     return result
+
+
+def _check_same_campaign(spec, analysis, out_dir) -> None:
+    """Refuse to resume into a folder of results made with other storm parameters (their files
+    would be taken as done)."""
+    from ..core.errors import SceneError
+    if not (Path(out_dir) / store.RECORD).is_file():
+        return
+    old = store.read_record(out_dir)
+    new = {"analysis": analysis, "storage": {"mode": spec.storage.mode,
+                                             "precision": spec.storage.precision,
+                                             "compression": spec.storage.compression,
+                                             "sampling": dict(spec.storage.sampling)},
+           "base_scene": os.fspath(spec.base_scene)}
+    for key, value in new.items():
+        if old.get(key) != value:
+            raise SceneError(spec.file, key, f"the {key} of the results already in {out_dir} "
+                             f"({old.get(key)})", value, "use another --out folder, or the "
+                             "same settings to resume")
 
 
 def _storm_args(cases, seeds, base_path, analysis, storage, out_dir, manifest, verify, result,

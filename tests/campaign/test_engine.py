@@ -105,7 +105,7 @@ def test_killed_worker_campaign_completes(tmp_path):
     from dask.distributed import Client, LocalCluster
     import logging
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.ERROR)
+                           dashboard_address=":0", silence_logs=logging.ERROR)
     client = Client(cluster)
     killed = []
 
