@@ -32,7 +32,7 @@ from .screening import select_cases, td_case_check, utilisation
 from .spec import CampaignSpec, load_campaign
 from .tasks import run_fd_cases, run_storm
 
-__all__ = ["run_campaign", "CampaignOutcome", "campaign_analysis", "make_executor"]
+__all__ = ["CampaignOutcome", "campaign_analysis", "make_executor", "run_campaign"]
 
 
 @dataclass
@@ -176,7 +176,7 @@ class DaskExecutor:
             args = futs.pop(fut)
             try:
                 res = fut.result()
-            except Exception as exc:  # KilledWorker after repeated worker deaths, ...
+            except Exception as exc:  # noqa: BLE001 - KilledWorker after repeated deaths, ...
                 res = exc
             fut.release()
             yield args, res
@@ -311,8 +311,9 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
     analysis = campaign_analysis(spec, analysis_overrides)
     _check_same_campaign(spec, analysis, out_dir)
     _record(spec, cases, seeds, analysis, out_dir)
-    from ._api import load_scene
     import warnings
+
+    from ._api import load_scene
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         base = load_scene(spec.base_scene)
@@ -367,7 +368,7 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
                      f"{result.skipped.get('fd', 0)} done before")
             consume("FD", run_fd_cases, batches, lambda a: len(a[1]), "fd")
         # (2) screening
-        u, keep, _ = screen(spec, cases, out_dir)
+        _, keep, _ = screen(spec, cases, out_dir)
         td_cases = [c for c, k in zip(cases, keep) if k]
         result.n_td_cases = len(td_cases)
         if echo:

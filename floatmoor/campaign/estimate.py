@@ -100,7 +100,7 @@ def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None
         fd_case = fd_times[-1]
         scene, failed = case_scene(base, cases[0], an)
         dt = an["dt"]
-        n_steps = int(round(an["duration"] / dt))
+        n_steps = round(an["duration"] / dt)
         n1, n2 = min(100, n_steps), min(300, n_steps)
         _api.simulate(_api.build(scene, failed_lines=failed), seed=seeds[0],
                       duration=n1 * dt, dt=dt, transient=0.0)  # warm-up: compiled kernels, database
@@ -181,14 +181,15 @@ def format_estimate(e: Estimate) -> str:
           f"not run here: {e.n_cases} FD cases x {e.fd_case_s:.2f} s)")
     n_td = e.n_td_cases if e.n_td_cases is not None else e.td_cases_max
     lines = [
-        f"matrix: {e.n_sea_states} sea state(s) x {e.n_headings} heading(s) x "
-        f"{e.n_conditions} condition(s) = {e.n_cases} case(s); {e.n_seeds} seed(s) per TD case",
+        (f"matrix: {e.n_sea_states} sea state(s) x {e.n_headings} heading(s) x "
+         f"{e.n_conditions} condition(s) = {e.n_cases} case(s); {e.n_seeds} seed(s) per TD "
+         "case"),
         f"FD cases: {e.n_cases}",
         f"TD cases after screening: {td}",
         f"storms: {e.storms(n_td)}" + ("" if e.n_td_cases is not None else " (at most)"),
-        f"calibration ({e.calibration_s:.1f} s): FD case {e.fd_case_s:.2f} s; storm "
-        f"{e.storm_s:.1f} s ({e.storm_setup_s:.2f} s setup + {e.n_steps} steps x "
-        f"{e.step_s * 1e6:.0f} us)",
+        (f"calibration ({e.calibration_s:.1f} s): FD case {e.fd_case_s:.2f} s; storm "
+         f"{e.storm_s:.1f} s ({e.storm_setup_s:.2f} s setup + {e.n_steps} steps x "
+         f"{e.step_s * 1e6:.0f} us)"),
     ]
     cores = sorted({1, e.workers, 2, 64, 512})
     lines.append("estimated wall time: " + ", ".join(

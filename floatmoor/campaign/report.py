@@ -339,10 +339,10 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE)
 def _summary_text(a) -> list[str]:
     rec = a["record"]
     n_td = int(np.sum(a["n_seeds"] >= 3))
-    out = [f"DNV-OS-E301 Position Mooring, October 2008, consequence class "
-           f"{rec['design']['consequence_class']}, {rec['design']['analysis']} analysis; "
-           f"{len(a['cases'])} cases screened in the frequency domain, {n_td} run in the time "
-           f"domain ({len(rec['seeds'])} seeds each; screening {rec['screening']})."]
+    out = [(f"DNV-OS-E301 Position Mooring, October 2008, consequence class "
+            f"{rec['design']['consequence_class']}, {rec['design']['analysis']} analysis; "
+            f"{len(a['cases'])} cases screened in the frequency domain, {n_td} run in the time "
+            f"domain ({len(rec['seeds'])} seeds each; screening {rec['screening']}).")]
     for ls in ("ULS", "ALS"):
         g = [x for x in a["governing"] if x["limit_state"] == ls]
         if not g:

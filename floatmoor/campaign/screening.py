@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["utilisation", "select_cases", "td_case_check"]
+__all__ = ["select_cases", "td_case_check", "utilisation"]
 
 
 def utilisation(t_mean, t_max, mbs, limit_state: str, design) -> np.ndarray:

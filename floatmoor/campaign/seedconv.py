@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-__all__ = ["fractile_interval", "pivot_quantiles", "seeds_needed", "DEFAULT_TOLERANCE"]
+__all__ = ["DEFAULT_TOLERANCE", "fractile_interval", "pivot_quantiles", "seeds_needed"]
 
 DEFAULT_TOLERANCE = 0.05
 METHOD = ("parametric bootstrap of the pivot (q_hat - q) / scale_hat of the Gumbel MLE "
@@ -66,4 +66,4 @@ def seeds_needed(n: int, half_width: float, tolerance: float = DEFAULT_TOLERANCE
     """Seeds that bring the relative half-width within ``tolerance`` (1/sqrt(n) scaling)."""
     if not half_width > tolerance:
         return n
-    return int(math.ceil(n * (half_width / tolerance) ** 2))
+    return math.ceil(n * (half_width / tolerance) ** 2)

@@ -46,8 +46,16 @@ from pathlib import Path
 from ..core.config import Node
 from ..core.errors import SceneError
 
-__all__ = ["SeaState", "Condition", "Screening", "Storage", "Design", "CampaignSpec",
-           "load_campaign", "STORAGE_VARIABLES"]
+__all__ = [
+    "STORAGE_VARIABLES",
+    "CampaignSpec",
+    "Condition",
+    "Design",
+    "Screening",
+    "SeaState",
+    "Storage",
+    "load_campaign",
+]
 
 KEYS = ("name", "description", "base_scene", "sea_states", "headings", "conditions", "seeds",
         "analysis", "screening", "design", "storage")
@@ -152,7 +160,7 @@ def _angles(node: Node, key: str, default=None) -> tuple[float, ...]:
         step = r.float("step", gt=0.0, unit="deg")
         if stop < start:
             raise r.error("stop", f"an angle >= start ({start:g} deg)", stop)
-        n = int(math.floor((stop - start) / step + 1e-9)) + 1
+        n = math.floor((stop - start) / step + 1e-9) + 1
         vals = [start + i * step for i in range(n)]
     elif isinstance(value, list) and value:
         vals = []
@@ -253,7 +261,7 @@ def _storage(node: Node) -> Storage:
     if "sampling" in s:
         sm = s.child("sampling")
         sm.reject_unknown(STORAGE_VARIABLES)
-        sampling = {k: sm.float(k, ge=0.0, unit="s") for k in sm.keys()}
+        sampling = {k: sm.float(k, ge=0.0, unit="s") for k in sm.data}
     return Storage(mode=s.str("mode", "full", choices=("full", "statistics")),
                    precision=s.str("precision", "float32", choices=("float32", "float64")),
                    compression=s.int("compression", 4, ge=0, le=9),

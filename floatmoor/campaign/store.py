@@ -20,8 +20,16 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["Manifest", "MANIFEST", "RECORD", "storm_path", "fd_path", "load_fd_table",
-           "load_td_statistics", "is_campaign_dir"]
+__all__ = [
+    "MANIFEST",
+    "RECORD",
+    "Manifest",
+    "fd_path",
+    "is_campaign_dir",
+    "load_fd_table",
+    "load_td_statistics",
+    "storm_path",
+]
 
 MANIFEST = "manifest.csv"
 RECORD = "campaign.json"

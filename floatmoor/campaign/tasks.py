@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["run_fd_cases", "run_storm", "storm_dataset", "write_netcdf", "file_digest"]
+__all__ = ["file_digest", "run_fd_cases", "run_storm", "storm_dataset", "write_netcdf"]
 
 _VOLATILE_ATTRS = ("created", "run_time_s", "setup_time_s", "real_time_factor", "scene_file",
                    "run_date_utc")
@@ -53,6 +53,25 @@ def _scene_for(base_path: str, case, analysis: dict):
     from .matrix import case_scene
     base = _base_scene(base_path, os.path.getmtime(base_path))
     return case_scene(base, case, analysis)
+
+
+@functools.lru_cache(maxsize=32)
+def _built_base(path: str, mtime: float, failed: tuple):
+    from . import _api
+    return _api.build(_base_scene(path, mtime), failed_lines=list(failed))
+
+
+def _built_for(base_path: str, case, analysis: dict, failed_override=None):
+    """The built scene of ``case``: the vessel and mooring (which depend only on the base
+    scene's site, vessel and mooring files and the failed lines) are built once per worker
+    process and condition; the case's scene (environment, analysis, forces) replaces the
+    base scene in it."""
+    import dataclasses
+    scene, failed = _scene_for(base_path, case, analysis)
+    if failed_override is not None:
+        failed = failed_override
+    built = _built_base(base_path, os.path.getmtime(base_path), tuple(failed or ()))
+    return dataclasses.replace(built, scene=scene), failed
 
 
 def file_digest(path) -> str:
@@ -116,15 +135,14 @@ def run_fd_cases(base_path: str, cases, analysis: dict, out_dir: str, compressio
         t0 = time.perf_counter()
         path = Path(out_dir) / "fd" / f"{case.id}.nc"
         try:
-            scene, failed = _scene_for(base_path, case, analysis)
-            if case.condition.kind == "transient":
-                failed = list(case.condition.lines)
+            failed = list(case.condition.lines) if case.condition.kind == "transient" else None
+            built, _ = _built_for(base_path, case, analysis, failed)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                fd = _api.frequency_domain(_api.build(scene, failed_lines=failed))
+                fd = _api.frequency_domain(built)
             info = write_netcdf(_fd_dataset(fd, case), path, compression=compression)
             results.append(_outcome("fd", case, -1, path, "done", t0, extra=info))
-        except Exception as exc:  # recorded; the campaign goes on
+        except Exception as exc:  # noqa: BLE001 - recorded; the campaign goes on
             results.append(_outcome("fd", case, -1, path, "failed", t0, _error_text(exc),
                                     {"traceback": traceback.format_exc()}))
     return results
@@ -173,7 +191,7 @@ def storm_dataset(ds, case, seed: int, storage, transient: float, keep_series: b
         for var, interval in storage.sampling:
             if var not in ds:
                 continue
-            k = max(1, int(round(interval / dt))) if interval > 0 else 1
+            k = max(1, round(interval / dt)) if interval > 0 else 1
             da = ds[var].isel(time=slice(None, None, k))
             tname = f"time_{var}"
             da = da.rename({"time": tname})
@@ -201,16 +219,17 @@ def storm_dataset(ds, case, seed: int, storage, transient: float, keep_series: b
 def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path: str,
               keep_series: bool | None = None) -> dict:
     """Simulate one storm (``case``, ``seed``) and write ``out_path``; never raises."""
-    from . import _api
     from ..core.errors import FloatmoorWarning
+    from . import _api
     t0 = time.perf_counter()
     keep = storage.mode == "full" if keep_series is None else keep_series
     try:
-        scene, failed = _scene_for(base_path, case, analysis)
+        built, failed = _built_for(base_path, case, analysis)
+        scene = built.scene
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("ignore")
             warnings.simplefilter("always", FloatmoorWarning)
-            ds = _api.simulate(_api.build(scene, failed_lines=failed), seed=int(seed))
+            ds = _api.simulate(built, seed=int(seed))
         transient = float(scene.analysis.transient)
         sim_time = float(ds.attrs.get("run_time_s", 0.0)) + float(ds.attrs.get("setup_time_s",
                                                                                 0.0))
@@ -222,6 +241,6 @@ def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path
         info["warnings"] = " | ".join(dict.fromkeys(str(w.message) for w in caught))
         return _outcome("td" if keep_series is None else "series", case, int(seed), out_path,
                         "done", t0, extra=info)
-    except Exception as exc:  # NumericalError and anything else: recorded, never raised
+    except Exception as exc:  # noqa: BLE001 - NumericalError and the rest: recorded
         return _outcome("td" if keep_series is None else "series", case, int(seed), out_path,
                         "failed", t0, _error_text(exc), {"traceback": traceback.format_exc()})

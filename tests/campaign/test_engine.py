@@ -102,8 +102,9 @@ def test_report_files_and_cli(tiny_runs, capsys):
 
 @pytest.mark.slow  # 12 FD cases and 24 storms on 2 workers, one of them killed
 def test_killed_worker_campaign_completes(tmp_path):
-    from dask.distributed import Client, LocalCluster
     import logging
+
+    from dask.distributed import Client, LocalCluster
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                            dashboard_address=":0", silence_logs=logging.ERROR)
     client = Client(cluster)
@@ -112,7 +113,7 @@ def test_killed_worker_campaign_completes(tmp_path):
     def kill_one(outcome):
         if outcome["kind"] == "td" and not killed:
             pids = client.run(os.getpid)
-            pid = sorted(pids.values())[0]
+            pid = min(pids.values())
             os.kill(pid, signal.SIGKILL)
             killed.append(pid)
 
