@@ -243,7 +243,9 @@ def _polar_figures(a) -> dict:
             ax.plot(np.radians(heads[td]), a["u_td"][td, j], "o", color="C3", ms=3, label="TD")
             ax.set_title(a["lines"][j], fontsize=9)
             ax.tick_params(labelsize=6)
-        fig.suptitle(f"{ls}: DNV-OS-E301 utilisation per line over the wave heading")
+        fig.suptitle(f"{ls}: DNV-OS-E301 utilisation per line over the wave heading "
+                     "(line: FD, max over sea states and conditions; dots: TD cases)")
+        fig.tight_layout()
         figs[f"polar_utilisation_{ls}"] = fig
     fd = a["fd"]
     if fd and "max_total" in fd:

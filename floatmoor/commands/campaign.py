@@ -31,6 +31,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="LocalCluster worker processes (default: the local cores)")
     p.add_argument("--dry-run", action="store_true",
                    help="print the matrix, the estimated wall time and storage; run nothing")
+    p.add_argument("--fd-budget", type=positive_float, default=5.0, metavar="S",
+                   help="--dry-run: run the FD screening of every case when it is estimated to "
+                        "take at most S seconds here, for the exact TD count (default 5)")
     p.add_argument("--seeds", default=None, metavar="LIST",
                    help='replace the campaign\'s seeds, e.g. "1-3" (smoke runs)')
     p.add_argument("--duration", type=positive_float, default=None, metavar="S",
@@ -60,7 +63,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"campaign: {spec.name}  [{spec.file}]")
     if args.dry_run:
         from ..campaign.estimate import estimate, format_estimate
-        print(format_estimate(estimate(spec, workers=workers, seeds=seeds, overrides=overrides)))
+        print(format_estimate(estimate(spec, workers=workers, seeds=seeds, overrides=overrides,
+                                        fd_budget=args.fd_budget)))
         return EXIT_OK
     from ..campaign.engine import run_campaign
     out = Path(args.out) if args.out else Path("results") / spec.name

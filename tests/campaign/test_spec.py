@@ -84,3 +84,20 @@ def test_mistakes_name_file_and_key(tmp_path, old, new, key):
     assert e.value.key == key
     assert Path(e.value.file) == p
     assert "expected" in str(e.value)
+
+
+@pytest.mark.slow  # the dry run calibrates and screens 12 FD cases: 20-80 s on the loaded machine
+def test_cli_dry_run_and_input_error(tmp_path, capsys):
+    from floatmoor.cli import main
+    assert main(["campaign", str(HERE / "tiny.yaml"), "--dry-run", "--workers", "2",
+                 "--fd-budget", "600"]) == 0
+    out = capsys.readouterr().out
+    assert "= 12 case(s); 3 seed(s)" in out and "FD cases: 12" in out
+    n_td = int(out.split("TD cases after screening: ")[1].split()[0])
+    assert 2 <= n_td <= 12  # the FD was run (cheap): the exact count, at least one per state
+    assert f"storms: {3 * n_td}" in out and "storage (full mode)" in out
+    assert "on 512 core(s)" in out
+    bad = _write(tmp_path, GOOD.replace("seeds:", "seed:"))
+    assert main(["campaign", str(bad), "--dry-run"]) == 2
+    err = capsys.readouterr().err
+    assert f"{bad}: seed: expected one of the keys" in err and "Traceback" not in err
