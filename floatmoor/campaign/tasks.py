@@ -64,14 +64,18 @@ def _built_base(path: str, mtime: float, failed: tuple):
 def _built_for(base_path: str, case, analysis: dict, failed_override=None):
     """The built scene of ``case``: the vessel and mooring (which depend only on the base
     scene's site, vessel and mooring files and the failed lines) are built once per worker
-    process and condition; the case's scene (environment, analysis, forces) replaces the
-    base scene in it."""
+    process and condition and never used themselves; each task gets the case's scene
+    (environment, analysis, forces) and a fresh copy of the mooring, whose catenary solver keeps
+    warm-start state (sharing it would make a result depend on the tasks run before it in the
+    same process, and break the bit identity between serial and distributed runs)."""
+    import copy
     import dataclasses
     scene, failed = _scene_for(base_path, case, analysis)
     if failed_override is not None:
         failed = failed_override
     built = _built_base(base_path, os.path.getmtime(base_path), tuple(failed or ()))
-    return dataclasses.replace(built, scene=scene), failed
+    mooring = None if built.mooring is None else copy.deepcopy(built.mooring)
+    return dataclasses.replace(built, scene=scene, mooring=mooring), failed
 
 
 def file_digest(path) -> str:
