@@ -368,8 +368,8 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
                      f"{result.skipped.get('fd', 0)} done before")
             consume("FD", run_fd_cases, batches, lambda a: len(a[1]), "fd")
         # (2) screening
-        _, keep, _ = screen(spec, cases, out_dir)
-        td_cases = [c for c, k in zip(cases, keep) if k]
+        u, keep, _ = screen(spec, cases, out_dir)
+        td_cases = [cases[i] for i in _most_critical_first(u, cases, keep)]
         result.n_td_cases = len(td_cases)
         if echo:
             echo(f"screening ({spec.screening.time_domain}): {len(td_cases)} of {len(cases)} "
@@ -390,6 +390,24 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
         executor.close()
     result.wall_time = time.perf_counter() - t_start
     return result
+
+
+def _most_critical_first(u, cases, keep) -> list[int]:
+    """Indices of the kept cases, the most critical first (largest FD utilisation relative to
+    the governing FD utilisation of the same line and limit state; cases without FD first), so
+    that an interrupted campaign has its likely governing cases done."""
+    idx = np.nonzero(keep)[0]
+    if u.size == 0:
+        return list(idx)
+    states = np.array([c.limit_state for c in cases])
+    rel = np.full(u.shape, np.nan)
+    for ls in np.unique(states):
+        rows = states == ls
+        with np.errstate(invalid="ignore", divide="ignore"):
+            gov = np.nanmax(np.where(np.isfinite(u[rows]), u[rows], -np.inf), axis=0)
+            rel[rows] = u[rows] / np.where(gov > 0, gov, np.nan)
+    score = np.array([np.nanmax(rel[i]) if np.isfinite(rel[i]).any() else np.inf for i in idx])
+    return [int(i) for i in idx[np.argsort(-score, kind="stable")]]
 
 
 def _check_same_campaign(spec, analysis, out_dir) -> None:
