@@ -68,12 +68,14 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE) -> dict:
             if np.isfinite(fd["mbs"][i]).all():
                 u_fd[i] = utilisation(fd["tension_static"][i], fd["tension_max_total"][i],
                                       fd["mbs"][i], c["limit_state"], design)
-    screened = np.zeros(nc, bool)
+    screened = np.zeros(nc, bool)     # kept by the screening rule
+    sent = np.ones(nc, bool)           # sent to the time domain (run, running or failed)
     scr = Path(out_dir) / "screening.csv"
     if scr.is_file():
-        rows = scr.read_text().splitlines()[1:]
-        pos = {r.split(",")[0]: int(r.split(",")[3]) for r in rows if r}
-        screened = np.array([bool(pos.get(i, 0)) for i in ids])
+        rows = [r.split(",") for r in scr.read_text().splitlines()[1:] if r]
+        pos = {r[0]: (int(r[2]), int(r[3])) for r in rows}
+        sent = np.array([bool(pos.get(i, (1, 1))[0]) for i in ids])
+        screened = np.array([bool(pos.get(i, (0, 0))[1]) for i in ids])
     st = store.load_td_statistics(out_dir, ids, seeds)
     u_td = np.full((nc, nl), np.nan)
     t_c = np.full((nc, nl), np.nan)
@@ -108,7 +110,7 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE) -> dict:
             # FD against TD for this line and limit state
             both = np.nonzero((states == ls) & ran & np.isfinite(u_fd[:, j]))[0]
             ratio = u_td[both, j] / u_fd[both, j]
-            out_rows = np.nonzero((states == ls) & ~ran & np.isfinite(u_fd[:, j]))[0]
+            out_rows = np.nonzero((states == ls) & ~sent & np.isfinite(u_fd[:, j]))[0]
             u_out = float(np.nanmax(u_fd[out_rows, j])) if out_rows.size else float("nan")
             r_max = float(np.nanmax(ratio)) if ratio.size else float("nan")
             bound = u_out * r_max
@@ -143,6 +145,7 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE) -> dict:
             })
     return {"record": rec, "lines": lines, "cases": cases, "ids": ids, "states": states,
             "u_fd": u_fd, "u_td": u_td, "t_c": t_c, "t_c_mean": t_m, "n_seeds": n_seeds,
+            "sent": sent,
             "offset": offset, "fd": fd, "governing": governing, "screened": screened,
             "tolerance": tolerance, "mbs": st["mbs"] if st else None}
 
@@ -341,10 +344,14 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE)
 def _summary_text(a) -> list[str]:
     rec = a["record"]
     n_td = int(np.sum(a["n_seeds"] >= 3))
+    pending = int(np.sum(a["sent"])) - n_td
     out = [(f"DNV-OS-E301 Position Mooring, October 2008, consequence class "
             f"{rec['design']['consequence_class']}, {rec['design']['analysis']} analysis; "
             f"{len(a['cases'])} cases screened in the frequency domain, {n_td} run in the time "
-            f"domain ({len(rec['seeds'])} seeds each; screening {rec['screening']}).")]
+            f"domain ({len(rec['seeds'])} seeds each; screening {rec['screening']})"
+            + (f"; {pending} case(s) sent to the time domain have fewer than 3 finished "
+               "seeds and are not in this report (campaign unfinished or failed storms)"
+               if pending else "") + ".")]
     for ls in ("ULS", "ALS"):
         g = [x for x in a["governing"] if x["limit_state"] == ls]
         if not g:
