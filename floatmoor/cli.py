@@ -201,6 +201,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("lines", "floatmoor.commands.lines"),
     ("import", "floatmoor.commands.import_"),
     ("export", "floatmoor.commands.export"),
+    ("campaign", "floatmoor.commands.campaign"),
 ]
 """The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
 ``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""

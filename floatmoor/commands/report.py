@@ -274,6 +274,10 @@ def run(args: argparse.Namespace) -> int:
     from ..post import dnv_os_e301 as dnv
     from ..post.report import build_report, scene_name
 
+    from ..campaign.store import is_campaign_dir
+    if is_campaign_dir(args.results_dir):  # a floatmoor campaign folder: the matrix report
+        from .campaign import report_campaign
+        return report_campaign(args)
     if args.failed_line and not args.als_dir:
         raise UsageError("--failed-line names the failed line of the ALS results: give the "
                          "folder of those results with --als-dir (run them with floatmoor run "

@@ -1,0 +1,165 @@
+"""Benchmark of design campaigns (`floatmoor campaign`).
+
+Run:  .venv/bin/python benchmarks/bench_campaign.py [--storms-duration 12000] [--seeds 4]
+
+* ``--dry-run`` of the example campaign (7 sea states x 24 headings x 13 conditions) in a fresh
+  process, as a user types it (target < 10 s);
+* a small campaign (the 100-year peak sea state, 2 headings, intact, ``--seeds`` seeds of
+  ``--storms-duration`` s at dt 0.1 s, every case in TD) on a Dask LocalCluster of 1 and of 2
+  workers: wall time, the storms' own simulation time (``simulate`` setup + loop, from the
+  manifest's tasks), the campaign overhead ``wall - sum(simulate) / workers`` (cluster start,
+  scheduling, statistics, compressed writing, manifest) and the speed-up (targets: overhead
+  < 5 % of the storms' run time, 2 workers >= 1.8 x faster than 1);
+* the example campaign's wall time on 1, 2, 64 and 512 cores, extrapolated from the measured
+  cost per time step and per FD case (the number of TD cases from ``results/campaign`` when a
+  screened run is there, else the bounds).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+CAMPAIGN = """name: bench
+base_scene: {base}
+sea_states: {{list: [{{name: peak, hs: 16.0, tp: 18.2}}]}}
+headings: {{waves_deg: [0, 15]}}
+conditions: {{intact: true}}
+seeds: "1-{seeds}"
+analysis: {{duration: {duration}, dt: 0.1, transient: 1200.0, ramp: 100.0}}
+screening: {{time_domain: all}}
+storage: {{mode: full, precision: float32, compression: 4}}
+"""
+
+
+def _load() -> str:
+    return " ".join(f"{x:.2f}" for x in os.getloadavg())
+
+
+def dry_run() -> float:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    t = time.perf_counter()
+    out = subprocess.run([sys.executable, "-m", "floatmoor", "campaign",
+                          str(ROOT / "campaigns" / "floatel_uls_als.yaml"), "--dry-run"],
+                         capture_output=True, text=True, env=env, cwd=ROOT, check=False)
+    wall = time.perf_counter() - t
+    print(out.stdout)
+    if out.returncode:
+        print(out.stderr)
+    return wall
+
+
+def campaign_run(path: Path, workers: int) -> dict:
+    import logging
+
+    from dask.distributed import Client, LocalCluster
+
+    from floatmoor.campaign import store
+    from floatmoor.campaign.engine import run_campaign
+    t = time.perf_counter()
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=":0", silence_logs=logging.ERROR)
+    client = Client(cluster)
+    start = time.perf_counter() - t
+    try:
+        with tempfile.TemporaryDirectory() as out:
+            t = time.perf_counter()
+            r = run_campaign(path, out, client=client, echo=None)
+            wall = time.perf_counter() - t
+            rows = [x for x in store.Manifest(out).rows() if x["kind"] == "td"]
+            fd = sum(float(x["wall_time_s"]) for x in store.Manifest(out).rows()
+                     if x["kind"] == "fd")
+            sim = sum(float(x["simulate_s"]) for x in rows)
+            task = sum(float(x["wall_time_s"]) for x in rows)
+            nbytes = sum(int(x["bytes"]) for x in rows)
+    finally:
+        client.close()
+        cluster.close()
+    return {"workers": workers, "cluster_start": start, "wall": wall, "task": task,
+            "simulate": sim, "fd_tasks": fd, "storms": len(rows), "fd": r.ran.get("fd", 0),
+            "bytes": nbytes, "load": _load()}
+
+
+def simulate_times(path: Path) -> tuple[float, float]:
+    """Setup + loop time of one storm of the bench campaign in this process (2nd run: warm)."""
+    import warnings
+
+    from floatmoor.campaign import _api
+    from floatmoor.campaign.matrix import build_matrix, case_scene
+    from floatmoor.campaign.spec import load_campaign
+    spec = load_campaign(path)
+    case = build_matrix(spec)[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        base = _api.load_scene(spec.base_scene)
+        scene, failed = case_scene(base, case, dict(spec.analysis))
+        for _ in range(2):
+            t = time.perf_counter()
+            ds = _api.simulate(_api.build(scene, failed_lines=failed), seed=1)
+            wall = time.perf_counter() - t
+    n = round(scene.analysis.duration / scene.analysis.dt)
+    return wall, float(ds.attrs["run_time_s"]) / n
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--storms-duration", type=float, default=12000.0)
+    ap.add_argument("--seeds", type=int, default=4)
+    args = ap.parse_args()
+    print(f"load average at start: {_load()}")
+    dr = dry_run()
+    print(f"dry run of the example campaign: {dr:.1f} s (load {_load()})")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "bench.yaml"
+        path.write_text(CAMPAIGN.format(base=(ROOT / "scenes" / "floatel_100yr.yaml").as_posix(),
+                                        seeds=args.seeds, duration=args.storms_duration))
+        storm_wall, step = simulate_times(path)
+        print(f"one storm of {args.storms_duration:g} s in this process: {storm_wall:.2f} s "
+              f"(loop {step * 1e6:.0f} us per step)")
+        runs = []
+        for w in (1, 2):
+            r = campaign_run(path, w)
+            runs.append(r)
+            ideal = (r["simulate"] + r["fd_tasks"]) / w
+            print(f"LocalCluster {w} worker(s) (start {r['cluster_start']:.1f} s): "
+                  f"{r['storms']} storms + {r['fd']} FD in {r['wall']:.1f} s; storms' own "
+                  f"simulation {r['simulate']:.1f} s (+ FD {r['fd_tasks']:.1f} s), task wall "
+                  f"{r['task']:.1f} s; overhead (wall - (simulation + FD) / workers) "
+                  f"{100 * (r['wall'] - ideal) / ideal:.1f} %, with the cluster start "
+                  f"{100 * (r['wall'] + r['cluster_start'] - ideal) / ideal:.1f} %; "
+                  f"{r['bytes'] / 1e6:.1f} MB (load {r['load']})")
+        print(f"speed-up 2 workers / 1: {runs[0]['wall'] / runs[1]['wall']:.2f} "
+              f"(with the cluster start: {(runs[0]['wall'] + runs[0]['cluster_start']) / (runs[1]['wall'] + runs[1]['cluster_start']):.2f})")
+    # extrapolation of the example campaign
+    from floatmoor.campaign.estimate import estimate
+    from floatmoor.campaign.spec import load_campaign
+    spec = load_campaign(ROOT / "campaigns" / "floatel_uls_als.yaml")
+    e = estimate(spec, fd_budget=0.0)
+    n_steps = 120000
+    storm = storm_wall - step * args.storms_duration / 0.1 + step * n_steps
+    scr = ROOT / "results" / "campaign" / "screening.csv"
+    n_td = None
+    if scr.is_file():
+        rows = scr.read_text().splitlines()[1:]
+        n_td = sum(int(r.split(",")[3]) for r in rows if r)
+    print(f"example: {e.n_cases} FD cases at {e.fd_case_s:.2f} s; 3-hour storm (12000 s, dt 0.1)"
+          f" {storm:.1f} s; TD cases: {n_td if n_td is not None else 'unknown'}")
+    for nc in ([n_td] if n_td is not None else [e.td_cases_min, e.td_cases_max]):
+        e.storm_s = storm
+        print(f"  {nc} TD cases x 20 seeds: " + ", ".join(
+            f"{e.wall_time(c, nc) / 3600:.2f} h on {c}" for c in (1, 2, 64, 512)))
+    print(json.dumps({"dry_run_s": dr, "runs": runs, "storm_3h_s": storm,
+                      "fd_case_s": e.fd_case_s}, default=str))
+
+
+if __name__ == "__main__":
+    main()

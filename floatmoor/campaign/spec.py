@@ -1,0 +1,347 @@
+"""Campaign files: a DNV-OS-E301 design campaign over sea states, headings and conditions.
+
+```yaml
+name: floatel-uls-als
+description: free text
+base_scene: ../scenes/floatel_100yr.yaml   # vessel, mooring, site, environment components
+sea_states:                                # one of: contour (a file with sea_states:) or list
+  contour: ../metocean/heidrun_contour.yaml
+  only: [1, 4]                             # optional: 1-based indices into the contour
+  # list: [{name: peak, hs: 16.0, tp: 18.2, gamma: null}]
+headings:
+  waves_deg: {start: 0, stop: 345, step: 15}   # or a list [0, 15, 30]
+  wind_offset_deg: [0]                     # wind heading - wave heading (non-collinear: [0, 30])
+  current_offset_deg: [0]
+conditions:
+  intact: true
+  failed_lines: all                        # all single-line failures, or [[line6], [line6, line7]]
+  line_failure: {lines: [line6], time: 1500.0}   # transient ALS: break at t (s); lines: all too
+seeds: "1-20"                              # as analysis.seeds of a scene
+analysis: {duration: 12000.0, dt: 0.1, transient: 1200.0, ramp: 100.0}   # optional overrides
+screening:
+  time_domain: screened                    # screened | all | none
+  within_percent: 10.0                     # TD for cases within X % of a line's governing FD
+  top_per_line: 3                          #   utilisation, and at least the top N per line
+design: {standard: dnv-os-e301, consequence_class: 2, analysis: dynamic}
+storage:
+  mode: full                               # full | statistics (series only for governing cases)
+  precision: float32                       # float32 | float64 of the stored series
+  compression: 4                           # zlib level 0-9 (0: none), with shuffle
+  sampling: {line_tension: 0.1, motion: 0.5, wave_elevation: 0.5}   # s; variables kept
+```
+
+Every mistake is a :class:`~floatmoor.core.errors.SceneError` naming the file, the key, what
+was expected and what was found.  Headings are the direction of travel (from +x towards +y), as
+in scenes; the environment components present in the base scene are turned, the others stay
+absent.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..core.config import Node
+from ..core.errors import SceneError
+
+__all__ = [
+    "STORAGE_VARIABLES",
+    "CampaignSpec",
+    "Condition",
+    "Design",
+    "Screening",
+    "SeaState",
+    "Storage",
+    "load_campaign",
+]
+
+KEYS = ("name", "description", "base_scene", "sea_states", "headings", "conditions", "seeds",
+        "analysis", "screening", "design", "storage")
+STORAGE_VARIABLES = ("line_tension", "anchor_tension", "motion", "velocity", "wave_elevation")
+"""Time series a result file may keep (``storage.sampling`` keys)."""
+DEFAULT_SAMPLING = {"line_tension": 0.0, "motion": 0.5, "wave_elevation": 0.5}
+"""Default kept series and their output interval (s; 0: every time step)."""
+
+
+@dataclass(frozen=True, kw_only=True)
+class SeaState:
+    """One short-term sea state: name, Hs (m), Tp (s), JONSWAP gamma (None: DNV rule)."""
+    name: str
+    hs: float
+    tp: float
+    gamma: float | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
+class Condition:
+    """A mooring condition: ``intact``, lines removed from the start (ALS) or a line breaking
+    at ``break_time`` (transient ALS)."""
+    kind: str                       # intact | failed | transient
+    lines: tuple[str, ...] = ()
+    break_time: float | None = None
+
+    @property
+    def name(self) -> str:
+        if self.kind == "intact":
+            return "intact"
+        if self.kind == "failed":
+            return "failed-" + "+".join(self.lines)
+        return f"break-{'+'.join(self.lines)}-t{self.break_time:g}"
+
+    @property
+    def limit_state(self) -> str:
+        return "ULS" if self.kind == "intact" else "ALS"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Screening:
+    """FD screening rule: ``time_domain`` screened | all | none; ``within_percent`` and
+    ``top_per_line`` (see the module docstring)."""
+    time_domain: str = "screened"
+    within_percent: float = 10.0
+    top_per_line: int = 3
+
+
+@dataclass(frozen=True, kw_only=True)
+class Design:
+    standard: str = "dnv-os-e301"
+    consequence_class: int = 2
+    analysis: str = "dynamic"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Storage:
+    """How storm results are stored: ``mode`` full | statistics, ``precision`` of the series,
+    zlib ``compression`` level (0: none), ``sampling`` {variable: output interval in s}."""
+    mode: str = "full"
+    precision: str = "float32"
+    compression: int = 4
+    sampling: tuple = tuple(DEFAULT_SAMPLING.items())
+    sampling_given: bool = field(default=False, compare=False)  # else intervals are rounded
+
+    @property
+    def sampling_dict(self) -> dict:
+        return dict(self.sampling)
+
+
+@dataclass(frozen=True, kw_only=True)
+class CampaignSpec:
+    """A validated campaign file (build it with :func:`load_campaign`)."""
+    name: str
+    description: str = ""
+    file: Path | None = field(default=None, compare=False)
+    base_scene: Path
+    sea_states: tuple[SeaState, ...]
+    wave_headings_deg: tuple[float, ...]
+    wind_offsets_deg: tuple[float, ...] = (0.0,)
+    current_offsets_deg: tuple[float, ...] = (0.0,)
+    conditions: tuple[Condition, ...]
+    seeds: tuple[int, ...]
+    analysis: tuple = ()            # (key, value) overrides of the base scene's analysis
+    screening: Screening = field(default_factory=Screening)
+    design: Design = field(default_factory=Design)
+    storage: Storage = field(default_factory=Storage)
+
+
+def _angles(node: Node, key: str, default=None) -> tuple[float, ...]:
+    if key not in node:
+        if default is None:
+            raise node.error(key, "a list of angles in degrees or {start, stop, step}")
+        return default
+    value = node.raw(key)
+    if isinstance(value, dict):
+        r = node.child(key)
+        r.reject_unknown(("start", "stop", "step"))
+        start = r._check_number("start", r.raw("start", 0.0), None, -360, None, 360, "deg")
+        stop = r._check_number("stop", r.raw("stop", expected="a number in deg"), None, -360,
+                               None, 360, "deg")
+        step = r.float("step", gt=0.0, unit="deg")
+        if stop < start:
+            raise r.error("stop", f"an angle >= start ({start:g} deg)", stop)
+        n = math.floor((stop - start) / step + 1e-9) + 1
+        vals = [start + i * step for i in range(n)]
+    elif isinstance(value, list) and value:
+        vals = []
+        for i, v in enumerate(value):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not -360 <= v <= 360:
+                raise SceneError(node.file, f"{node.key(key)}[{i}]", "an angle in degrees in "
+                                 "[-360, 360]", v)
+            vals.append(float(v))
+    else:
+        raise node.error(key, "a non-empty list of angles in degrees or {start, stop, step}",
+                         value)
+    if len(set(vals)) != len(vals):
+        raise node.error(key, "distinct angles", value)
+    return tuple(float(v) for v in vals)
+
+
+def _sea_state(item: Node, default_name: str) -> SeaState:
+    item.reject_unknown(("name", "hs", "tp", "gamma", "spectrum", "probability", "description"))
+    if "spectrum" in item and item.raw("spectrum") != "jonswap":
+        raise item.error("spectrum", "jonswap (the contour's sea states are JONSWAP)",
+                         item.raw("spectrum"))
+    gamma = item.float("gamma", None, ge=1.0, allow_none=True)
+    return SeaState(name=item.str("name", default_name), hs=item.float("hs", gt=0.0, unit="m"),
+                    tp=item.float("tp", gt=0.0, unit="s"), gamma=gamma)
+
+
+def _sea_states(node: Node) -> tuple[SeaState, ...]:
+    s = node.child("sea_states")
+    s.reject_unknown(("contour", "scatter", "list", "only"))
+    given = [k for k in ("contour", "scatter", "list") if k in s]
+    if len(given) != 1:
+        raise s.error("", "exactly one of contour, scatter, list", given or "none")
+    key = given[0]
+    if key == "list":
+        items = s.item_nodes("list", min_len=1)
+        states = [_sea_state(it, f"ss{i + 1}") for i, it in enumerate(items)]
+    else:
+        f = s.child_or_file(key)
+        f.reject_unknown(("name", "description", "sea_states"))
+        items = f.item_nodes("sea_states", min_len=1)
+        states = [_sea_state(it, f"ss{i + 1}") for i, it in enumerate(items)]
+    if "only" in s:
+        only = s.list("only", min_len=1)
+        for i, k in enumerate(only):
+            if isinstance(k, bool) or not isinstance(k, int) or not 1 <= k <= len(states):
+                raise SceneError(s.file, f"{s.key('only')}[{i}]",
+                                 f"a sea state number 1..{len(states)}", k)
+        states = [states[k - 1] for k in only]
+    names = [st.name for st in states]
+    if len(set(names)) != len(names):
+        raise s.error(key, "sea states with distinct names", names)
+    return tuple(states)
+
+
+def _line_sets(node: Node, key: str, lines: list[str]) -> list[tuple[str, ...]]:
+    value = node.raw(key)
+    if value == "all":
+        return [(ln,) for ln in lines]
+    if not isinstance(value, list) or not value:
+        raise node.error(key, "'all' or a non-empty list of line sets, e.g. [[line6], "
+                         "[line6, line7]]", value)
+    out = []
+    for i, item in enumerate(value):
+        item = [item] if isinstance(item, str) else item
+        if not isinstance(item, list) or not item or any(x not in lines for x in item):
+            raise SceneError(node.file, f"{node.key(key)}[{i}]",
+                             "a list of line names among " + ", ".join(lines), item)
+        out.append(tuple(str(x) for x in item))
+    return out
+
+
+def _conditions(node: Node, lines: list[str]) -> tuple[Condition, ...]:
+    c = node.child("conditions")
+    c.reject_unknown(("intact", "failed_lines", "line_failure"))
+    out = []
+    if c.bool("intact", True):
+        out.append(Condition(kind="intact"))
+    if "failed_lines" in c:
+        out += [Condition(kind="failed", lines=s) for s in _line_sets(c, "failed_lines", lines)]
+    if "line_failure" in c:
+        lf = c.child("line_failure")
+        lf.reject_unknown(("lines", "time"))
+        t = lf.float("time", ge=0.0, unit="s")
+        for s in _line_sets(lf, "lines", lines):
+            out.append(Condition(kind="transient", lines=s, break_time=t))
+    if not out:
+        raise c.error("", "at least one condition (intact: true, failed_lines or line_failure)",
+                      "none")
+    return tuple(out)
+
+
+def _storage(node: Node) -> Storage:
+    if "storage" not in node:
+        return Storage()
+    s = node.child("storage")
+    s.reject_unknown(("mode", "precision", "compression", "sampling"))
+    sampling = DEFAULT_SAMPLING
+    if "sampling" in s:
+        sm = s.child("sampling")
+        sm.reject_unknown(STORAGE_VARIABLES)
+        sampling = {k: sm.float(k, ge=0.0, unit="s") for k in sm.data}
+    return Storage(mode=s.str("mode", "full", choices=("full", "statistics")),
+                   precision=s.str("precision", "float32", choices=("float32", "float64")),
+                   compression=s.int("compression", 4, ge=0, le=9),
+                   sampling=tuple(sampling.items()), sampling_given="sampling" in s)
+
+
+def _analysis(node: Node) -> tuple:
+    if "analysis" not in node:
+        return ()
+    a = node.child("analysis")
+    a.reject_unknown(("duration", "dt", "transient", "ramp"))
+    out = []
+    for k in ("duration", "dt", "transient", "ramp"):
+        if k in a:
+            out.append((k, a.float(k, gt=0.0, unit="s") if k in ("duration", "dt")
+                        else a.float(k, ge=0.0, unit="s")))
+    return tuple(out)
+
+
+def load_campaign(path: str | os.PathLike) -> CampaignSpec:
+    """Read and validate a campaign file (and its base scene)."""
+    from ..io.analysis import parse_seeds
+    from ..io.scene import load_scene
+
+    node = Node.load(path)
+    node.reject_unknown(KEYS)
+    base = node.path_value("base_scene")
+    scene = load_scene(base)
+    mnode = scene.mooring_node()
+    if mnode is None:
+        raise node.error("base_scene", "a scene with a mooring", str(base))
+    lines = [str(ln.raw("name")) for ln in mnode.item_nodes("lines")]
+    h = node.child("headings")
+    h.reject_unknown(("waves_deg", "wind_offset_deg", "current_offset_deg"))
+    seeds = parse_seeds(node, "seeds")
+    sc = node.child("screening", None)
+    screening = Screening()
+    if sc is not None:
+        sc.reject_unknown(("time_domain", "within_percent", "top_per_line"))
+        screening = Screening(time_domain=sc.str("time_domain", "screened",
+                                                 choices=("screened", "all", "none")),
+                              within_percent=sc.float("within_percent", 10.0, ge=0.0, le=100.0,
+                                                      unit="%"),
+                              top_per_line=sc.int("top_per_line", 3, ge=0))
+    d = node.child("design", None)
+    design = Design()
+    if d is not None:
+        d.reject_unknown(("standard", "consequence_class", "analysis"))
+        design = Design(standard=d.str("standard", "dnv-os-e301", choices=("dnv-os-e301",)),
+                        consequence_class=d.int("consequence_class", 2, ge=1, le=2),
+                        analysis=d.str("analysis", "dynamic", choices=("dynamic",
+                                                                        "quasi-static")))
+    spec = CampaignSpec(
+        name=node.str("name", Path(path).stem), description=node.str("description", ""),
+        file=node.file, base_scene=base, sea_states=_sea_states(node),
+        wave_headings_deg=_angles(h, "waves_deg"),
+        wind_offsets_deg=_angles(h, "wind_offset_deg", (0.0,)),
+        current_offsets_deg=_angles(h, "current_offset_deg", (0.0,)),
+        conditions=_conditions(node, lines), seeds=tuple(seeds), analysis=_analysis(node),
+        screening=screening, design=design, storage=_storage(node))
+    _check_analysis(spec, scene, node)
+    return spec
+
+
+def _check_analysis(spec: CampaignSpec, scene, node: Node) -> None:
+    an = {"duration": scene.analysis.duration, "dt": scene.analysis.dt,
+          "transient": scene.analysis.transient, "ramp": scene.analysis.ramp}
+    an.update(dict(spec.analysis))
+    if not an["dt"] < an["duration"]:
+        raise node.error("analysis.dt", f"0 < dt < duration ({an['duration']:g} s)", an["dt"])
+    if not an["duration"] > an["transient"]:
+        raise node.error("analysis.duration", f"a duration longer than the transient "
+                         f"({an['transient']:g} s)", an["duration"])
+    for c in spec.conditions:
+        if c.kind == "transient" and not c.break_time < an["duration"]:
+            raise node.error("conditions.line_failure.time", f"a time < the duration "
+                             f"({an['duration']:g} s)", c.break_time)
+    for k, dt_out in spec.storage.sampling:
+        if spec.storage.sampling_given and dt_out > 0 and abs(dt_out / an["dt"] - round(dt_out / an["dt"])) > 1e-9:
+            raise node.error(f"storage.sampling.{k}", f"0 or a multiple of dt ({an['dt']:g} s)",
+                             dt_out)
+    if len(spec.seeds) < 3 and spec.screening.time_domain != "none":
+        raise node.error("seeds", "at least 3 seeds (a Gumbel fit per case)", list(spec.seeds))
