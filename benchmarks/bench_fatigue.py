@@ -77,7 +77,7 @@ def bench_scatter(n_cells=1000, n_lines=12, n_loc=4):
     mom_l = np.empty((4, n_cells, n_loc, n_lines))
     mom_w = np.empty((4, n_cells, n_loc, n_lines))
     spectra = []
-    for c in range(n_cells):  # synthetic spectra (not timed)
+    for _c in range(n_cells):  # synthetic spectra (not timed)
         tp = rng.uniform(5, 20)
         a = rng.uniform(0.2, 2.0, (n_loc, n_lines))
         spectra.append((bump(w, 2 * math.pi / tp, 0.2, 1e10)[:, None, None] * a,

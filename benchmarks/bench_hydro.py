@@ -13,8 +13,14 @@ from pathlib import Path
 
 import numpy as np
 
-from floatmoor.hydro import (consistency_report, load_database, load_vessel, read_wamit,
-                             retardation_function, save_database)
+from floatmoor.hydro import (
+    consistency_report,
+    load_database,
+    load_vessel,
+    read_wamit,
+    retardation_function,
+    save_database,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 VESSELS = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "vessels"

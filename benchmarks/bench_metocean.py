@@ -37,9 +37,17 @@ def main() -> None:
     import numba
     import numpy as np
 
-    from floatmoor.metocean import (CurrentSpec, WaveSpec, WindSpec, airy_kinematics_into,
-                                    cosine_sum_uniform_into, current_speed, realise_waves,
-                                    realise_wind, surface_elevation_into)
+    from floatmoor.metocean import (
+        CurrentSpec,
+        WaveSpec,
+        WindSpec,
+        airy_kinematics_into,
+        cosine_sum_uniform_into,
+        current_speed,
+        realise_waves,
+        realise_wind,
+        surface_elevation_into,
+    )
 
     print(f"floatmoor metocean benchmark - {platform.machine()}, {os.cpu_count()} cores, "
           f"Python {platform.python_version()}, numpy {np.__version__}, numba {numba.__version__}")

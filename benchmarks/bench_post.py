@@ -10,7 +10,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from floatmoor.post import (dnv_os_e301, per_seed_statistics, seed_maxima, upcrossing_peaks)
+from floatmoor.post import dnv_os_e301, per_seed_statistics, seed_maxima, upcrossing_peaks
 
 DT, DURATION, N_SEEDS, N_LINES = 0.1, 10800.0, 20, 12
 DOFS = ["surge", "sway", "heave", "roll", "pitch", "yaw"]

@@ -104,9 +104,9 @@ def extreme(duration: float = 1200.0) -> None:
     import numpy as np
 
     sys.path.insert(0, str(ROOT))
-    from tests.solvers.test_time_domain_extreme import extreme_scene
-    from floatmoor.core.errors import NumericalError
     from floatmoor.analyses.simulate import simulate
+    from floatmoor.core.errors import NumericalError
+    from tests.solvers.test_time_domain_extreme import extreme_scene
 
     warnings.simplefilter("ignore")
     with tempfile.TemporaryDirectory() as tmp:

@@ -440,9 +440,10 @@ def main(argv=None):
     warnings.simplefilter("ignore")
     import numpy  # noqa: F401  (imported once, shared by the forked children)
     import xarray  # noqa: F401
+
     import floatmoor.cli  # noqa: F401
-    from floatmoor.io.scene import load_scene  # noqa: F401
     from floatmoor.hydro import load_vessel  # noqa: F401
+    from floatmoor.io.scene import load_scene  # noqa: F401
     warnings.resetwarnings()
     tmp = Path(tempfile.mkdtemp(prefix="floatmoor_audit_"))
     tree = Tree(tmp / "tree")

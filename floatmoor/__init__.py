@@ -14,9 +14,16 @@ use, so ``import floatmoor`` stays light.
 """
 
 from importlib import import_module as _import_module
-from importlib.metadata import PackageNotFoundError, version as _version
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
 
-from .core.errors import ConvergenceError, FloatmoorError, FloatmoorWarning, NumericalError, SceneError
+from .core.errors import (
+    ConvergenceError,
+    FloatmoorError,
+    FloatmoorWarning,
+    NumericalError,
+    SceneError,
+)
 
 try:
     __version__ = _version("floatmoor")

@@ -29,8 +29,8 @@ import argparse
 import importlib
 import sys
 import warnings
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Callable, Sequence
 
 from . import __version__
 from .commands.argtypes import positive_float, seed_int  # noqa: F401 (re-exported)

@@ -199,11 +199,11 @@ def test_lines_reproduce_the_coupled_fe_tension_with_current(tmp_path, capsys):
     tension): the current (towards 30 deg) runs along line1 towards its anchor (tangential drag
     pulls the fairlead: higher tension), along line7 towards its fairlead (lower tension) and
     across line6 (lateral drag bows the suspended line: higher tension)."""
+    from floatmoor.analyses.simulate import simulate
     from floatmoor.io.mooring_section import parse_mooring
     from floatmoor.io.scene import load_scene
     from floatmoor.mooring.fe import run_decoupled
     from floatmoor.mooring.fe.body import scene_line_inputs
-    from floatmoor.analyses.simulate import simulate
 
     p = _fe_current_scene(tmp_path)
     with warnings.catch_warnings():

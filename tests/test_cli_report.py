@@ -31,8 +31,8 @@ def _write_seeds(scene_path, seeds, out):
     import warnings
 
     import floatmoor
-    from floatmoor.io.scene import load_scene
     from floatmoor.analyses.runner import seed_file
+    from floatmoor.io.scene import load_scene
 
     out.mkdir(parents=True, exist_ok=True)
     scene = load_scene(scene_path)
@@ -56,8 +56,8 @@ def data(tmp_path_factory):
     als = _write_seeds(als_scene, ALS_SEEDS, base / "als")
     import warnings
 
-    from floatmoor.commands.fd import to_netcdf
     from floatmoor.analyses.frequency_domain import frequency_domain
+    from floatmoor.commands.fd import to_netcdf
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         fd = to_netcdf(frequency_domain(SCENE), base / "fd.nc")

@@ -17,8 +17,7 @@ import yaml
 import floatmoor
 from floatmoor.analyses.fd_dataset import VARIABLES, format_table, to_dataset
 from floatmoor.analyses.fd_maxima import combine_maxima, safety_factor, tension_columns
-from floatmoor.analyses.frequency_domain import (FDOptions, frequency_domain,
-                                                 frequency_domain_result)
+from floatmoor.analyses.frequency_domain import FDOptions, frequency_domain, frequency_domain_result
 from floatmoor.core.errors import SceneError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -293,8 +292,7 @@ def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     """OC4 semi (WAMIT QTF; its mean drift is the QTF diagonal): the slowly varying surge drift
     spectrum from the full QTF equals Newman's at mu = 0 and departs from it as mu grows."""
     from floatmoor.analyses.fd_loads import interp0, qtf_function
-    from floatmoor.hydro.database import interpolate_heading
-    from floatmoor.hydro.database import load_database
+    from floatmoor.hydro.database import interpolate_heading, load_database
     from floatmoor.metocean.spectra import jonswap
     from floatmoor.solvers.frequency_domain import newman_drift_spectrum, qtf_drift_spectrum
     path = ROOT / "vessels" / "oc4_semi" / "database.nc"

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 import yaml
 
-from floatmoor.core.errors import FloatmoorWarning, SceneError
 from floatmoor.analyses.frequency_domain import frequency_domain
+from floatmoor.core.errors import FloatmoorWarning, SceneError
 
 ROOT = Path(__file__).resolve().parents[1]
 FLOATEL = ROOT / "vessels" / "floatel_like"
@@ -115,6 +115,7 @@ def test_fd_and_td_see_the_same_corrected_mean_drift(runs):
     hand over the realised band within 0.3 %, and against the FD (whole database range) within
     2.5 %."""
     import xarray as xr
+
     from floatmoor.io.build import build
     from floatmoor.io.scene import load_scene
     from floatmoor.solvers.time_domain import assemble

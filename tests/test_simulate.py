@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from floatmoor.core.errors import SceneError
 from floatmoor.analyses.simulate import simulate
+from floatmoor.core.errors import SceneError
 
 pytestmark = pytest.mark.filterwarnings("ignore::floatmoor.core.errors.FloatmoorWarning")
 
@@ -168,8 +168,8 @@ def test_forces_section_of_the_scene_is_used(tmp_path):
 def test_run_command_failed_seed_exit_status(scene_file, tmp_path, capsys):
     """A seed that fails: the others are written, the exit status is 3 and the failed seed is
     named on stderr."""
-    from floatmoor.commands import run as run_cmd
     from floatmoor.analyses.runner import seed_file
+    from floatmoor.commands import run as run_cmd
 
     out = tmp_path / "o"
     out.mkdir()
@@ -190,10 +190,10 @@ def test_duration_not_longer_than_transient(scene_file, tmp_path, capsys):
     the duration and the transient, before any seed runs (exit status 2 through the CLI), not a
     zero-size-array crash in the statistics table; ``run_seeds`` refuses it too; ``simulate``
     allows such a short check with a FloatmoorWarning."""
+    from floatmoor.analyses.runner import run_seeds
     from floatmoor.cli import main
     from floatmoor.commands import run as run_cmd
     from floatmoor.core.errors import FloatmoorWarning
-    from floatmoor.analyses.runner import run_seeds
 
     p = argparse.ArgumentParser()
     run_cmd.add_arguments(p)
@@ -227,9 +227,9 @@ def test_large_yaw_excursion_warns_about_the_wave_heading(scene_file):
     """A run whose yaw leaves the start heading by more than 15 deg (here a free yaw decay from
     25 deg in waves) warns that the wave forces stay at the start heading."""
     from floatmoor.core.errors import FloatmoorWarning
-    from floatmoor.solvers.time_domain import assemble
     from floatmoor.io.build import build
     from floatmoor.io.scene import load_scene
+    from floatmoor.solvers.time_domain import assemble
 
     b = build(load_scene(scene_file))
     a = assemble(b, seed=1, dt=0.1, duration=10.0)
@@ -247,9 +247,9 @@ def test_runner_reports_the_warnings_of_a_seed(scene_file, tmp_path):
     """The workers' FloatmoorWarnings (here the yaw far from the wave heading) are kept in the
     outcome and echoed, not lost in the worker process."""
     from floatmoor.analyses.runner import run_seeds
-    from floatmoor.solvers.time_domain import assemble
     from floatmoor.io.build import build
     from floatmoor.io.scene import load_scene
+    from floatmoor.solvers.time_domain import assemble
 
     a = assemble(build(load_scene(scene_file)), seed=1, dt=0.1, duration=10.0)
     x0 = a.x0.copy()

@@ -73,18 +73,28 @@ import numpy as np
 import xarray as xr
 
 from ..core.errors import FloatmoorWarning, SceneError
-from ..forces.slender import (corrected_drift_database, refuse_qtf_with_correction,
-                              viscous_linear_damping)
+from ..forces.slender import (
+    corrected_drift_database,
+    refuse_qtf_with_correction,
+    viscous_linear_damping,
+)
 from ..hydro.database import interpolate_heading
 from ..io.build import BuiltScene, build
 from ..io.scene import Scene
 from ..metocean.current import current_speed
 from ..metocean.spectra import wave_spectrum
 from ..metocean.wind import wind_mean_speed, wind_spectrum
-from ..solvers.frequency_domain import (FDModel, FDOptions, aranha_drift_damping,
-                                        gust_force_spectrum, mean_drift_force,
-                                        newman_drift_spectrum, qtf_drift_spectrum,
-                                        response_std_tz, solve_frequency_domain)
+from ..solvers.frequency_domain import (
+    FDModel,
+    FDOptions,
+    aranha_drift_damping,
+    gust_force_spectrum,
+    mean_drift_force,
+    newman_drift_spectrum,
+    qtf_drift_spectrum,
+    response_std_tz,
+    solve_frequency_domain,
+)
 from ..solvers.statics import solve_equilibrium
 from .fd_dataset import to_dataset
 from .fd_line_dynamics import dynamic_line_columns

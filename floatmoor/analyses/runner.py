@@ -186,7 +186,6 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
         ``<out_dir>/interrupted.txt``; a rerun of the same command resumes.
     """
     from ..io.scene import load_scene
-
     from .simulate import check_statistics_window
 
     scene = load_scene(scene_path)  # fail early on a bad scene, in the parent
@@ -197,10 +196,10 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     check_statistics_window(scene.file, float(an.duration if duration is None else duration),
                             float(an.transient if transient is None else transient),
                             key="analysis.duration" if duration is None else "duration")
-    from .fingerprint import differing_keys, scene_fingerprint
     import json
 
     from ..io.analysis import check_time_steps
+    from .fingerprint import differing_keys, scene_fingerprint
     check_time_steps(scene.file, float(overrides.get("duration", an.duration)),
                      float(overrides.get("dt", an.dt)),
                      key="analysis.dt" if "dt" not in overrides else "dt")

@@ -48,6 +48,7 @@ def scene_text(scene) -> str:
 def _versions() -> dict:
     import numba
     import scipy
+
     from .. import __version__
     return {"floatmoor": __version__, "numpy": np.__version__, "scipy": scipy.__version__,
             "xarray": xr.__version__, "numba": numba.__version__,
@@ -265,7 +266,7 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
         "wave_force_frame": "first-order wave and drift forces are evaluated at the mean "
                             "position (the origin) and the start heading (body yaw 0): they do "
                             "not follow the body's yaw or offset",
-        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
     })
     if getattr(r, "fe_lines", None):
         ds.attrs["fe_lines"] = list(r.fe_lines)

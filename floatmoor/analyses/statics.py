@@ -26,8 +26,7 @@ import xarray as xr
 from ..core.errors import SceneError
 from ..io.build import BuiltScene, build
 from ..io.scene import Scene
-from ..solvers.statics import EquilibriumResult, restoring_curve
-from ..solvers.statics import solve_equilibrium
+from ..solvers.statics import EquilibriumResult, restoring_curve, solve_equilibrium
 
 __all__ = ["equilibrium", "restoring_curves"]
 

@@ -33,7 +33,7 @@ import argparse
 import math
 from pathlib import Path
 
-from .argtypes import positive_float, nonnegative_float
+from .argtypes import nonnegative_float, positive_float
 
 HELP = "decoupled FE analysis of mooring lines driven by a floater run's motion (DAF per line)"
 
@@ -177,7 +177,7 @@ def format_table(res) -> str:
              f"{'kN':>13}{'m':>8}{'m':>18}")
     rows = [head, units]
     for i, n in enumerate(res["line"].values):
-        g = lambda k: float(res[k].values[i])  # noqa: E731
+        g = lambda k, i=i: float(res[k].values[i])  # noqa: E731
         rows.append(f"{str(n):<10}{g('fe_mean') / 1e3:10.1f}{g('fe_std') / 1e3:9.2f}"
                     f"{g('fe_max') / 1e3:10.1f}{g('qs_mean') / 1e3:10.1f}"
                     f"{g('qs_std') / 1e3:9.2f}{g('qs_max') / 1e3:10.1f}{g('daf'):7.3f}"

@@ -231,7 +231,6 @@ def mbs_of(datasets):
 def _read_fd(path, td_scene):
     import xarray as xr
 
-    from ..post.report import scene_name
 
     path = Path(path)
     if not path.is_file():
@@ -270,11 +269,10 @@ def _read_fatigue(path):
 
 def run(args: argparse.Namespace) -> int:
     """Run ``floatmoor report``; returns the exit status (0 pass, 1 a line fails)."""
+    from ..campaign.store import is_campaign_dir
     from ..cli import UsageError
     from ..post import dnv_os_e301 as dnv
     from ..post.report import build_report, scene_name
-
-    from ..campaign.store import is_campaign_dir
     if is_campaign_dir(args.results_dir):  # a floatmoor campaign folder: the matrix report
         from .campaign import report_campaign
         return report_campaign(args)

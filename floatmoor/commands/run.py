@@ -80,10 +80,10 @@ def summary_table(files, n_lines: int = 3) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``floatmoor run``; returns the exit status."""
+    from ..analyses.runner import BatchInterrupted, run_seeds
     from ..cli import EXIT_INTERRUPTED, EXIT_NUMERICAL_ERROR, EXIT_OK, UsageError
     from ..io.analysis import seeds_from_text
     from ..io.scene import load_scene
-    from ..analyses.runner import BatchInterrupted, run_seeds
 
     scene = load_scene(args.scene)
     if args.seeds is None:

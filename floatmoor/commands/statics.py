@@ -66,8 +66,8 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
     import xarray as xr
 
-    from ..io.build import build
     from ..analyses.statics import equilibrium, restoring_curves
+    from ..io.build import build
 
     built = build(args.scene, failed_lines=args.fail)
     from ..io.plausibility import check_built

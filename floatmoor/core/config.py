@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 import numpy as np
 import yaml
@@ -175,7 +176,7 @@ def parse_yaml_text(text: str, path: Path | str | None = None):
         loader.dispose()
 
 
-def _read_yaml(path: Path, key: str = "", referenced_from: "Node | None" = None):
+def _read_yaml(path: Path, key: str = "", referenced_from: Node | None = None):
     file_for_error = referenced_from.file if referenced_from is not None else path
     if not path.exists():
         raise SceneError(file_for_error, key, "a path to an existing file", str(path))
@@ -211,7 +212,7 @@ class Node:
 
     # -- construction -----------------------------------------------------------------------
     @classmethod
-    def load(cls, path: str | os.PathLike) -> "Node":
+    def load(cls, path: str | os.PathLike) -> Node:
         """Read a YAML file whose top level is a mapping."""
         path = Path(path)
         data = _read_yaml(path)
@@ -261,7 +262,7 @@ class Node:
                                  f"unknown key {k!r}", hint)
 
     # -- mappings and lists -------------------------------------------------------------------
-    def child(self, name: str, default=MISSING) -> "Node | Any":
+    def child(self, name: str, default=MISSING) -> Node | Any:
         """A nested mapping as a Node (``default`` returned when absent)."""
         if name not in self.data:
             if default is MISSING:
@@ -272,7 +273,7 @@ class Node:
             raise self.error(name, "a mapping (key: value pairs)", value)
         return Node(value, self.file, self.key(name))
 
-    def child_or_file(self, name: str, default=MISSING) -> "Node | Any":
+    def child_or_file(self, name: str, default=MISSING) -> Node | Any:
         """A nested mapping given inline, or as a relative path to another YAML file."""
         if name not in self.data:
             if default is MISSING:
@@ -300,7 +301,7 @@ class Node:
             raise self.error(name, f"a list of at least {min_len} item(s)", value)
         return value
 
-    def item_nodes(self, name: str, default=MISSING, *, min_len: int = 0) -> "list[Node]":
+    def item_nodes(self, name: str, default=MISSING, *, min_len: int = 0) -> list[Node]:
         """A list of mappings, each as a Node with key path ``name[i]``."""
         items = self.list(name, default, min_len=min_len)
         if items is default and default is not MISSING:

@@ -22,8 +22,8 @@ corrected drift) are applied where the scene's models are chosen
 (:func:`floatmoor.io.build.model_inputs`) and reach the models as ``SetupContext.inputs``.
 """
 
-from .base import (REGISTRY, ForceModel, KernelAssembly, SetupContext, model_class, register)
-from . import hydrostatics, mooring, radiation, waves, environment, slender  # noqa: F401
+from . import environment, hydrostatics, mooring, radiation, slender, waves  # noqa: F401
+from .base import REGISTRY, ForceModel, KernelAssembly, SetupContext, model_class, register
 from .environment import Current, Wind, derived_seed
 from .hydrostatics import Hydrostatics, LinearDamping, QuadraticDamping
 from .mooring import QuasiStaticMooring

@@ -33,8 +33,18 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..core.errors import SceneError
-from .terms import (KINDS, SINGLE_TERM_KINDS, FlowTerms, ForceTerms, MatrixTerms, MemoryTerm,
-                    RestoringTerms, StripTerm, as_kernel_array, empty_strips)
+from .terms import (
+    KINDS,
+    SINGLE_TERM_KINDS,
+    FlowTerms,
+    ForceTerms,
+    MatrixTerms,
+    MemoryTerm,
+    RestoringTerms,
+    StripTerm,
+    as_kernel_array,
+    empty_strips,
+)
 
 __all__ = ["REGISTRY", "ForceModel", "KernelAssembly", "SetupContext", "model_class", "register"]
 

@@ -19,8 +19,7 @@ import weakref
 
 import numpy as np
 
-from ..hydro.retardation import (cutoff_time, fit_infinite_frequency_added_mass,
-                                 retardation_function)
+from ..hydro.retardation import cutoff_time, fit_infinite_frequency_added_mass, retardation_function
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .kernels import to_earth, to_yaw_frame
 

@@ -134,8 +134,11 @@ def model_inputs(built: BuiltScene, options, names, *, yaw: float = 0.0) -> Mode
     """The :class:`ModelInputs` of a run with the force models ``names`` (the scene's
     ``forces`` settings ``options``, body heading ``yaw`` in rad): the one place where the
     rules combining models are applied."""
-    from ..forces.slender import (corrected_drift_database, hull_current_coefficients,
-                                  viscous_linear_damping)
+    from ..forces.slender import (
+        corrected_drift_database,
+        hull_current_coefficients,
+        viscous_linear_damping,
+    )
 
     v = built.vessel
     spec = getattr(options, "viscous_drift", None)

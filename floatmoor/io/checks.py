@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import TYPE_CHECKING, Callable
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from ..core.errors import FloatmoorWarning
 
@@ -28,7 +29,7 @@ def _warn(message: str) -> None:
     warnings.warn(message, FloatmoorWarning, stacklevel=4)
 
 
-def check_time_step_resolves_waves(scene: "Scene") -> None:
+def check_time_step_resolves_waves(scene: Scene) -> None:
     """Warn when dt is coarse for the waves: fewer than 20 steps per Tp, or dt above the Nyquist
     limit pi/omega_max of the highest wave component requested."""
     waves = scene.environment.waves
@@ -46,7 +47,7 @@ def check_time_step_resolves_waves(scene: "Scene") -> None:
               f"{math.pi / waves.omega_max:.3g} s); they alias to lower frequencies")
 
 
-def check_wave_resolution(scene: "Scene") -> None:
+def check_wave_resolution(scene: Scene) -> None:
     """Warn when an explicit wave discretisation is coarser than 2 pi/duration: with equally
     spaced components the series would repeat within the simulation (the realisation draws the
     frequencies at random inside their bins, so it does not repeat exactly, but the spectral
@@ -65,7 +66,7 @@ def check_wave_resolution(scene: "Scene") -> None:
               f"{duration:g} s; use at least {needed} frequencies (or leave n_frequencies out)")
 
 
-def check_realisation_size(scene: "Scene") -> None:
+def check_realisation_size(scene: Scene) -> None:
     """SceneError when the wave or wind realisation would hold more components than
     :data:`~floatmoor.io.environment.MAX_WAVE_COMPONENTS` / ``MAX_FREQUENCIES``: without an
     explicit ``n_frequencies`` their number grows with the duration (one per 2 pi/duration), so
@@ -102,7 +103,7 @@ def check_realisation_size(scene: "Scene") -> None:
                              f"{hi:.3g} Hz, from {src})")
 
 
-SCENE_CHECKS: tuple[Callable[["Scene"], None], ...] = (
+SCENE_CHECKS: tuple[Callable[[Scene], None], ...] = (
     check_realisation_size,
     check_time_step_resolves_waves,
     check_wave_resolution,

@@ -39,8 +39,16 @@ import warnings
 from ..core.config import Node
 from ..core.constants import GRAVITY
 from ..core.errors import FloatmoorWarning, SceneError
-from ..metocean.config import (CURRENT_PROFILES, SPREADING_FUNCTIONS, WAVE_SPECTRA, WIND_SPECTRA,
-                               CurrentSpec, Environment, WaveSpec, WindSpec)
+from ..metocean.config import (
+    CURRENT_PROFILES,
+    SPREADING_FUNCTIONS,
+    WAVE_SPECTRA,
+    WIND_SPECTRA,
+    CurrentSpec,
+    Environment,
+    WaveSpec,
+    WindSpec,
+)
 
 __all__ = ["load_environment", "parse_environment", "parse_waves", "parse_wind", "parse_current",
            "describe_environment", "environment_models", "peak_wavelength",

@@ -17,8 +17,9 @@ Every key is optional (defaults of :class:`~floatmoor.solvers.frequency_domain.F
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import fields
-from typing import Any, Mapping
+from typing import Any
 
 from ..core.config import Node
 from ..core.errors import SceneError

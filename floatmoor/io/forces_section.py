@@ -64,7 +64,7 @@ def parse_forces(node: Node) -> ForcesSpec:
     node.reject_unknown(FORCES_KEYS)
     names = sorted(set(REGISTRY) | set(GROUPS))
     exclude = []
-    for i, item in enumerate(node.list("exclude", [])):
+    for _i, item in enumerate(node.list("exclude", [])):
         if not isinstance(item, str) or item not in names:
             raise node.error("exclude", "force model names: " + ", ".join(names), item)
         exclude.append(item)

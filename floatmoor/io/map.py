@@ -69,7 +69,7 @@ def parse(path) -> ImportedMooring:
     """Read a MAP++ input file into an :class:`ImportedMooring` (no mapping yet)."""
     path, lines = _read_lines(path)
     secs = {}
-    for kind, title_line, body in _split_sections(path, lines):
+    for _kind, title_line, body in _split_sections(path, lines):
         title = lines[title_line - 1].upper()
         k = ("types" if "LINE DICTIONARY" in title else "nodes" if "NODE PROPERTIES" in title
              else "lines" if "LINE PROPERTIES" in title else "options" if "OPTIONS" in title

@@ -238,7 +238,7 @@ def parse(path) -> ImportedMooring:
         n = len(tables["types"].rows[0][1]) if tables["types"].rows else 10
         version = 1 if n == 9 else 2
     if version == 1:
-        for kind, title_line, body in sections:
+        for kind, title_line, _body in sections:
             if kind in _V2_ONLY_SECTIONS:
                 raise SceneError(path, f"line {title_line}", "the sections of a MoorDyn v1 file "
                                  "(LINE DICTIONARY, NODE PROPERTIES, LINE PROPERTIES, SOLVER "
@@ -301,7 +301,7 @@ def _read_types(path, tab, version, m):
                 m.unmapped.append(f"line type {name!r} (line {n}): the lift coefficient Cl"
                                   + (" and the VIV frequency range dF, cF" if len(t) > 11 else "")
                                   + " (no floatmoor counterpart)")
-        for c, v, what in ((6 if version == 1 else 7, cd, "Cd"), (0, ca, "Ca"),
+        for _c, v, what in ((6 if version == 1 else 7, cd, "Cd"), (0, ca, "Ca"),
                            (0, cdax, "CdAx"), (0, caax, "CaAx")):
             if v < 0:
                 raise SceneError(path, f"line {n}", f"{what} >= 0", v)

@@ -14,7 +14,6 @@ import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
-
 from ..core.config import Node, parse_yaml_text
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import FloatmoorWarning, SceneError
@@ -259,7 +258,7 @@ def to_yaml(m: ImportedMooring, *, water_depth=None, water_density=None, gravity
               f"    anchor: {{x: {fmt(anchor[0])}, y: {fmt(anchor[1])}, z: {fmt(anchor[2])}}}",
               f"    fairlead: [{fmt(fair[0])}, {fmt(fair[1])}, {fmt(fair[2])}]   # body axes",
               "    segments:"]
-        for k, (ln, rev) in enumerate(seq):
+        for k, (ln, _rev) in enumerate(seq):
             extra, comment = "", ""
             if k < len(joints):
                 p = m.points[joints[k]]

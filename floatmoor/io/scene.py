@@ -31,9 +31,10 @@ that involve several sections go in :data:`floatmoor.io.checks.SCENE_CHECKS`.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 from ..core.config import Node
 from ..metocean.config import Environment
@@ -109,34 +110,34 @@ def _parse_forces(node: Node, key: str, parsed: Mapping[str, Any]) -> ForcesSpec
     return parse_forces(node.child(key))
 
 
-def _parse_frequency_domain(node: Node, key: str, parsed: Mapping[str, Any]) -> "FDOptions | None":
+def _parse_frequency_domain(node: Node, key: str, parsed: Mapping[str, Any]) -> FDOptions | None:
     if key not in node:  # imported only when used: the solver module is heavy
         return None
     from .fd_section import parse_frequency_domain
     return parse_frequency_domain(node, key, parsed)
 
 
-def _describe_frequency_domain(options: "FDOptions | None", scene: "Scene") -> list[str]:
+def _describe_frequency_domain(options: FDOptions | None, scene: Scene) -> list[str]:
     if options is None:
         return []
     from .fd_section import describe_frequency_domain
     return describe_frequency_domain(options, scene)
 
 
-def _describe_site(site: SiteSpec, scene: "Scene") -> list[str]:
+def _describe_site(site: SiteSpec, scene: Scene) -> list[str]:
     return [f"site: water depth {site.water_depth:g} m, water density {site.water_density:g} "
             f"kg/m^3, air density {site.air_density:g} kg/m^3, gravity {site.gravity:g} m/s^2"]
 
 
-def _describe_vessel(vessel: Path | None, scene: "Scene") -> list[str]:
+def _describe_vessel(vessel: Path | None, scene: Scene) -> list[str]:
     return ["vessel: none" if vessel is None else f"vessel: {vessel}"]
 
 
-def _describe_environment(env: Environment, scene: "Scene") -> list[str]:
+def _describe_environment(env: Environment, scene: Scene) -> list[str]:
     return describe_environment(env, water_depth=scene.site.water_depth, gravity=scene.site.gravity)
 
 
-def _describe_mooring(mooring, scene: "Scene") -> list[str]:
+def _describe_mooring(mooring, scene: Scene) -> list[str]:
     if mooring is None:
         return ["mooring: none"]
     if isinstance(mooring, Path):
@@ -144,7 +145,7 @@ def _describe_mooring(mooring, scene: "Scene") -> list[str]:
     return ["mooring: inline mapping with keys " + ", ".join(str(k) for k in mooring)]
 
 
-def _describe_analysis(analysis: AnalysisSpec, scene: "Scene") -> list[str]:
+def _describe_analysis(analysis: AnalysisSpec, scene: Scene) -> list[str]:
     return describe_analysis(analysis)
 
 
@@ -162,7 +163,7 @@ class Section:
     field: str
     parse: Callable[[Node, str, Mapping[str, Any]], Any]
     required: bool = False
-    describe: Callable[[Any, "Scene"], list[str]] | None = None
+    describe: Callable[[Any, Scene], list[str]] | None = None
     models: Callable[[Any], list[str]] | None = None
 
 
@@ -210,7 +211,7 @@ class Scene:
     mooring: Path | dict | None = None
     analysis: AnalysisSpec = field(default_factory=AnalysisSpec)
     forces: ForcesSpec | None = None
-    frequency_domain: "FDOptions | None" = None
+    frequency_domain: FDOptions | None = None
 
     def active_models(self) -> list[str]:
         """Names of the models this scene asks for, as ``"section:model"`` or ``"section"``

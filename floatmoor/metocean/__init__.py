@@ -14,24 +14,65 @@ Public API (SI units; headings in rad, direction of travel from +x towards +y):
 * summary: :func:`environment_summary`, :func:`format_summary`
 """
 
-from floatmoor.metocean.config import (CURRENT_PROFILES, SPREADING_FUNCTIONS, WAVE_SPECTRA,
-                                       WIND_SPECTRA, CurrentSpec, Environment, WaveSpec, WindSpec)
-from floatmoor.metocean.current import (CURRENT_PROFILE_KERNELS, current_speed, current_velocity,
-                                        piecewise_linear_speed_into, power_law_speed_into)
-from floatmoor.metocean.kinematics import (airy_kinematics, airy_kinematics_into, depth_factors,
-                                           surface_elevation_into, wavenumber)
-from floatmoor.metocean.realisation import (WaveRealisation, WindRealisation,
-                                            cosine_sum_uniform_into, realise_waves, realise_wind)
-from floatmoor.metocean.spectra import (WAVE_SPECTRUM_FUNCTIONS, cos2s_spreading,
-                                        default_omega_range, dnv_gamma, dnv_jonswap_normalisation,
-                                        jonswap, pierson_moskowitz, spectral_moment,
-                                        spectrum_gamma, spreading_directions, torsethaugen,
-                                        torsethaugen_parameters, wave_spectrum)
+from floatmoor.metocean.config import (
+                                       CURRENT_PROFILES,
+                                       SPREADING_FUNCTIONS,
+                                       WAVE_SPECTRA,
+                                       WIND_SPECTRA,
+                                       CurrentSpec,
+                                       Environment,
+                                       WaveSpec,
+                                       WindSpec,
+)
+from floatmoor.metocean.current import (
+                                       CURRENT_PROFILE_KERNELS,
+                                       current_speed,
+                                       current_velocity,
+                                       piecewise_linear_speed_into,
+                                       power_law_speed_into,
+)
+from floatmoor.metocean.kinematics import (
+                                       airy_kinematics,
+                                       airy_kinematics_into,
+                                       depth_factors,
+                                       surface_elevation_into,
+                                       wavenumber,
+)
+from floatmoor.metocean.realisation import (
+                                       WaveRealisation,
+                                       WindRealisation,
+                                       cosine_sum_uniform_into,
+                                       realise_waves,
+                                       realise_wind,
+)
+from floatmoor.metocean.spectra import (
+                                       WAVE_SPECTRUM_FUNCTIONS,
+                                       cos2s_spreading,
+                                       default_omega_range,
+                                       dnv_gamma,
+                                       dnv_jonswap_normalisation,
+                                       jonswap,
+                                       pierson_moskowitz,
+                                       spectral_moment,
+                                       spectrum_gamma,
+                                       spreading_directions,
+                                       torsethaugen,
+                                       torsethaugen_parameters,
+                                       wave_spectrum,
+)
 from floatmoor.metocean.summary import environment_summary, format_summary, zero_upcrossing_waves
-from floatmoor.metocean.wind import (WIND_SPECTRUM_FUNCTIONS, api_turbulence_intensity,
-                                     api_wind_profile, api_wind_spectrum, constant_wind_spectrum,
-                                     npd_turbulence_intensity, npd_wind_profile, npd_wind_spectrum,
-                                     wind_mean_speed, wind_spectrum)
+from floatmoor.metocean.wind import (
+                                       WIND_SPECTRUM_FUNCTIONS,
+                                       api_turbulence_intensity,
+                                       api_wind_profile,
+                                       api_wind_spectrum,
+                                       constant_wind_spectrum,
+                                       npd_turbulence_intensity,
+                                       npd_wind_profile,
+                                       npd_wind_spectrum,
+                                       wind_mean_speed,
+                                       wind_spectrum,
+)
 
 __all__ = [
     "WaveSpec", "WindSpec", "CurrentSpec", "Environment", "WAVE_SPECTRA", "WIND_SPECTRA",

@@ -45,10 +45,18 @@ from numba import njit
 from floatmoor.core.constants import GRAVITY, RHO_WATER
 from floatmoor.core.errors import SceneError
 from floatmoor.metocean.config import WaveSpec, WindSpec
-from floatmoor.metocean.kinematics import (airy_kinematics, airy_kinematics_into,
-                                           surface_elevation_into, wavenumber)
-from floatmoor.metocean.spectra import (default_omega_range, spectrum_gamma, spreading_directions,
-                                        wave_spectrum)
+from floatmoor.metocean.kinematics import (
+    airy_kinematics,
+    airy_kinematics_into,
+    surface_elevation_into,
+    wavenumber,
+)
+from floatmoor.metocean.spectra import (
+    default_omega_range,
+    spectrum_gamma,
+    spreading_directions,
+    wave_spectrum,
+)
 from floatmoor.metocean.wind import wind_mean_speed, wind_spectrum
 
 __all__ = ["WaveRealisation", "WindRealisation", "realise_waves", "realise_wind",

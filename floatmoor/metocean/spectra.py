@@ -29,8 +29,8 @@ Invalid parameters raise :class:`floatmoor.core.errors.SceneError` (key path ``w
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from functools import lru_cache
-from typing import Callable
 
 import numpy as np
 from scipy import integrate

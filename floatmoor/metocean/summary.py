@@ -16,8 +16,11 @@ from floatmoor.metocean.config import Environment
 from floatmoor.metocean.current import current_speed
 from floatmoor.metocean.realisation import realise_waves, realise_wind
 from floatmoor.metocean.spectra import spectrum_gamma, wave_spectrum
-from floatmoor.metocean.wind import (api_turbulence_intensity, npd_turbulence_intensity,
-                                     wind_spectrum)
+from floatmoor.metocean.wind import (
+    api_turbulence_intensity,
+    npd_turbulence_intensity,
+    wind_spectrum,
+)
 
 __all__ = ["environment_summary", "format_summary", "zero_upcrossing_waves"]
 

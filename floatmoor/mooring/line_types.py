@@ -41,10 +41,10 @@ Submerged weight convention: ``w = (mass - rho_w * displaced_volume) * g`` per u
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
-from typing import Mapping
 
 from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
@@ -234,7 +234,7 @@ class LineTypeLibrary:
     def __contains__(self, name):
         return name in self._entries
 
-    def extended(self, node: Node) -> "LineTypeLibrary":
+    def extended(self, node: Node) -> LineTypeLibrary:
         """A new library with the entries of ``node`` (a ``line_types`` mapping) added; an entry
         with an existing name replaces it."""
         entries = dict(self._entries)
@@ -242,7 +242,7 @@ class LineTypeLibrary:
             entries[str(key)] = node.child(key)
         return LineTypeLibrary(entries)
 
-    def extended_from_file(self, path) -> "LineTypeLibrary":
+    def extended_from_file(self, path) -> LineTypeLibrary:
         root = Node.load(path)
         root.reject_unknown({"line_types"})
         return self.extended(root.child("line_types"))

@@ -27,8 +27,9 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, NamedTuple, Sequence
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -36,8 +37,22 @@ from numba import njit
 
 from ..core.errors import ConvergenceError, FloatmoorWarning
 from ..core.frames import rotation_matrix_into
-from .catenary import (OUT_HA, OUT_HF, OUT_ITER, OUT_K11, OUT_K12, OUT_K21, OUT_K22, OUT_LB,
-                       OUT_SIZE, OUT_VA, OUT_VF, STATUS_MESSAGES, line_kernel, line_profile)
+from .catenary import (
+    OUT_HA,
+    OUT_HF,
+    OUT_ITER,
+    OUT_K11,
+    OUT_K12,
+    OUT_K21,
+    OUT_K22,
+    OUT_LB,
+    OUT_SIZE,
+    OUT_VA,
+    OUT_VF,
+    STATUS_MESSAGES,
+    line_kernel,
+    line_profile,
+)
 
 __all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
@@ -330,7 +345,7 @@ class MooringSystem:
         self._stiff = np.zeros((6, 6))
 
     # -- line failure -------------------------------------------------------------------------
-    def without_lines(self, names: Iterable[str]) -> "MooringSystem":
+    def without_lines(self, names: Iterable[str]) -> MooringSystem:
         """A copy with the named lines removed (failed), e.g. for an ALS check."""
         names = [names] if isinstance(names, str) else list(names)
         for nme in names:
@@ -343,7 +358,7 @@ class MooringSystem:
 
     remove_lines = without_lines
 
-    def with_dynamic_ea(self) -> "MooringSystem":
+    def with_dynamic_ea(self) -> MooringSystem:
         """A copy whose segments use their dynamic axial stiffness (``ea_dynamic``, e.g. for
         polyester) instead of the static one; segments without one keep ``ea``."""
         from dataclasses import replace

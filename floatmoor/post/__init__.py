@@ -13,11 +13,29 @@ Layer ``post``: imports only from ``core`` (and numpy, scipy, xarray; matplotlib
 """
 
 from . import dnv_os_e301
+from .extremes import (
+                       GumbelFit,
+                       WeibullFit,
+                       gumbel_fit,
+                       gumbel_reduced_variate,
+                       n_cycles,
+                       rayleigh_max,
+                       significant_value,
+                       weibull_fit,
+)
 from .report import build_report, detect_failed_lines, summarise, transient_of
-from .extremes import (GumbelFit, WeibullFit, gumbel_fit, gumbel_reduced_variate, n_cycles,
-                       rayleigh_max, significant_value, weibull_fit)
-from .timeseries import (DEFAULT_CUTOFF_HZ, Peaks, channel_statistics, lowpass, per_seed_statistics,
-                         seed_maxima, split_lf_wf, statistics, upcrossing_peaks, window)
+from .timeseries import (
+                       DEFAULT_CUTOFF_HZ,
+                       Peaks,
+                       channel_statistics,
+                       lowpass,
+                       per_seed_statistics,
+                       seed_maxima,
+                       split_lf_wf,
+                       statistics,
+                       upcrossing_peaks,
+                       window,
+)
 
 __all__ = [
     "dnv_os_e301", "build_report", "summarise", "detect_failed_lines", "transient_of", "GumbelFit", "WeibullFit", "gumbel_fit", "gumbel_reduced_variate",

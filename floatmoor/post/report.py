@@ -30,9 +30,9 @@ import base64
 import datetime as _dt
 import html
 import io
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
 
 import numpy as np
 import xarray as xr
@@ -506,7 +506,7 @@ def _png(fig) -> bytes:
 def _plots(results, checks, ct, stats, start, end):
     """Return list of (name, caption, png bytes); empty if matplotlib is missing."""
     try:
-        from matplotlib.figure import Figure     # no pyplot: no global state, no backend switch
+        from matplotlib.figure import Figure  # no pyplot: no global state, no backend switch
     except ImportError:
         return []
 
@@ -645,7 +645,7 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         meta.append(("scene file", str(a0["scene_file"])))
     meta += [
         ("software", software),
-        ("generated", _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")),
+        ("generated", _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")),
         ("standard", dnv.SOURCE),
         ("edition", dnv.EDITION),
         ("consequence class", str(consequence_class)),

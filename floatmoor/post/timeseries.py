@@ -37,8 +37,8 @@ Statistics use the population standard deviation (``ddof = 0``), as SIMO's stati
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 import numpy as np
 import xarray as xr

@@ -77,8 +77,15 @@ from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import FEBody, add_line_wrench, body_accept, body_advance, line_list
 from ..mooring.system import system_force_kernel
-from .td_kernel import (STATUS_CATENARY, STATUS_OK, STATUS_TENSION, _pose_rate, new_run_state,
-                        set_status, td_steps)
+from .td_kernel import (
+    STATUS_CATENARY,
+    STATUS_OK,
+    STATUS_TENSION,
+    _pose_rate,
+    new_run_state,
+    set_status,
+    td_steps,
+)
 
 __all__ = ["FECoupling", "FERun", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
 

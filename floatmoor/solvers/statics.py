@@ -25,8 +25,8 @@ and an excellent Newton Jacobian otherwise (convergence is checked on the residu
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Sequence
 
 import numpy as np
 import xarray as xr

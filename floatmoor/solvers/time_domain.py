@@ -59,8 +59,14 @@ from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
 from .statics import solve_equilibrium as equilibrium
 from .td_bundles import Body, Lines, new_outputs, no_lines
-from .td_kernel import (STATUS_CATENARY, STATUS_GUARD, STATUS_NAN, STATUS_OK, STATUS_TENSION,
-                        td_kernel)
+from .td_kernel import (
+    STATUS_CATENARY,
+    STATUS_GUARD,
+    STATUS_NAN,
+    STATUS_OK,
+    STATUS_TENSION,
+    td_kernel,
+)
 from .wf_velocity import RELATIVE_VELOCITY_MODES, wf_velocity_series
 
 __all__ = ["RK4_LIMIT", "Assembly", "TimeDomainResult", "assemble", "default_models",

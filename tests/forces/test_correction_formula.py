@@ -27,9 +27,13 @@ import pytest
 import xarray as xr
 
 from floatmoor.core.errors import SceneError
-from floatmoor.hydro.viscous_drift import (CorrectionFormula, corrected_coefficients,
-                                           corrected_mean_drift, extra_linear_damping,
-                                           viscous_drift_b)
+from floatmoor.hydro.viscous_drift import (
+    CorrectionFormula,
+    corrected_coefficients,
+    corrected_mean_drift,
+    extra_linear_damping,
+    viscous_drift_b,
+)
 
 CASES = [
     # w, D0, d_i, U, Hs, f_pot, B (hand), f_d (hand)

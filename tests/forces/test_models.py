@@ -15,7 +15,6 @@ from floatmoor.forces.kernels import relative_flow_force_into, table_at_into
 from floatmoor.forces.series import complex_envelope, grid_for
 from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
-from floatmoor.analyses.simulate import simulate
 from floatmoor.solvers.time_domain import assemble, integrate
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -144,7 +143,6 @@ def test_newman_mean_and_ramp(floatel):
     s = drift.series
     assert s.shape[0] >= n_per
     assert s[:n_per, 0].mean() == pytest.approx(drift.mean_force()[0], rel=1e-9)
-    r = a.waves.realisation
     assert drift.mean_force()[0] > 0.0  # drift pushes the semi along the waves (+x)
     a2 = assemble(floatel, seed=5, dt=0.5, duration=2000.0, ramp=100.0)
     assert np.all(a2.models["wave1"].series[0] == 0.0)
@@ -173,8 +171,6 @@ def test_qtf_drift_with_newman_qtf_equals_newman(oc4):
     frequency range, where both definitions agree); with the database's own QTF its mean is
     sum a^2 Q(w, w) and it is the default drift model of a database with a QTF."""
     from dataclasses import replace
-
-    import xarray as xr
 
     from floatmoor.solvers.time_domain import default_models
 

@@ -1,6 +1,5 @@
 """Slender-element input (vessel file section, DNV-RP-C205 table) and the kinematics table."""
 
-import math
 from pathlib import Path
 
 import numpy as np

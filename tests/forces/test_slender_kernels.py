@@ -10,8 +10,13 @@ import numpy as np
 import pytest
 
 from floatmoor.core.constants import GRAVITY
-from floatmoor.forces.slender import (build_kinematics_table, covered_current_dofs,
-                                      current_table_without, slender_force, slender_geometry)
+from floatmoor.forces.slender import (
+    build_kinematics_table,
+    covered_current_dofs,
+    current_table_without,
+    slender_force,
+    slender_geometry,
+)
 from floatmoor.forces.slender_config import SlenderElementSpec
 from floatmoor.metocean.kinematics import wavenumber
 
@@ -188,7 +193,7 @@ def test_free_decay_damped_by_body_velocity():
         x, v = 1.0, 0.0
         peaks = []
         prev_v = v
-        for n in range(int(2.2 * Tn / dt)):
+        for _n in range(int(2.2 * Tn / dt)):
             k1x, k1v = v, acc(x, v, drag)
             k2x, k2v = v + 0.5 * dt * k1v, acc(x + 0.5 * dt * k1x, v + 0.5 * dt * k1v, drag)
             k3x, k3v = v + 0.5 * dt * k2v, acc(x + 0.5 * dt * k2x, v + 0.5 * dt * k2v, drag)

@@ -9,15 +9,19 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from floatmoor.core.config import Node
+from floatmoor.core.errors import SceneError
 from floatmoor.forces.base import SetupContext
-from floatmoor.forces.slender import (SlenderElements, drift_database, hull_current_table,
-                                      linear_damping_matrix)
+from floatmoor.forces.slender import (
+    SlenderElements,
+    drift_database,
+    hull_current_table,
+    linear_damping_matrix,
+)
 from floatmoor.forces.slender_kernels import slender_packed_into
 from floatmoor.forces.waves import wave_components
 from floatmoor.io.build import build
 from floatmoor.io.viscous_drift_section import ViscousDriftSpec, parse_viscous_drift
-from floatmoor.core.config import Node
-from floatmoor.core.errors import SceneError
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "floatel_100yr.yaml"

@@ -1,18 +1,16 @@
 """Viscous drift in the coupled time domain: slender elements in the numba loop, the
 double-counting rule, the correction formula on the Newman drift and the extra damping."""
 
-import math
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from floatmoor.core.config import Node
 from floatmoor.io.build import build
 from floatmoor.io.forces_section import ForcesSpec, parse_forces
 from floatmoor.io.viscous_drift_section import ViscousDriftSpec
-from floatmoor.core.config import Node
-from floatmoor.forces.kernels import to_yaw_frame
 from floatmoor.solvers.time_domain import assemble, default_models, integrate
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -7,8 +7,13 @@ import pytest
 import xarray as xr
 
 from floatmoor.core.errors import FloatmoorWarning, SceneError
-from floatmoor.hydro import (DatabaseError, load_database, make_database, save_database,
-                             validate_database)
+from floatmoor.hydro import (
+    DatabaseError,
+    load_database,
+    make_database,
+    save_database,
+    validate_database,
+)
 
 
 def _toy(n=5, nb=3, seed=0):

@@ -4,9 +4,14 @@ import numpy as np
 import pytest
 
 from floatmoor.core.errors import FloatmoorWarning
-from floatmoor.hydro import (consistency_report, cutoff_time, fit_infinite_frequency_added_mass,
-                             format_consistency, reconstruct_from_retardation,
-                             retardation_function)
+from floatmoor.hydro import (
+    consistency_report,
+    cutoff_time,
+    fit_infinite_frequency_added_mass,
+    format_consistency,
+    reconstruct_from_retardation,
+    retardation_function,
+)
 from floatmoor.hydro.retardation import filon_cos, filon_sin
 
 # Analytic pair: K(t) = a exp(-b t) cos(c t).  Closed forms (Laplace transform of K):
@@ -150,6 +155,7 @@ def test_report_prints_the_limitations_recorded_with_the_database(oc4_db):
 
 def test_floatel_database_records_its_frequency_range_limitation():
     from floatmoor.hydro import load_database
+
     from .conftest import VESSELS
     ds = load_database(VESSELS / "floatel_like" / "database.nc")
     assert float(ds.omega.max()) == pytest.approx(2.5)

@@ -135,7 +135,8 @@ def test_clump_weight_free_point_and_options():
     assert ms.lines[0].fairlead == (40.0, 0.0, -14.0)
     assert ms.cb[0] == 0.5  # mu_kA -> axial friction of the quasi-static lines
     # the same system built directly
-    w = lambda m, d: (m - 1025 * math.pi * d * d / 4) * 9.81
+    def w(m, d):
+        return (m - 1025 * math.pi * d * d / 4) * 9.81
     direct = MooringSystem([LineDef(name="a", anchor=(800.0, 0, -200.0), fairlead=(40.0, 0, -14.0),
                                     cb=0.5, segments=(
         Segment(length=450.0, ea=7.536e8, w=w(113.35, 0.0766),

@@ -1,8 +1,8 @@
 """Valid scenes: what load_scene builds, describe() and active_models(), defaults, warnings."""
 
-import importlib
 import copy
 import dataclasses
+import importlib
 import math
 import warnings
 

@@ -188,8 +188,9 @@ def test_error_in_referenced_environment_file_names_that_file(tmp_path):
 
 
 def test_inline_environment_error_names_scene_file_and_full_key(tmp_path):
-    from .helpers import ENVIRONMENT
     import copy
+
+    from .helpers import ENVIRONMENT
     env = copy.deepcopy(ENVIRONMENT)
     env["waves"]["tp"] = -1.0
     scene_path, _ = write_case(tmp_path, {"environment": env})

@@ -4,8 +4,13 @@ import numpy as np
 import pytest
 
 from floatmoor.core.errors import SceneError
-from floatmoor.metocean import (CurrentSpec, current_speed, current_velocity,
-                                piecewise_linear_speed_into, power_law_speed_into)
+from floatmoor.metocean import (
+    CurrentSpec,
+    current_speed,
+    current_velocity,
+    piecewise_linear_speed_into,
+    power_law_speed_into,
+)
 
 HEIDRUN = CurrentSpec(z=(0.0, -25.0, -50.0), speed=(0.94, 0.94, 0.94))
 

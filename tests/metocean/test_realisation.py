@@ -7,8 +7,15 @@ import pytest
 from scipy.signal import welch
 
 from floatmoor.core.errors import SceneError
-from floatmoor.metocean import (WaveSpec, WindSpec, cosine_sum_uniform_into, jonswap,
-                                npd_wind_spectrum, realise_waves, realise_wind)
+from floatmoor.metocean import (
+    WaveSpec,
+    WindSpec,
+    cosine_sum_uniform_into,
+    jonswap,
+    npd_wind_spectrum,
+    realise_waves,
+    realise_wind,
+)
 
 HEIDRUN = WaveSpec(hs=16.0, tp=18.2)  # Wang (2016) sec. 5.2
 DUR, DT = 10800.0, 0.1

@@ -8,9 +8,18 @@ from scipy import integrate
 from scipy.special import gamma as gamma_fn
 
 from floatmoor.core.errors import SceneError
-from floatmoor.metocean import (WaveSpec, cos2s_spreading, dnv_gamma, dnv_jonswap_normalisation,
-                                jonswap, pierson_moskowitz, spreading_directions, torsethaugen,
-                                torsethaugen_parameters, wave_spectrum)
+from floatmoor.metocean import (
+    WaveSpec,
+    cos2s_spreading,
+    dnv_gamma,
+    dnv_jonswap_normalisation,
+    jonswap,
+    pierson_moskowitz,
+    spreading_directions,
+    torsethaugen,
+    torsethaugen_parameters,
+    wave_spectrum,
+)
 
 W = np.linspace(1e-3, 12.0, 400_001)  # rad/s, fine and wide enough for Tp >= 4 s
 

@@ -8,8 +8,15 @@ import numpy as np
 import pytest
 import yaml
 
-from floatmoor.metocean import (CurrentSpec, Environment, WaveSpec, WindSpec, environment_summary,
-                                format_summary, zero_upcrossing_waves)
+from floatmoor.metocean import (
+    CurrentSpec,
+    Environment,
+    WaveSpec,
+    WindSpec,
+    environment_summary,
+    format_summary,
+    zero_upcrossing_waves,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 HEIDRUN = Environment(name="heidrun-100yr", waves=WaveSpec(hs=16.0, tp=18.2),

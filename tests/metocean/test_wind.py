@@ -7,8 +7,15 @@ import pytest
 from scipy import integrate
 
 from floatmoor.core.errors import SceneError
-from floatmoor.metocean import (WindSpec, api_wind_profile, api_wind_spectrum, npd_wind_profile,
-                                npd_wind_spectrum, wind_mean_speed, wind_spectrum)
+from floatmoor.metocean import (
+    WindSpec,
+    api_wind_profile,
+    api_wind_spectrum,
+    npd_wind_profile,
+    npd_wind_spectrum,
+    wind_mean_speed,
+    wind_spectrum,
+)
 
 
 def test_npd_spectrum_hand_computed_10m():

@@ -6,8 +6,7 @@ import pytest
 
 from floatmoor.core.config import Node
 from floatmoor.core.errors import SceneError
-from floatmoor.mooring.line_types import (CHAIN_GRADES, chain, default_library, polyester,
-                                          wire_rope)
+from floatmoor.mooring.line_types import CHAIN_GRADES, chain, default_library, polyester, wire_rope
 
 
 def test_chain_mbs_against_dnv_formula_values():

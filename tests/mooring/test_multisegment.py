@@ -37,7 +37,8 @@ def test_split_segments_equal_single_line():
 def test_chain_polyester_chain_stiffness_fd(xf):
     """Touchdown in the lower chain, at the joint, in the polyester, or none: analytic 2x2
     against central differences."""
-    fun = lambda x, z: solve_line(x, z, CPC["lengths"], CPC["ea"], CPC["w"], cb=0.6)
+    def fun(x, z):
+        return solve_line(x, z, CPC["lengths"], CPC["ea"], CPC["w"], cb=0.6)
     r = fun(xf, 130.0)
     k = fd(fun, xf, 130.0, 1e-3)
     np.testing.assert_allclose(r.stiffness, k, rtol=2e-5, atol=1e-7 * np.abs(k).max())
@@ -54,7 +55,8 @@ def test_clump_and_buoy_profile_equilibrium_and_fd(xf, where, cb):
     EA = [5e8, 2e8, 5e8]
     W = [1000.0, 200.0, 1000.0]
     P = [50e3, -30e3, 0.0]
-    fun = lambda x, z: solve_line(x, z, L, EA, W, P, cb)
+    def fun(x, z):
+        return solve_line(x, z, L, EA, W, P, cb)
     r = fun(xf, 150.0)
     p = r.profile(401)
     assert p["x"][-1] == pytest.approx(xf, abs=1e-6)
@@ -86,7 +88,8 @@ def test_buoyant_segment_suspended_lazy_wave():
     L = [300.0, 150.0, 250.0]
     EA = [5e8, 5e8, 5e8]
     W = [1000.0, -800.0, 1000.0]
-    fun = lambda x, z: solve_line(x, z, L, EA, W)
+    def fun(x, z):
+        return solve_line(x, z, L, EA, W)
     r = fun(450.0, 150.0)
     p = r.profile(301)
     assert p["x"][-1] == pytest.approx(450.0, abs=1e-6)

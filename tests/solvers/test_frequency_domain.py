@@ -22,9 +22,19 @@ from scipy import integrate
 from floatmoor.core.errors import ConvergenceError
 from floatmoor.metocean.spectra import jonswap
 from floatmoor.solvers.frequency_domain import (
-    SQRT_8_OVER_PI, FDModel, equivalent_quadratic_damping, gust_force_spectrum, lf_transfer,
-    mean_drift_force, newman_drift_spectrum, qtf_drift_spectrum, response_cross_spectrum,
-    response_std_tz, solve_frequency_domain, wave_frequency_rao)
+    SQRT_8_OVER_PI,
+    FDModel,
+    equivalent_quadratic_damping,
+    gust_force_spectrum,
+    lf_transfer,
+    mean_drift_force,
+    newman_drift_spectrum,
+    qtf_drift_spectrum,
+    response_cross_spectrum,
+    response_std_tz,
+    solve_frequency_domain,
+    wave_frequency_rao,
+)
 
 
 def _sdof_matrices(m, c, k):

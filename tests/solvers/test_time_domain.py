@@ -4,22 +4,20 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from floatmoor.analyses.simulate import simulate
 from floatmoor.core.errors import NumericalError
-from floatmoor.forces.radiation import infinite_frequency_added_mass
 from floatmoor.forces.waves import WaveComponents
 from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
 from floatmoor.metocean.kinematics import wavenumber
 from floatmoor.metocean.realisation import WaveRealisation
-from floatmoor.analyses.simulate import simulate
 from floatmoor.solvers.statics import solve_equilibrium as equilibrium
 from floatmoor.solvers.time_domain import assemble, integrate
-
-from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 OC3 = ROOT / "vessels" / "oc3_hywind"

@@ -8,17 +8,14 @@ recorded in benchmarks/RESULTS.md by ``benchmarks/bench_time_domain.py --extreme
 from __future__ import annotations
 
 import math
-import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 import yaml
 
-from floatmoor.core.errors import NumericalError
-from floatmoor.io.build import build
-from floatmoor.io.scene import load_scene
 from floatmoor.analyses.simulate import simulate
+from floatmoor.core.errors import NumericalError
 
 pytestmark = pytest.mark.filterwarnings("ignore::floatmoor.core.errors.FloatmoorWarning")
 

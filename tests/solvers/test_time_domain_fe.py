@@ -22,13 +22,13 @@ import numpy as np
 import pytest
 import yaml
 
+from floatmoor.analyses.simulate import simulate
 from floatmoor.core.errors import NumericalError, SceneError
 from floatmoor.core.frames import rotation_matrix_into
 from floatmoor.io.build import build
 from floatmoor.io.scene import load_scene
 from floatmoor.mooring.fe.line import FELine
 from floatmoor.mooring.fe.prescribed import fairlead_track_from_body, run_prescribed
-from floatmoor.analyses.simulate import simulate
 from floatmoor.solvers.statics import solve_equilibrium as equilibrium
 from floatmoor.solvers.time_domain import assemble, integrate
 

@@ -16,12 +16,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from floatmoor.core.errors import SceneError
 from floatmoor.analyses.frequency_domain import frequency_domain
+from floatmoor.analyses.simulate import simulate
+from floatmoor.core.errors import SceneError
 from floatmoor.io.build import build
 from floatmoor.io.forces_section import ForcesSpec, parse_forces
 from floatmoor.io.scene import load_scene
-from floatmoor.analyses.simulate import simulate
 from floatmoor.solvers.time_domain import assemble
 
 pytestmark = pytest.mark.filterwarnings("ignore::floatmoor.core.errors.FloatmoorWarning")

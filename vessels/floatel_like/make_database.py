@@ -34,15 +34,14 @@ import sys
 import time
 from pathlib import Path
 
+import capytaine as cpt
 import numpy as np
 import xarray as xr
-
-import capytaine as cpt
 from capytaine.post_pro.mean_drift_force import far_field_mean_drift_force
 
+from floatmoor.core.config import Node
 from floatmoor.hydro import from_capytaine_dataset, save_database
 from floatmoor.hydro.vessel import gravity_stiffness, rigid_body_mass_matrix
-from floatmoor.core.config import Node
 
 HERE = Path(__file__).resolve().parent
 

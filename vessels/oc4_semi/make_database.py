@@ -227,17 +227,16 @@ import time
 import warnings
 from pathlib import Path
 
+import capytaine as cpt
 import numpy as np
 import xarray as xr
 import yaml
-
-import capytaine as cpt
 from capytaine.post_pro.mean_drift_force import far_field_mean_drift_force
 
 from floatmoor.hydro import from_capytaine_dataset, read_wamit, save_database
 from floatmoor.hydro.database import _set_attrs, matrix_units
-from floatmoor.hydro.wamit import read_wamit_1
 from floatmoor.hydro.vessel import gravity_stiffness, read_mass_properties, rigid_body_mass_matrix
+from floatmoor.hydro.wamit import read_wamit_1
 
 HERE = Path(__file__).resolve().parent
 RHO, G, DEPTH = 1025.0, 9.80665, 200.0
@@ -309,7 +308,7 @@ def column_parts(stations, diameters, h, multiple=1, grade=False):
     n_t = _n_around(d0, h, multiple)
     parts.append(_ring(z0, 0.0, d0 / 2, n_t, max(1, math.ceil(d0 / 2 / h)), normal_up=False,
                        grade=grade))
-    for (a0, a1, da), (b0, b1, db) in zip(segs[:-1], segs[1:]):
+    for (_a0, a1, da), (_b0, _b1, db) in zip(segs[:-1], segs[1:]):
         if db < da:  # step inwards going up: upward-facing annulus
             n_t = _n_around(da, h, multiple)
             parts.append(_ring(a1, db / 2, da / 2, n_t, max(1, math.ceil((da - db) / 2 / h)),
@@ -703,10 +702,10 @@ def mesh_convergence(ref: Path, sizes=CONV_PANELS, omegas=CONV_OMEGAS,
     ds.wamit_added_mass_inf.attrs["long_name"] = "WAMIT PER = 0 rows of marin_semi.1"
     ds.attrs.update({
         "title": "OC4-DeepCwind semi: Capytaine radiation vs column panel size, and WAMIT",
-        "description": "Capytaine %s, columns + pontoons + cross braces (make_database.py "
+        "description": f"Capytaine {cpt.__version__}, columns + pontoons + cross braces (make_database.py "
                        "build_symmetric_mesh, D3 symmetry, interior lid), water depth 200 m, "
                        "rho 1025, about (0, 0, 0); WAMIT: marin_semi.1 redimensionalised "
-                       "(ULEN 1 m)" % cpt.__version__,
+                       "(ULEN 1 m)",
         "created_by": "vessels/oc4_semi/make_database.py --convergence"
                       + (" --graded" if grade else "")})
     if grade:
@@ -907,7 +906,8 @@ def observed_order(h, f):
     h1, h2, h3 = h
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = (f[0] - f[1]) / (f[1] - f[2])
-    g = lambda p: (h1 ** p - h2 ** p) / (h2 ** p - h3 ** p)
+    def g(p):
+        return (h1 ** p - h2 ** p) / (h2 ** p - h3 ** p)
     lo, hi = np.full(ratio.shape, 0.25), np.full(ratio.shape, 6.0)
     ok = (ratio > g(0.25)) & (ratio < g(6.0))
     for _ in range(60):
@@ -1044,7 +1044,7 @@ def main(ref: Path, h: float = 2.0, out=HERE / "database.nc", slender: bool = Fa
     for name in ("added_mass", "radiation_damping"):
         a = ds[name].values[band]
         c = ds["capytaine_" + name].values[band]
-        for k, dof in enumerate(("surge", "heave", "pitch", "yaw")):
+        for _k, dof in enumerate(("surge", "heave", "pitch", "yaw")):
             i = ["surge", "sway", "heave", "roll", "pitch", "yaw"].index(dof)
             err = np.max(np.abs(c[:, i, i] - a[:, i, i])) / np.max(np.abs(a[:, i, i]))
             print(f"{name} {dof}: max |Capytaine - WAMIT| / max|WAMIT| = {100 * err:.1f} %")

@@ -5,8 +5,8 @@ scene can switch lines to ``model: finite-element`` without a second description
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import replace
-from typing import Mapping
 
 import numpy as np
 

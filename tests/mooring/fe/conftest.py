@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from floatmoor.mooring.fe import Friction, FELine, FELineSpec, FESegment, Seabed
+from floatmoor.mooring.fe import FELine, FELineSpec, FESegment, Friction, Seabed
 from floatmoor.mooring.line_types import LineType
 
 OC3 = dict(length=902.2, diameter=0.09, mass=77.7066, ea=384.243e6, depth=320.0,

@@ -32,7 +32,7 @@ def test_bundle_arrays_are_the_lines_own():
     assert b.now.fs is line.fs and b.par.P is line.P and b.par.E is line.E_dynamic
     assert isinstance(b.par, LineParams) and isinstance(b.trial, LineState)
     with pytest.raises(RuntimeError):
-        FELine(oc3_spec(n=4)).bundle      # not started
+        _ = FELine(oc3_spec(n=4)).bundle  # not started
 
 
 def test_trial_accept_reject_protocol():

@@ -8,8 +8,12 @@ import pytest
 
 from floatmoor.core.errors import NumericalError
 from floatmoor.mooring.fe import FELine
-from floatmoor.mooring.fe.prescribed import (HarmonicMotion, daf, quasi_static_tension,
-                                             run_prescribed)
+from floatmoor.mooring.fe.prescribed import (
+    HarmonicMotion,
+    daf,
+    quasi_static_tension,
+    run_prescribed,
+)
 
 from .conftest import oc3_spec
 

@@ -9,8 +9,7 @@ import pytest
 from floatmoor.core.errors import SceneError
 from floatmoor.mooring import catenary, solve_line
 from floatmoor.mooring.fe import FELine, FELineSpec, FESegment, PointBody, Seabed
-from floatmoor.mooring.fe.prescribed import (HarmonicMotion, fairlead_track_from_body,
-                                             run_prescribed)
+from floatmoor.mooring.fe.prescribed import HarmonicMotion, fairlead_track_from_body, run_prescribed
 
 from .conftest import OC3, oc3_spec, oc3_type
 
