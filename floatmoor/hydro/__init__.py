@@ -3,22 +3,22 @@ functions and vessel files.  See :mod:`floatmoor.hydro.database` for the databas
 
 from .capytaine_io import from_capytaine_dataset, read_capytaine
 from .database import (
-                       DOF_NAMES,
-                       PHASE_CONVENTION,
-                       DatabaseError,
-                       interpolate_heading,
-                       load_database,
-                       make_database,
-                       save_database,
-                       validate_database,
+    DOF_NAMES,
+    PHASE_CONVENTION,
+    DatabaseError,
+    interpolate_heading,
+    load_database,
+    make_database,
+    save_database,
+    validate_database,
 )
 from .retardation import (
-                       consistency_report,
-                       cutoff_time,
-                       fit_infinite_frequency_added_mass,
-                       format_consistency,
-                       reconstruct_from_retardation,
-                       retardation_function,
+    consistency_report,
+    cutoff_time,
+    fit_infinite_frequency_added_mass,
+    format_consistency,
+    reconstruct_from_retardation,
+    retardation_function,
 )
 from .vessel import CoefficientTable, Vessel, load_vessel
 from .wamit import read_wamit

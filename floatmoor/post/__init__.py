@@ -14,27 +14,27 @@ Layer ``post``: imports only from ``core`` (and numpy, scipy, xarray; matplotlib
 
 from . import dnv_os_e301
 from .extremes import (
-                       GumbelFit,
-                       WeibullFit,
-                       gumbel_fit,
-                       gumbel_reduced_variate,
-                       n_cycles,
-                       rayleigh_max,
-                       significant_value,
-                       weibull_fit,
+    GumbelFit,
+    WeibullFit,
+    gumbel_fit,
+    gumbel_reduced_variate,
+    n_cycles,
+    rayleigh_max,
+    significant_value,
+    weibull_fit,
 )
 from .report import build_report, detect_failed_lines, summarise, transient_of
 from .timeseries import (
-                       DEFAULT_CUTOFF_HZ,
-                       Peaks,
-                       channel_statistics,
-                       lowpass,
-                       per_seed_statistics,
-                       seed_maxima,
-                       split_lf_wf,
-                       statistics,
-                       upcrossing_peaks,
-                       window,
+    DEFAULT_CUTOFF_HZ,
+    Peaks,
+    channel_statistics,
+    lowpass,
+    per_seed_statistics,
+    seed_maxima,
+    split_lf_wf,
+    statistics,
+    upcrossing_peaks,
+    window,
 )
 
 __all__ = [

@@ -235,18 +235,6 @@ def _pose_rate(x, v, out):
         out[k] = v[k]
 
 
-@njit(cache=True)
-def _pose_rate(x, v, out):
-    """Pose rate from the yaw-frame velocity: horizontal velocity turned by yaw; heave and the
-    (small-angle) roll, pitch and yaw rates as they are."""
-    cy = math.cos(x[5])
-    sy = math.sin(x[5])
-    out[0] = cy * v[0] - sy * v[1]
-    out[1] = sy * v[0] + cy * v[1]
-    for k in range(2, 6):
-        out[k] = v[k]
-
-
 @njit(cache=True, inline='always')
 def _stage(j, c, x, v, k, body, terms, lines, st):
     """Stage ``k`` of RK4 at sample j, fraction c, state (x, v): the force (``st.f``,

@@ -8,13 +8,13 @@ See :mod:`floatmoor.mooring.fe.line` for the stepping interface a floater solver
 from .analytic import transverse_friction_static
 from .body import FEMooring
 from .config import (
-                     FRICTION_MODELS,
-                     SEABED_MODELS,
-                     FELineSpec,
-                     FESegment,
-                     Friction,
-                     PointBody,
-                     Seabed,
+    FRICTION_MODELS,
+    SEABED_MODELS,
+    FELineSpec,
+    FESegment,
+    Friction,
+    PointBody,
+    Seabed,
 )
 from .decoupled import harmonic_poses, run_decoupled
 from .frequency import frequency_response
@@ -22,13 +22,13 @@ from .from_system import spec_from_linedef, specs_from_system
 from .line import FELine, StaticSolution, gen_alpha_coefficients
 from .options import MOORING_MODELS, FEOptions, LineModels, parse_fe_options, parse_line_models
 from .prescribed import (
-                     HarmonicMotion,
-                     TimeSeriesMotion,
-                     daf,
-                     decoupled_analysis,
-                     fairlead_track_from_body,
-                     quasi_static_tension,
-                     run_prescribed,
+    HarmonicMotion,
+    TimeSeriesMotion,
+    daf,
+    decoupled_analysis,
+    fairlead_track_from_body,
+    quasi_static_tension,
+    run_prescribed,
 )
 
 __all__ = ["FELineSpec", "FESegment", "Friction", "PointBody", "Seabed", "FRICTION_MODELS",

@@ -12,13 +12,13 @@
 
 from .rainflow import damage_from_history, rainflow, reversals
 from .tn_curves import (
-                        DNV_CURVES,
-                        TNCurve,
-                        curve_for,
-                        design_check,
-                        fatigue_safety_factor,
-                        reference_breaking_strength,
-                        tn_curve,
+    DNV_CURVES,
+    TNCurve,
+    curve_for,
+    design_check,
+    fatigue_safety_factor,
+    reference_breaking_strength,
+    tn_curve,
 )
 
 __all__ = [
