@@ -1354,7 +1354,7 @@ def record_into(r, f, tens, zc, s_nodes, out):
     out[12] = itd
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     """Trial advance of a line from its accepted state ``now`` (:class:`~.bundles.LineState`
     at ``t1 - dt``) to ``t1`` in ``nsub`` generalised-alpha steps with the fairlead moving
@@ -1367,6 +1367,10 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     The bundles may also be plain tuples in the same field order: the entry point for one line
     called from Python (numba types a plain tuple of arrays from its C fingerprint, a named
     tuple through Python, ~0.3 us per field, 15 us per call for the ~50 arrays of a line).
+    Compiled inline into the numba step loops that call it (:func:`.multi` kernel,
+    ``prescribed._run_steps``): numba links and re-optimises the whole callee tree in every
+    compiled entry point, so a separate ``ga_advance`` under a step loop costs one more pass
+    over :func:`gen_alpha_step` (~3 s of cold compile); the arithmetic is the same.
 
     Returns 0, or the failing status of :func:`gen_alpha_step` with ``w.info[0]`` the time (s)
     and ``w.info[1]`` the node.

@@ -231,11 +231,16 @@ def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si,
         counts[1] += w.stats[1]
         if st < 0:
             return k, st
-        now.r[:, :] = tr.r
-        now.v[:, :] = tr.v
-        now.a[:, :] = tr.a
-        now.f[:, :] = tr.f
-        now.fs[:, :] = tr.fs
+        # element loops, not slice copies: a slice copy compiles numba's shape-mismatch error
+        # path (string formatting), ~3 s of the cold compile
+        for i in range(now.r.shape[0]):
+            for c in range(3):
+                now.r[i, c] = tr.r[i, c]
+                now.v[i, c] = tr.v[i, c]
+                now.a[i, c] = tr.a[i, c]
+                now.f[i, c] = tr.f[i, c]
+            for c in range(now.fs.shape[1]):
+                now.fs[i, c] = tr.fs[i, c]
         if k % record_every == 0:
             kr = k // record_every
             times[kr] = t
@@ -244,8 +249,11 @@ def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si,
                 for c in range(3):
                     pos_tr[kr, j, c] = now.r[tracked[j], c]
         if si < snap_steps.shape[0] and snap_steps[si] == k:
-            snaps_r[si, :, :] = now.r
-            snaps_t[si, :] = w.tens
+            for i in range(now.r.shape[0]):
+                for c in range(3):
+                    snaps_r[si, i, c] = now.r[i, c]
+            for j in range(w.tens.shape[0]):
+                snaps_t[si, j] = w.tens[j]
             si += 1
     return n, 0
 
