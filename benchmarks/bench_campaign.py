@@ -78,9 +78,13 @@ def campaign_run(path: Path, workers: int) -> dict:
             rows = [x for x in store.Manifest(out).rows() if x["kind"] == "td"]
             fd = sum(float(x["wall_time_s"]) for x in store.Manifest(out).rows()
                      if x["kind"] == "fd")
-            sim = sum(float(x["simulate_s"]) for x in rows)
+            odd = [x for x in rows if not x["simulate_s"]]
+            if odd:  # a storm without a simulate time (failed or not run): say so, do not count it
+                print(f"{len(odd)} TD row(s) without a simulate time: "
+                      f"{sorted({(x['status'], x.get('error', '')[:80]) for x in odd})}")
+            sim = sum(float(x["simulate_s"]) for x in rows if x["simulate_s"])
             task = sum(float(x["wall_time_s"]) for x in rows)
-            nbytes = sum(int(x["bytes"]) for x in rows)
+            nbytes = sum(int(x["bytes"]) for x in rows if x["bytes"])
     finally:
         client.close()
         cluster.close()
