@@ -36,6 +36,7 @@ import numpy as np
 
 from ..core.dofs import DOF_NAMES
 from ..core.errors import ConvergenceError, NumericalError, SceneError
+from ..core.quadrature import trapezoid_weights
 
 __all__ = [
     "SQRT_8_OVER_PI", "HORIZONTAL_DOFS", "spectral_moment", "response_std_tz",
@@ -150,7 +151,7 @@ def newman_drift_spectrum(omega, s_eta, coefficients, mu):
     C = np.asarray(coefficients, float)
     mu = np.asarray(mu, float)
     d = C.shape[1]
-    q = _trapz_weights(w) * s
+    q = trapezoid_weights(w) * s
     out = np.zeros((mu.size, d, d))
     for a in range(0, mu.size, 128):  # blocks of difference frequencies, vectorised
         mb = mu[a:a + 128]
@@ -162,14 +163,6 @@ def newman_drift_spectrum(omega, s_eta, coefficients, mu):
         out[a:a + mb.size] = 8.0 * np.matmul(np.swapaxes(cm * (q * s2)[..., None], 1, 2), cm)
     return out
 
-
-def _trapz_weights(w):
-    """Weights of the trapezoidal rule on the grid w."""
-    dw = np.diff(w)
-    q = np.zeros_like(w)
-    q[:-1] += 0.5 * dw
-    q[1:] += 0.5 * dw
-    return q
 
 
 def qtf_drift_spectrum(omega, s_eta, qtf, mu):
@@ -183,7 +176,7 @@ def qtf_drift_spectrum(omega, s_eta, qtf, mu):
     w = np.asarray(omega, float)
     s = np.asarray(s_eta, float)
     mu = np.asarray(mu, float)
-    q = _trapz_weights(w) * s
+    q = trapezoid_weights(w) * s
     out = None
     for a in range(0, mu.size, 128):  # blocks of difference frequencies, vectorised
         mb = mu[a:a + 128]

@@ -36,6 +36,7 @@ import scipy.linalg as sla
 import xarray as xr
 
 from ...core.errors import FloatmoorWarning, NumericalError
+from ...core.quadrature import trapezoid_weights
 from .drag_linearisation import drag_damping_1d, drag_damping_2d
 from .frequency_kernels import line_transfer, spectral_moments
 from .touchdown_springs import (
@@ -388,7 +389,7 @@ def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares"
                np.zeros((n, 3, 3), complex), np.zeros((3, 3), complex),
                np.zeros((3, 3), complex), np.zeros((3, 3), complex))
     w2 = w * w
-    wt = _trapezoid_weights(w)
+    wt = trapezoid_weights(w)
     kax = st.kax_eps / st.L0
     tr = np.zeros((w.size, n - 1, 3), complex)
     S_T = np.zeros((w.size, n - 1))
@@ -490,14 +491,6 @@ def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares"
                       stacklevel=2)
     return ds
 
-
-def _trapezoid_weights(w):
-    """Weights of the trapezoidal rule on the grid ``w``."""
-    wt = np.zeros_like(w)
-    d = np.diff(w)
-    wt[:-1] += 0.5 * d
-    wt[1:] += 0.5 * d
-    return wt
 
 
 def _drag_damping(st: LineStatics, nb, q, cov_v):
