@@ -17,26 +17,20 @@ from pathlib import Path
 
 import pytest
 
+from tests.notebooks import run_notebook
+
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOK = ROOT / "notebooks" / "floatel_reproduction.ipynb"
 
 
 @pytest.mark.slow  # reason: 8 storms of 12000 s, one with finite-element lines (about 10 minutes)
 def test_floatel_reproduction_notebook_runs_with_few_seeds(tmp_path, monkeypatch):
-    nbformat = pytest.importorskip("nbformat")
-    nbclient = pytest.importorskip("nbclient")
     pd = pytest.importorskip("pandas")
     monkeypatch.setenv("FLOATMOOR_NB_SEEDS", "3")
     monkeypatch.setenv("FLOATMOOR_NB_CASE_SEEDS", "1")
     monkeypatch.setenv("FLOATMOOR_NB_FE_SEEDS", "1")
     monkeypatch.setenv("FLOATMOOR_NB_CACHE", str(tmp_path))
-    nb = nbformat.read(NOTEBOOK, as_version=4)
-    client = nbclient.NotebookClient(nb, timeout=3600, kernel_name="python3",
-                                     resources={"metadata": {"path": str(NOTEBOOK.parent)}})
-    client.execute()
-    errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
-              if o.get("output_type") == "error"]
-    assert not errors
+    nb = run_notebook(NOTEBOOK, timeout=3600)
     res = {k: pd.read_csv(tmp_path / f"{k}.csv").set_index("seed")
            for k in ("case1", "case2", "case3", "case4", "case5", "fe")}
     assert list(res["case1"].index) == [1, 2, 3]

@@ -16,24 +16,18 @@ from pathlib import Path
 
 import pytest
 
+from tests.notebooks import run_notebook
+
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOK = ROOT / "notebooks" / "viscous_drift.ipynb"
 
 
 @pytest.mark.slow  # reason: 20 storms of 12000 s (about 5 minutes)
 def test_viscous_drift_notebook_runs_with_two_seeds(tmp_path, monkeypatch):
-    nbformat = pytest.importorskip("nbformat")
-    nbclient = pytest.importorskip("nbclient")
     pd = pytest.importorskip("pandas")
     monkeypatch.setenv("FLOATMOOR_NB_SEEDS", "2")
     monkeypatch.setenv("FLOATMOOR_NB_CACHE", str(tmp_path))
-    nb = nbformat.read(NOTEBOOK, as_version=4)
-    client = nbclient.NotebookClient(nb, timeout=1800, kernel_name="python3",
-                                     resources={"metadata": {"path": str(NOTEBOOK.parent)}})
-    client.execute()
-    errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
-              if o.get("output_type") == "error"]
-    assert not errors
+    nb = run_notebook(NOTEBOOK, timeout=1800)
     res = {k: pd.read_csv(tmp_path / f"{k}.csv").set_index("seed")
            for k in ("case1", "case2", "case3", "case4", "case5", "ch7_a", "ch7_b", "ch7_c")}
     for k, df in res.items():

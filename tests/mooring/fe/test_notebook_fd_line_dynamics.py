@@ -7,21 +7,15 @@ from pathlib import Path
 
 import pytest
 
+from tests.notebooks import run_notebook
+
 ROOT = Path(__file__).resolve().parents[3]
 NOTEBOOK = ROOT / "notebooks" / "fd_line_dynamics.ipynb"
 
 
 @pytest.mark.slow  # reason: 20 time-domain FE line runs (1-2 minutes)
 def test_fd_line_dynamics_notebook_runs():
-    nbformat = pytest.importorskip("nbformat")
-    nbclient = pytest.importorskip("nbclient")
-    nb = nbformat.read(NOTEBOOK, as_version=4)
-    client = nbclient.NotebookClient(nb, timeout=1800, kernel_name="python3",
-                                     resources={"metadata": {"path": str(NOTEBOOK.parent)}})
-    client.execute()
-    errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
-              if o.get("output_type") == "error"]
-    assert not errors
+    nb = run_notebook(NOTEBOOK, timeout=1800)
     text = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code"
                    for o in c.get("outputs", []))
     assert "sigma 1.50 m: TD" in text and "line1: WF tension std" in text
