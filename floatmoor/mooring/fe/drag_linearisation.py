@@ -25,6 +25,8 @@ from numpy.polynomial.hermite_e import hermegauss
 from numpy.polynomial.legendre import leggauss
 from scipy.special import erf
 
+from .frequency_kernels import drag_2d
+
 __all__ = ["drag_damping_1d", "drag_damping_2d", "mean_abs_gaussian"]
 
 _XL, _WL = leggauss(16)
@@ -48,47 +50,13 @@ def drag_damping_1d(k, m, s):
     return 2.0 * np.asarray(k, float) * mean_abs_gaussian(m, s)
 
 
-def _major_rule(c):
-    """Nodes and weights (standard normal weight included) on [-8, 8] split at ``c`` (n,)."""
-    c = np.clip(c, -_SPAN, _SPAN)
-    a = np.stack([np.full_like(c, -_SPAN), c], axis=1)      # (n, 2) lower ends
-    b = np.stack([c, np.full_like(c, _SPAN)], axis=1)
-    h = 0.5 * (b - a)
-    x = 0.5 * (a + b)[..., None] + h[..., None] * _XL        # (n, 2, q)
-    w = h[..., None] * _WL * np.exp(-0.5 * x * x) / math.sqrt(2.0 * math.pi)
-    n = c.shape[0]
-    return x.reshape(n, -1), w.reshape(n, -1)
-
-
 def drag_damping_2d(k, mean, cov):
     """Linearised damping matrices ``k E[|u| I + u u^T / |u|]`` (n, 2, 2) for ``n`` Gaussian
     2-vectors with means ``mean`` (n, 2) and covariances ``cov`` (n, 2, 2), drag factors ``k``
     (n,) (N s^2/m^2)."""
-    mean = np.asarray(mean, float)
-    cov = np.asarray(cov, float)
-    lam, V = np.linalg.eigh(0.5 * (cov + np.swapaxes(cov, 1, 2)))   # ascending
-    lam = np.maximum(lam, 0.0)
-    mp = np.einsum("nji,nj->ni", V, mean)                  # mean in the principal axes
-    s1 = np.sqrt(lam[:, 1])
-    s2 = np.sqrt(lam[:, 0])
-    # kink of the major axis at u1' = 0
-    safe = np.where(s1 > 0, s1, 1.0)
-    c = np.where(s1 > 0, -mp[:, 1] / safe, 0.0)
-    x1, w1 = _major_rule(c)                                # (n, q1)
-    u1 = mp[:, 1, None, None] + s1[:, None, None] * x1[:, :, None]      # (n, q1, 1)
-    u2 = mp[:, 0, None, None] + s2[:, None, None] * _XH[None, None, :]  # (n, 1, q2)
-    u1, u2 = np.broadcast_arrays(u1, u2)
-    w = w1[:, :, None] * _WH[None, None, :]
-    r = np.sqrt(u1 * u1 + u2 * u2)
-    rs = np.where(r > 0, r, 1.0)
-    e_r = np.sum(w * r, axis=(1, 2))
-    a11 = np.sum(w * np.where(r > 0, u1 * u1 / rs, 0.0), axis=(1, 2))
-    a22 = np.sum(w * np.where(r > 0, u2 * u2 / rs, 0.0), axis=(1, 2))
-    a12 = np.sum(w * np.where(r > 0, u1 * u2 / rs, 0.0), axis=(1, 2))
-    # matrix in the principal axes (order: minor = 0, major = 1)
-    Cp = np.empty((mean.shape[0], 2, 2))
-    Cp[:, 0, 0] = e_r + a22
-    Cp[:, 1, 1] = e_r + a11
-    Cp[:, 0, 1] = Cp[:, 1, 0] = a12
-    C = np.einsum("nij,njk,nlk->nil", V, Cp, V)
-    return np.asarray(k, float)[:, None, None] * C
+    mean = np.ascontiguousarray(mean, float)
+    cov = np.ascontiguousarray(cov, float)
+    k = np.ascontiguousarray(np.broadcast_to(np.asarray(k, float), mean.shape[:1]))
+    out = np.empty((mean.shape[0], 2, 2))
+    drag_2d(k, mean, cov, _XL, _WL, _XH, _WH, _SPAN, out)
+    return out

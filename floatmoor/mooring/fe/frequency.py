@@ -277,6 +277,19 @@ def _assemble(st: LineStatics, seabed: str, cut_fraction: float):
     return model, info, e, q
 
 
+def _cut_margin(st: LineStatics, X, Sx, w, e, j: int) -> float:
+    """Static vertical force at node ``j`` over the std of its dynamic part: the linearised
+    force of the element above the node, ``(dT/dl e e^T + T/l (I - e e^T)) (x_{j+1} - x_j)``,
+    from the node transfer ``X``."""
+    le = float(np.linalg.norm(st.r[j + 1] - st.r[j]))
+    ez = e[j, 2]
+    kz = st.kax_eps[j] / st.L0[j] * ez * e[j] + st.T[j] / le * (np.array([0.0, 0.0, 1.0])
+                                                                  - ez * e[j])
+    g = np.einsum("a,wad->wd", kz, X[:, j + 1] - X[:, j])
+    var = float(np.trapezoid(np.real(np.einsum("wd,wde,we->w", g, Sx, g.conj())), w))
+    return st.T[j] * ez / math.sqrt(var) if var > 0 else float("inf")
+
+
 def _truncate(lengths, s):
     """Segment lengths of the line from the anchor up to arc length ``s``."""
     out = []
@@ -352,10 +365,16 @@ def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares"
         the fairlead tension std.
     relaxation : weight of the new linearised damping in each iteration.
     cut_fraction : least-squares model: the cut point is this fraction of the suspended nodes
-        above the touchdown node (at least one node).  The line below the cut is quasi-static
-        (no inertia, no drag): for the OC3 line (50 elements) 0.05 (cut 3 nodes, 1.9 m above
-        the seabed) gives -2.9 % / +2.1 % against the time domain at surge sigma 0.5 / 1.5 m,
-        0.1 gives -5.9 % / -1.3 %, 0.2 gives -19 % / -3.9 % (benchmarks/RESULTS.md).
+        above the touchdown node (at least one node).  Ong & Pellegrino (2003) take the part
+        below the cut as quasi-static ("dynamic effects near the seabed are negligible"): the
+        cut belongs just above the touchdown, but high enough that it stays off the seabed over
+        the excursion of the fit (attribute ``cut_force_margin``: static vertical force at the
+        cut over its std; the 4-point Gauss-Hermite fit reaches 2.33 std).  A higher cut drops
+        the drag and inertia of the line below it and lowers the tension.  The default 0.05
+        was chosen on the OC3 line (50 elements, surge Tp 10 s); on cases that did not choose
+        it (OC3 Tp 7 and 14 s, sigma 0.5-1.5 m; Floatel-like chain-polyester-chain lines
+        under their 100-year WF motion) it stays within 3.4 % of the time domain, where 0.1
+        and 0.2 reach -8 % and -29 % (benchmarks/fd_line_cut_study.py, RESULTS.md).
 
     Returns
     -------
@@ -363,7 +382,8 @@ def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares"
     ``tension_std(element)`` N, ``fairlead_tension_rao(omega, axis, complex)`` N/m (top element
     tension per unit fairlead displacement), ``node_velocity_std(node)`` m/s,
     ``iteration_tension_std(iteration)`` N, ``natural_frequency(mode)`` rad/s; attributes
-    ``converged``, ``iterations``, ``seabed``, ``touchdown_node``, ``cut_node``.
+    ``converged``, ``iterations``, ``seabed``, ``touchdown_node``, ``cut_node``,
+    ``cut_force_margin`` (least-squares model, see ``cut_fraction``; NaN otherwise).
     """
     t0 = time.perf_counter()
     if seabed not in SEABED_FD_MODELS:
@@ -476,7 +496,10 @@ def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares"
                 "mode": np.arange(nat.size)},
         attrs={"line": st.name, "seabed": seabed, "converged": int(converged),
                "iterations": len(history), "touchdown_node": info["touchdown_node"],
-               "cut_node": info.get("cut_node", -1), "drag": int(drag),
+               "cut_node": info.get("cut_node", -1),
+               "cut_force_margin": _cut_margin(st, X, Sx, w, e, model.spring_node) if ls
+               else float("nan"),
+               "drag": int(drag),
                "run_time_s": time.perf_counter() - t0})
     if ls:
         ds["touchdown_stiffness"] = (("row", "col"), Kls, {
@@ -490,7 +513,6 @@ def frequency_response(line, omega, motion_psd, *, seabed: str = "least_squares"
                       f"{abs(history[-1] - history[-2]) / history[-1]:.2g})", FloatmoorWarning,
                       stacklevel=2)
     return ds
-
 
 
 def _drag_damping(st: LineStatics, nb, q, cov_v):

@@ -1,5 +1,6 @@
-"""Numba kernel of the frequency-domain line model: the block-tridiagonal complex solve of the
-linearised lumped-mass line for every frequency (no allocation inside the loops)."""
+"""Numba kernels of the frequency-domain line model: the block-tridiagonal complex solve of the
+linearised lumped-mass line for every frequency, the spectral moments, and the quadrature of the
+normal-plane drag linearisation (no allocation inside the loops)."""
 
 from __future__ import annotations
 
@@ -157,3 +158,65 @@ def spectral_moments(X, Sx, e, gain, wt, w2, base, tr, S_T, var_T, cov_v):
                     for d in range(3):
                         s += Y[a, d] * X[kw, i, b, d].conjugate()
                     cov_v[i, a, b] += c * s.real
+
+
+@njit(cache=True)
+def drag_2d(k, mean, cov, xl, wl, xh, wh, span, out):
+    """Linearised normal-plane drag damping ``k E[|u| I + u u^T / |u|]`` (n, 2, 2) into ``out``
+    for Gaussian 2-vectors ``u`` with means ``mean`` (n, 2) and covariances ``cov`` (n, 2, 2).
+
+    In the principal axes of the covariance (closed-form 2x2 eigen-decomposition): along the
+    major axis the Gauss-Legendre rule ``xl, wl`` on ``[-span, c]`` and ``[c, span]`` (``c``
+    the kink at ``u = 0``, standard normal weight applied), along the minor axis the
+    Gauss-Hermite rule ``xh, wh`` (probabilists', normalised)."""
+    n = mean.shape[0]
+    c_norm = 1.0 / np.sqrt(2.0 * np.pi)
+    for i in range(n):
+        a = cov[i, 0, 0]
+        c = cov[i, 1, 1]
+        b = 0.5 * (cov[i, 0, 1] + cov[i, 1, 0])
+        hd = 0.5 * (a - c)
+        rad = np.sqrt(hd * hd + b * b)
+        mid = 0.5 * (a + c)
+        s1 = np.sqrt(max(mid + rad, 0.0))     # major
+        s2 = np.sqrt(max(mid - rad, 0.0))     # minor
+        if rad > 0.0:
+            th = 0.5 * np.arctan2(2.0 * b, a - c)
+            v1x, v1y = np.cos(th), np.sin(th)
+        else:
+            v1x, v1y = 0.0, 1.0
+        v0x, v0y = -v1y, v1x
+        m1 = v1x * mean[i, 0] + v1y * mean[i, 1]
+        m0 = v0x * mean[i, 0] + v0y * mean[i, 1]
+        kink = -m1 / s1 if s1 > 0.0 else 0.0
+        kink = min(max(kink, -span), span)
+        e_r = 0.0
+        a11 = 0.0
+        a22 = 0.0
+        a12 = 0.0
+        for half in range(2):
+            lo = -span if half == 0 else kink
+            hi = kink if half == 0 else span
+            h = 0.5 * (hi - lo)
+            cen = 0.5 * (hi + lo)
+            for q in range(xl.shape[0]):
+                x = cen + h * xl[q]
+                w1 = h * wl[q] * np.exp(-0.5 * x * x) * c_norm
+                u1 = m1 + s1 * x
+                for p in range(xh.shape[0]):
+                    u2 = m0 + s2 * xh[p]
+                    w = w1 * wh[p]
+                    r = np.sqrt(u1 * u1 + u2 * u2)
+                    e_r += w * r
+                    if r > 0.0:
+                        a11 += w * u1 * u1 / r
+                        a22 += w * u2 * u2 / r
+                        a12 += w * u1 * u2 / r
+        # principal axes: minor (index 0) and major (index 1); C = V Cp V^T, V = [v0 v1]
+        p00 = e_r + a22
+        p11 = e_r + a11
+        out[i, 0, 0] = k[i] * (v0x * v0x * p00 + 2.0 * v0x * v1x * a12 + v1x * v1x * p11)
+        out[i, 1, 1] = k[i] * (v0y * v0y * p00 + 2.0 * v0y * v1y * a12 + v1y * v1y * p11)
+        out[i, 0, 1] = k[i] * (v0x * v0y * p00 + (v0x * v1y + v1x * v0y) * a12
+                               + v1x * v1y * p11)
+        out[i, 1, 0] = out[i, 0, 1]

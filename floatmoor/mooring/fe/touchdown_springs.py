@@ -27,6 +27,7 @@ touchdown node held vertically, horizontally on the stretch stiffness of the gro
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -91,6 +92,19 @@ def cubic_expansion(part: LowerPart, rel_step: float = 2e-3) -> np.ndarray:
     return c
 
 
+@functools.lru_cache(maxsize=4)
+def _gauss_hermite_2d(n: int):
+    """Tensor Gauss-Hermite rule for a standard normal 2-vector: nodes (n*n, 2), weights."""
+    xg, wg = hermegauss(n)
+    wg = wg / math.sqrt(2.0 * math.pi)
+    a, b = np.meshgrid(xg, xg, indexing="ij")
+    G = np.stack([a.ravel(), b.ravel()], axis=1)
+    G.flags.writeable = False
+    W = np.outer(wg, wg).ravel()
+    W.flags.writeable = False
+    return G, W
+
+
 def least_squares_springs(part: LowerPart, cov_f, coeffs=None, n_gh: int = 4) -> np.ndarray:
     """Spring matrix ``K`` (2, 2) in the (horizontal outward, up) axes of the cut point: the
     restoring force of the lower part is ``-K d`` for a cut-point displacement ``d`` (m), N/m.
@@ -104,11 +118,8 @@ def least_squares_springs(part: LowerPart, cov_f, coeffs=None, n_gh: int = 4) ->
     # Gaussian (H1, V1) by a tensor Gauss-Hermite rule in the eigen axes
     lam, Q = np.linalg.eigh(cov)
     lam = np.maximum(lam, 0.0)
-    xg, wg = hermegauss(n_gh)
-    wg = wg / math.sqrt(2.0 * math.pi)
-    a, b = np.meshgrid(xg, xg, indexing="ij")
-    W = np.outer(wg, wg).ravel()
-    F = np.stack([a.ravel(), b.ravel()], axis=1) * np.sqrt(lam)[None, :] @ Q.T   # (H1, V1)
+    G, W = _gauss_hermite_2d(n_gh)
+    F = G * np.sqrt(lam)[None, :] @ Q.T              # (H1, V1)
     H1, V1 = F[:, 0], F[:, 1]
     Y = _monomials(V1, H1) @ c                       # (n, 2): x1, z1
     fv = np.stack([H1, V1], axis=1)
