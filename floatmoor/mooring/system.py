@@ -53,6 +53,7 @@ from .catenary import (
     line_kernel,
     line_profile,
 )
+from .fibre import FibreModel
 
 __all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
@@ -74,6 +75,7 @@ class Segment:
     ea_dynamic: float | None = None
     mass_per_length: float = 0.0
     diameter: float = 0.0
+    fibre: FibreModel | None = None
 
 
 @dataclass(frozen=True, kw_only=True)
