@@ -58,7 +58,7 @@ def _versions() -> dict:
 def simulate(scene, *, seed: int | None = None, duration: float | None = None,
              dt: float | None = None, ramp: float | None = None, transient: float | None = None,
              forces=None, record_forces: bool | None = None, models=None, waves=None,
-             start_pose=None, start_velocity=None) -> xr.Dataset:
+             start_pose=None, start_velocity=None, fibre_stiffness=None) -> xr.Dataset:
     """Simulate one realisation of a scene in the time domain.
 
     Parameters
@@ -81,6 +81,10 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         wave instead of the scene's sea state).
     start_pose, start_velocity : (6,), optional (advanced: free decay; default: static
         equilibrium at rest).
+    fibre_stiffness : ``"lower"`` or ``"upper"``, optional
+        Fibre-rope stiffness bound instead of the scene's ``analysis.fibre_stiffness``
+        (:mod:`floatmoor.io.analysis`; ``both`` runs ``upper`` here). Attribute
+        ``fibre_stiffness`` of the result when the mooring has fibre ropes.
 
     Notes
     -----
@@ -128,6 +132,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         check_built(built)
     sc = built.scene
     an = sc.analysis
+    built = _with_fibre_bound(built, fibre_stiffness)
     seed = an.seeds[0] if seed is None else seed
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise SceneError(sc.file, "seed", "an integer seed >= 0", seed)
@@ -170,6 +175,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
                           f"the start heading and do not follow the body: beyond about "
                           f"{YAW_WARNING_DEG:g} deg that assumption is stretched",
                           FloatmoorWarning, stacklevel=2)
+    if built.mooring is not None and built.mooring.has_fibre:
+        ds.attrs["fibre_stiffness"] = fibre_stiffness or an.fibre_bounds[-1]
     mbs = built.mooring.mbs if built.mooring is not None else None
     if mbs is not None and r.line_tension.size:
         over = np.nonzero(r.line_tension.max(axis=0) > mbs)[0]
@@ -178,6 +185,18 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
                           f"{r.line_tension[:, i].max() / 1e3:.0f} kN exceeds its MBS "
                           f"{mbs[i] / 1e3:.0f} kN (seed {seed})", FloatmoorWarning, stacklevel=2)
     return ds
+
+
+def _with_fibre_bound(built, bound):
+    """``built`` with its fibre ropes at the stiffness bound ``bound`` (None: unchanged)."""
+    if bound is None:
+        return built
+    if bound not in ("lower", "upper"):
+        raise SceneError(built.scene.file, "fibre_stiffness", "lower or upper", bound)
+    if built.mooring is None or not built.mooring.has_fibre:
+        return built
+    import dataclasses
+    return dataclasses.replace(built, mooring=built.mooring.with_fibre_bound(bound))
 
 
 def _relative_velocity_note(r) -> str:

@@ -109,6 +109,8 @@ def build(scene: Scene | str | os.PathLike, *, failed_lines=None, need_vessel: b
     static_force, vol = (np.zeros(6), None)
     if vessel is not None:
         static_force, vol = net_buoyancy_force(vessel, scene.site.water_density, scene.site.gravity)
+    if mooring is not None and mooring.has_fibre:
+        mooring = mooring.with_fibre_bound(scene.analysis.fibre_bounds[-1])
     return BuiltScene(scene=scene, vessel=vessel, mooring=mooring, static_force=static_force,
                       displaced_volume=vol)
 
