@@ -67,3 +67,24 @@ def test_run_both_bounds_and_report_the_governing(tmp_path, capsys):
     csv = (rep / "fibre_bounds.csv").read_text().splitlines()
     assert csv[0] == "line,utilisation_lower,utilisation_upper,governing_bound"
     assert len(csv) == 1 + 12
+
+
+def test_fd_command_runs_both_bounds(tmp_path, capsys):
+    """``floatmoor fd`` of a scene with ``fibre_stiffness: both``: both tables, two files, the
+    governing bound = the smaller safety factor of the two files; the same mean position."""
+    scene = _scene(tmp_path)
+    out = tmp_path / "fd.nc"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert main(["fd", str(scene), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    sf, mean = {}, {}
+    for b in ("lower", "upper"):
+        assert f"fibre stiffness bound: {b}" in text
+        with xr.open_dataset(tmp_path / f"fd_{b}.nc") as ds:
+            assert ds.attrs["fibre_stiffness"] == b
+            sf[b] = float(np.nanmin(ds["safety_factor"].values))
+            mean[b] = ds["mean"].values.copy()
+    np.testing.assert_allclose(mean["lower"], mean["upper"], rtol=1e-9, atol=1e-9)
+    assert sf["lower"] != sf["upper"]
+    assert f"governing: {min(sf, key=sf.get)}" in text

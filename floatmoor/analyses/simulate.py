@@ -117,7 +117,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         NaN, exploding state, line far beyond MBS, failed catenary, or dt beyond the stability
         limit (names the time, DOF or line, and a likely remedy).
     """
-    from ..io.build import BuiltScene, build
+    from ..io.build import BuiltScene, build, with_fibre_bound
     from ..io.scene import Scene, load_scene
     from ..solvers.time_domain import assemble, integrate
 
@@ -132,7 +132,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         check_built(built)
     sc = built.scene
     an = sc.analysis
-    built = _with_fibre_bound(built, fibre_stiffness)
+    built = with_fibre_bound(built, fibre_stiffness)
     seed = an.seeds[0] if seed is None else seed
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise SceneError(sc.file, "seed", "an integer seed >= 0", seed)
@@ -185,18 +185,6 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
                           f"{r.line_tension[:, i].max() / 1e3:.0f} kN exceeds its MBS "
                           f"{mbs[i] / 1e3:.0f} kN (seed {seed})", FloatmoorWarning, stacklevel=2)
     return ds
-
-
-def _with_fibre_bound(built, bound):
-    """``built`` with its fibre ropes at the stiffness bound ``bound`` (None: unchanged)."""
-    if bound is None:
-        return built
-    if bound not in ("lower", "upper"):
-        raise SceneError(built.scene.file, "fibre_stiffness", "lower or upper", bound)
-    if built.mooring is None or not built.mooring.has_fibre:
-        return built
-    import dataclasses
-    return dataclasses.replace(built, mooring=built.mooring.with_fibre_bound(bound))
 
 
 def _relative_velocity_note(r) -> str:
