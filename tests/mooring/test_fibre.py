@@ -108,6 +108,7 @@ def test_line_type_keys():
     lib = default_library()
     plain, _ = lib.get("polyester", diameter=0.185)
     assert plain.fibre is None
+    assert lib.get("polyester_fibre", diameter=0.185)[0].fibre is POLYESTER_DEFAULT  # shipped
     user = Node({
         "poly_preset": {"family": "polyester", "fibre": "polyester_default"},
         "poly_own": {"family": "polyester", "fibre": {
