@@ -219,6 +219,9 @@ def describe_analysis(a: AnalysisSpec) -> list[str]:
         seeds = f"{n} seeds {a.seeds[0]}-{a.seeds[-1]}"
     else:
         seeds = f"{n} seeds " + ", ".join(str(s) for s in a.seeds)
-    return [f"analysis: duration {a.duration:g} s ({a.duration / 3600.0:.3g} h), dt {a.dt:g} s "
-            f"({round(a.duration / a.dt)} steps), transient {a.transient:g} s, ramp {a.ramp:g} s",
-            f"          statistics over {a.duration - a.transient:g} s; {seeds}"]
+    out = [f"analysis: duration {a.duration:g} s ({a.duration / 3600.0:.3g} h), dt {a.dt:g} s "
+           f"({round(a.duration / a.dt)} steps), transient {a.transient:g} s, ramp {a.ramp:g} s",
+           f"          statistics over {a.duration - a.transient:g} s; {seeds}"]
+    if a.fibre_stiffness != "upper":
+        out.append(f"          fibre rope stiffness bound(s): {', '.join(a.fibre_bounds)}")
+    return out
