@@ -38,6 +38,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numba import njit
 
+from ..core.errors import ConvergenceError
 from .catenary import OUT_HF, OUT_VF
 from .fibre import table_inverse_nb, table_slope_nb
 
@@ -49,6 +50,8 @@ RULES = ("dynamic", "tangent")
 
 SECANT_TOL = 1e-12
 SECANT_MAX_ITER = 100
+SECANT_ACCEPT = 1e-8
+"""Largest relative EA change accepted when the iteration cap is reached."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -144,6 +147,12 @@ def iterate_secant(system, evaluate) -> int:
         if change <= SECANT_TOL:
             return it
         evaluate()
+    if change > SECANT_ACCEPT:
+        raise ConvergenceError(
+            f"fibre rope: the secant EA of the working curve changed by {change:.2g} after "
+            f"{SECANT_MAX_ITER} iterations", where="mooring statics (fibre segments)",
+            remedy="check the working curve (strictly increasing, no near-flat part) and the "
+                   "line lengths")
     return SECANT_MAX_ITER
 
 

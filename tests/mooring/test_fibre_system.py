@@ -136,3 +136,14 @@ def test_no_fibre_system_is_unchanged():
     # constant EA 15 MBS: T = 15 MBS * 0.02
     assert float(ms.tensions(np.zeros(6))["fairlead_tension"][0]) == pytest.approx(
         0.3 * MBS, rel=1e-9)
+
+
+def test_secant_iteration_cap_raises(monkeypatch):
+    """An iteration that has not converged at the cap is a ConvergenceError naming the fibre
+    segments (cap forced to 1 on a weighted segment, which needs several iterations)."""
+    import floatmoor.mooring.fibre_system as fsys
+    from floatmoor.core.errors import ConvergenceError
+    monkeypatch.setattr(fsys, "SECANT_MAX_ITER", 1)
+    ms = taut_system(POLYESTER_DEFAULT, dist=1015.0, w=300.0)
+    with pytest.raises(ConvergenceError, match="fibre"):
+        ms.tensions(np.zeros(6))
