@@ -294,6 +294,13 @@ def load_campaign(path: str | os.PathLike) -> CampaignSpec:
     if mnode is None:
         raise node.error("base_scene", "a scene with a mooring", str(base))
     lines = [str(ln.raw("name")) for ln in mnode.item_nodes("lines")]
+    if scene.analysis.fibre_stiffness == "both":
+        import warnings
+
+        from ..core.errors import FloatmoorWarning
+        warnings.warn(f"{node.file}: base_scene: analysis.fibre_stiffness both: a campaign runs "
+                      "one fibre stiffness bound (upper); run a second campaign on a base scene "
+                      "with fibre_stiffness: lower for the other", FloatmoorWarning, stacklevel=2)
     h = node.child("headings")
     h.reject_unknown(("waves_deg", "wind_offset_deg", "current_offset_deg"))
     seeds = parse_seeds(node, "seeds")
