@@ -88,3 +88,15 @@ def test_fd_command_runs_both_bounds(tmp_path, capsys):
     np.testing.assert_allclose(mean["lower"], mean["upper"], rtol=1e-9, atol=1e-9)
     assert sf["lower"] != sf["upper"]
     assert f"governing: {min(sf, key=sf.get)}" in text
+
+
+def test_campaign_on_a_both_scene_warns(tmp_path):
+    """A campaign runs one bound: a base scene asking for both is named in a warning."""
+    from floatmoor.campaign.spec import load_campaign
+    from floatmoor.core.errors import FloatmoorWarning
+    scene = _scene(tmp_path)
+    c = tmp_path / "c.yaml"
+    c.write_text(f"name: c\nbase_scene: {scene}\nsea_states: {{list: [{{hs: 10.0, tp: 13.0}}]}}\n"
+                 "headings: {waves_deg: [0]}\nconditions: {intact: true}\nseeds: \"1-3\"\n")
+    with pytest.warns(FloatmoorWarning, match="fibre_stiffness both"):
+        load_campaign(c)
