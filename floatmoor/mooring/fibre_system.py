@@ -79,6 +79,15 @@ class FibreSegments:
                    mbs=np.array([segments[j].mbs for j in idx], float),
                    tables=tuple(m.working_arrays() for m in models))
 
+    def bed_in(self, seg_L, seg_w) -> None:
+        """Lengthen the fibre segments by their permanent strain after the largest mean
+        tension of their model (:meth:`FibreModel.length_factor`), in place; the weight per
+        length shrinks so that the segment's weight is unchanged."""
+        for k, j in enumerate(self.index):
+            f = self.models[k].length_factor(self.mbs[k])
+            seg_L[j] *= f
+            seg_w[j] /= f
+
 
 @njit(cache=True)
 def _mean_tension(H, Vt, Vb):
