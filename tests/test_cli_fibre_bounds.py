@@ -122,3 +122,13 @@ def test_campaign_runs_every_condition_at_both_bounds(tmp_path):
                                rtol=1e-9, atol=1e-9)
     assert not np.allclose(fd["lower"]["tension_std_wf"].values,
                            fd["upper"]["tension_std_wf"].values, rtol=1e-3)
+
+
+def test_campaign_report_reads_the_bound_tagged_conditions():
+    """The campaign report finds the failed lines of a condition name with a bound tag (an
+    end-to-end campaign with both bounds ran in the session that added it: report OK)."""
+    from floatmoor.campaign.report import _condition_lines
+    assert _condition_lines("intact_fibre-upper") == []
+    assert _condition_lines("failed-line7_fibre-lower") == ["line7"]
+    assert _condition_lines("break-line1+line2-t100_fibre-upper") == ["line1", "line2"]
+    assert _condition_lines("failed-line7") == ["line7"]
