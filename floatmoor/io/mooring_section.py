@@ -172,7 +172,8 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                                "at the segment's upper joint)", clump or buoy)
             segs.append(Segment(length=length, ea=lt.ea, w=w, mbs=lt.mbs, line_type=lt.name,
                                 point_load=clump - buoy, ea_dynamic=lt.ea_dynamic,
-                                mass_per_length=lt.mass_per_length, diameter=lt.diameter))
+                                mass_per_length=lt.mass_per_length, diameter=lt.diameter,
+                                fibre=lt.fibre))
         total = sum(sg.length for sg in segs)
         dist = math.dist(anchor, fairlead)
         if total > MAX_LENGTH_RATIO * dist:

@@ -49,6 +49,8 @@ from pathlib import Path
 from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import SceneError
+from .fibre import PRESETS as FIBRE_PRESETS
+from .fibre import FibreModel
 
 __all__ = ["LineType", "CHAIN_GRADES", "FAMILIES", "LineTypeLibrary", "default_library",
            "chain", "wire_rope", "polyester"]
@@ -104,6 +106,9 @@ class LineType:
     tn_a_d, tn_m : float or None
         User-defined T-N constants ``n = a_D s^-m`` (``s`` the tension range over the
         reference breaking strength); both or neither.
+    fibre : FibreModel or None
+        Load-dependent stiffness of a fibre rope (:mod:`floatmoor.mooring.fibre`); None keeps
+        the constant ``ea`` / ``ea_dynamic``.
     """
 
     name: str
@@ -122,6 +127,7 @@ class LineType:
     tn_curve: str = ""
     tn_a_d: float | None = None
     tn_m: float | None = None
+    fibre: FibreModel | None = None
 
     def submerged_weight(self, water_density: float = RHO_WATER, gravity: float = GRAVITY) -> float:
         """Submerged weight per unit length, N/m: ``(mass - rho V) g``."""
@@ -190,9 +196,9 @@ FAMILIES = {
 
 _USER_KEYS = {"material", "diameter", "mass_per_length", "displaced_volume", "density",
               "volumetric_diameter", "submerged_weight", "ea", "ea_dynamic", "elastic_modulus",
-              "mbs", "cdn", "cdt", "can", "cat", "source", "tn_curve", "tn_a_d", "tn_m"}
+              "mbs", "cdn", "cdt", "can", "cat", "source", "tn_curve", "tn_a_d", "tn_m", "fibre"}
 _FAMILY_KEYS = {"family", "grade", "diameter", "source", "mbs", "ea", "ea_dynamic", "cdn", "cdt",
-                "can", "cat", "tn_curve", "tn_a_d", "tn_m"}
+                "can", "cat", "tn_curve", "tn_a_d", "tn_m", "fibre"}
 
 
 def _tn_fields(e: Node) -> dict:
@@ -208,6 +214,93 @@ def _tn_fields(e: Node) -> dict:
         out["tn_a_d"] = e.float("tn_a_d", gt=0.0)
         out["tn_m"] = e.float("tn_m", gt=0.0)
     return out
+
+
+POLYNOMIAL_POINTS = 41
+"""Table points a polynomial tension-strain curve is sampled at (0 to ``max_strain``)."""
+
+
+def _polynomial_curve(c: Node) -> tuple[tuple, tuple]:
+    """``{polynomial: [c1, c2, ...], max_strain: e}``: ``T/MBS = c1 eps + c2 eps^2 + ...``
+    sampled at :data:`POLYNOMIAL_POINTS` strains from 0 to ``max_strain`` (linear beyond)."""
+    c.reject_unknown({"polynomial", "max_strain"})
+    coef = c.list("polynomial", min_len=1)
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+               for v in coef):
+        raise c.error("polynomial", "a list of numbers c1, c2, ... (T/MBS = c1 eps + c2 eps^2 "
+                      "+ ...)", coef)
+    e_max = c.float("max_strain", gt=0.0, le=1.0)
+    eps = [e_max * i / (POLYNOMIAL_POINTS - 1) for i in range(POLYNOMIAL_POINTS)]
+    t = [sum(ck * e ** (k + 1) for k, ck in enumerate(coef)) for e in eps]
+    if any(b <= a for a, b in zip(t, t[1:])):
+        raise c.error("polynomial", f"a tension increasing with the strain up to max_strain "
+                      f"{e_max:g}", coef)
+    return tuple(eps), tuple(t)
+
+
+def _curve(n: Node, key: str) -> tuple[tuple, tuple]:
+    c = n.child(key)
+    if "polynomial" in c:
+        return _polynomial_curve(c)
+    c.reject_unknown({"strain", "tension_mbs"})
+    out = []
+    for k in ("strain", "tension_mbs"):
+        vals = c.list(k, min_len=2)
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                   for v in vals):
+            raise c.error(k, "a list of numbers", vals)
+        out.append(tuple(float(v) for v in vals))
+    if len(out[0]) != len(out[1]):
+        raise c.error("tension_mbs", f"as many values as strain ({len(out[0])})", out[1])
+    if out[0][0] != 0.0 or out[1][0] != 0.0:
+        raise c.error("strain", "a curve starting at strain 0, tension 0", (out[0][0], out[1][0]))
+    for k, v in zip(("strain", "tension_mbs"), out):
+        if any(b <= a for a, b in zip(v, v[1:])):
+            raise c.error(k, "strictly increasing values", v)
+    return out[0], out[1]
+
+
+def _fibre_field(e: Node) -> dict:
+    """The optional ``fibre`` key of a library entry: a preset name (``polyester_default``) or
+    ``{preset, working_curve: {strain, tension_mbs}, original_curve: {...},
+    dynamic: {alpha, beta}, max_tension_mbs, source}`` (a preset's values overridden by the keys
+    given; ``max_tension_mbs``: the largest mean tension seen, for the bedding-in); a curve
+    may instead be a polynomial ``{polynomial: [c1, c2, ...], max_strain: e}`` with
+    ``T/MBS = c1 eps + c2 eps^2 + ...`` (sampled into a table)."""
+    if "fibre" not in e:
+        return {}
+    raw = e.raw("fibre")
+    if isinstance(raw, str):
+        return {"fibre": FIBRE_PRESETS[e.choice("fibre", FIBRE_PRESETS, what="fibre rope model")]}
+    f = e.child("fibre")
+    f.reject_unknown({"preset", "working_curve", "original_curve", "dynamic", "source",
+                      "max_tension_mbs"})
+    base = (FIBRE_PRESETS[f.choice("preset", FIBRE_PRESETS, what="fibre rope model")]
+            if "preset" in f else None)
+    kw = {}
+    if "working_curve" in f:
+        kw["working_strain"], kw["working_tension_mbs"] = _curve(f, "working_curve")
+    elif base is None:
+        raise f.error("working_curve", "the quasi-static working curve {strain: [...], "
+                      "tension_mbs: [...]} (or a preset: polyester_default)")
+    if "original_curve" in f:
+        kw["original_strain"], kw["original_tension_mbs"] = _curve(f, "original_curve")
+    if "dynamic" in f:
+        d = f.child("dynamic")
+        d.reject_unknown({"alpha", "beta"})
+        kw["alpha"] = d.float("alpha", gt=0.0)
+        kw["beta"] = d.float("beta", ge=0.0)
+    elif base is None:
+        raise f.error("dynamic", "the dynamic stiffness {alpha: EA_dyn/MBS at zero mean load, "
+                      "beta: per % MBS of mean load}")
+    if "max_tension_mbs" in f:
+        kw["max_tension_mbs"] = f.float("max_tension_mbs", ge=0.0, lt=1.0)
+    kw["source"] = f.str("source", base.source if base is not None else f"user-defined in {e.file}")
+    try:
+        model = replace(base, **kw) if base is not None else FibreModel(**kw)
+    except ValueError as exc:
+        raise f.error("", "a valid fibre rope model", str(exc)) from None
+    return {"fibre": model}
 
 
 class LineTypeLibrary:
@@ -283,6 +376,7 @@ class LineTypeLibrary:
             if "source" in e:
                 over["source"] = e.str("source")
             over.update(_tn_fields(e))
+            over.update(_fibre_field(e))
             return (replace(lt, **over) if over else lt), None
         e.reject_unknown(_USER_KEYS | {"area_factor"})
         d = e.float("diameter", gt=0.0, le=MAX_DIAMETER, unit="m")
@@ -322,7 +416,8 @@ class LineTypeLibrary:
         kw = {k: e.float(k, ge=0.0) for k in ("cdn", "cdt", "can", "cat") if k in e}
         lt = LineType(name=name, material=material, diameter=d, mass_per_length=mass,
                       displaced_volume=vol, ea=ea, ea_dynamic=ead, mbs=mbs,
-                      source=e.str("source", f"user-defined in {e.file}"), **kw, **_tn_fields(e))
+                      source=e.str("source", f"user-defined in {e.file}"), **kw, **_tn_fields(e),
+                      **_fibre_field(e))
         return lt, w_override
 
 
