@@ -38,8 +38,20 @@ from ..catenary import line_profile, solve_line
 from . import kernels as K
 from .bundles import LineBundle, LineParams, LineState, new_state, new_work
 from .config import FRICTION_MODELS, FELineSpec
+from .fibre_law import (
+    DEFAULT_TIME_CONSTANT,
+    EL_FIB,
+    EL_LAW,
+    LAW_TWO_COMPONENT,
+    LAW_WORKING,
+    fibre_record,
+    fibre_start,
+)
 
-__all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients"]
+__all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients", "FIBRE_LAWS"]
+
+FIBRE_LAWS = ("two_component", "working_curve", "constant")
+"""Axial laws of the segments whose line type has a fibre model (:class:`FELine`)."""
 
 _NO_COEF = np.zeros(4)   # generalised-alpha coefficients of a static parameter bundle (unused)
 
@@ -98,7 +110,19 @@ class FELine:
         EA = 3.84e14 N at dt 0.2 s (rho_inf 0.7) and 0.1 s (rho_inf 0.5); see RESULTS.md,
         "Stiff lines at full EA".  A limit such as 3.84e11 N (strain 4e-6 at 1.4 MN) gives
         the same tensions with slightly fewer Newton iterations.  A ``FloatmoorWarning`` says
-        when the limit is active.
+        when the limit is active.  Not applied to the fibre laws.
+    fibre_law : str
+        Axial law of the segments whose line type has a fibre model
+        (``line_type.fibre``, :class:`floatmoor.mooring.fibre.FibreModel`; other segments and
+        segments with a ``tension_poly`` are not affected): ``"two_component"`` (default) the
+        working curve in statics and, in dynamics, the dynamic stiffness about a filtered mean
+        strain (:mod:`.fibre_law`; the working curve also in dynamics for the ``lower`` bound
+        or with ``dynamic_ea=False``); ``"working_curve"`` the working curve in statics and
+        dynamics; ``"constant"`` the constant ``ea`` / ``ea_dynamic`` of the line type, as for
+        any other segment.
+    fibre_time_constant : float
+        Time constant of the mean-strain filter of the two-component law, s (default
+        :data:`.fibre_law.DEFAULT_TIME_CONSTANT`).
     waves : floatmoor.metocean.realisation.WaveRealisation, optional
         Wave kinematics in dynamics (option): the particle velocity enters the drag (relative
         velocity), the particle acceleration the fluid inertia ``(rho V l) a + m_a a`` of every
@@ -109,7 +133,11 @@ class FELine:
     """
 
     def __init__(self, spec: FELineSpec, *, dynamic_ea: bool = True,
-                 axial_stiffness_limit: float | None = None, waves=None, wheeler: bool = True):
+                 axial_stiffness_limit: float | None = None, waves=None, wheeler: bool = True,
+                 fibre_law: str = "two_component",
+                 fibre_time_constant: float = DEFAULT_TIME_CONSTANT):
+        if fibre_law not in FIBRE_LAWS:
+            raise ValueError(f"fibre_law must be one of {FIBRE_LAWS}, got {fibre_law!r}")
         self.spec = spec
         rho = spec.water_density
         g = spec.gravity
@@ -120,6 +148,8 @@ class FELine:
         E_dy = np.zeros((ne, K.N_EL))
         P = np.zeros((nn, K.N_NP))
         seg_of = np.zeros(ne, dtype=np.int64)
+        fib_rec = []         # fibre records appended to S (fibre_law)
+        fib_at = K.N_S
         j = 0
         dmax = 0.0
         for k, seg in enumerate(spec.segments):
@@ -127,6 +157,14 @@ class FELine:
             dmax = max(dmax, lt.diameter)
             le = seg.length / seg.n_elements
             w = lt.submerged_weight(rho, g)
+            fib = (getattr(lt, "fibre", None) if fibre_law != "constant" and not seg.tension_poly
+                   else None)
+            if fib is not None:
+                fib_rec.append(fibre_record(fib, lt.mbs, fibre_time_constant))
+                fib_off = fib_at
+                fib_at += fib_rec[-1].size
+                two = (fibre_law == "two_component" and dynamic_ea
+                       and getattr(fib, "bound", "nominal") != "lower")
             for _ in range(seg.n_elements):
                 seg_of[j] = k
                 for E, ea in ((E_st, lt.ea), (E_dy, lt.ea_dynamic if dynamic_ea else lt.ea)):
@@ -137,6 +175,10 @@ class FELine:
                     else:
                         E[j, K.EL_C1] = ea
                     E[j, K.EL_B] = seg.damping_coefficient(ea)
+                if fib is not None:
+                    E_st[j, EL_LAW] = LAW_WORKING
+                    E_dy[j, EL_LAW] = LAW_TWO_COMPONENT if two else LAW_WORKING
+                    E_st[j, EL_FIB] = E_dy[j, EL_FIB] = fib_off
                 for i in (j, j + 1):
                     h = 0.5 * le
                     P[i, K.NP_MASS] += lt.mass_per_length * h
@@ -181,6 +223,8 @@ class FELine:
         S[K.S_BEND] = 1.0 if np.any(P[:, K.NP_CB] > 0.0) else 0.0
         cs_ = spec.seabed.contact_smoothing
         S[K.S_DC] = 0.5 * dmax if cs_ is None else cs_
+        if fib_rec:
+            S = np.concatenate([S] + fib_rec)
         if axial_stiffness_limit is not None:
             f = np.minimum(1.0, axial_stiffness_limit / E_dy[:, K.EL_C1])
             if np.any(f < 1.0):
@@ -394,6 +438,7 @@ class FELine:
         self.a[:] = 0.0
         self.fs[:] = 0.0
         self.fs[:, 4:6] = self.r[:, 0:2]
+        fibre_start(self.r, self.fs, self.E_dynamic)
         self.time = float(t0)
         K.line_forces(self.r, self.v, self.fs, self._par, False, 0.0, 0.0, self.fn, self.work)
         self._trial = False
@@ -510,6 +555,8 @@ class FELine:
                                "reduce dt below the axial-wave limit or use generalized_alpha")
                 K.friction_commit(tr.r, tr.v, w.q, self.fric_code, tr.fs, self.P, self.S,
                                   self.S[K.S_ZC])
+                if self.S.shape[0] > K.N_S:
+                    K.fibre_commit(tr.r, tr.fs, self.E_dynamic, self.S, h)
         self.trial(t1)
         K.end_forces(tr.r, tr.v, self.P, tr.f, w.tens, self._ends)
         return self._ends[3:6].copy()

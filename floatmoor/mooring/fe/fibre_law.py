@@ -1,0 +1,163 @@
+"""Load-dependent axial law of fibre-rope (polyester) elements of the FE line.
+
+Model (two components, in the spirit of the Syrope method of Falkenberg et al. (2017) and of
+the static/dynamic stiffness split of DNV (2008) for fibre ropes): every fibre element carries a
+slowly varying *mean strain* ``eps_m``, the exponential low-pass filter of its strain ``eps``
+with time constant ``tau`` (s),
+
+    d eps_m / dt = (eps - eps_m) / tau,
+
+and its elastic tension is
+
+    T = T_w(eps_m) + EA_d(T_w(eps_m)) (eps - eps_m),
+
+with ``T_w`` the quasi-static working tension-strain curve of the rope and ``EA_d(T_m)`` its
+dynamic stiffness at the mean tension ``T_m`` (:class:`floatmoor.mooring.fibre.FibreModel`).
+Loads much slower than ``tau`` follow the working curve (``eps_m -> eps``); wave-frequency
+and, for ``tau`` well above their periods, low-frequency cycles see the dynamic stiffness at
+the mean tension.  Statics use the working curve itself, ``T = T_w(eps)`` (law
+:data:`LAW_WORKING`).  The default ``tau`` is :data:`DEFAULT_TIME_CONSTANT` (300 s): over
+10 times the wave periods and above the slow-drift periods of a moored semi (100-250 s, where
+the filter passes |1 - 1/(1 + i omega tau)| > 0.99 of the motion to the dynamic stiffness).
+The filter is a Maxwell-type relaxation: cycles with periods near ``2 pi tau`` dissipate
+energy (a hysteresis of the rope), faster and slower ones hardly.
+
+Time discretisation: ``eps_m`` is held over a line (sub-)step (the Newton tangent is then
+``dT/deps = EA_d``, exact for the step) and updated after every accepted (sub-)step of length
+``h`` with the exact exponential of the step, ``eps_m += (1 - exp(-h / tau)) (eps - eps_m)``
+(a lag of one step, ``h / tau`` ~ 3e-4 at h = 0.1 s).  The dynamics start with ``eps_m`` at
+the static strain (:func:`fibre_start`), so the tension is continuous at the start.
+
+Slack: ``T = 0`` for ``eps <= 0``.  Near slack the working curve is blended into zero by the
+cubic of :func:`kernels._tension` over the slack strain ``e0`` (C1), and the two-component law
+``T_lin = T_w(eps_m) + EA_d (eps - eps_m)`` by the smooth maximum ``(T_lin + h)^2 / (4 h)`` on
+``|T_lin| < h = EA_d e0`` (C1), so Newton does not cycle on a kink.
+
+Storage (no allocation in the time loop, trial/accept/reject consistent):
+
+* element columns of ``E`` (:mod:`.kernels`): ``EL_LAW`` 0 the polynomial law (the code path of
+  lines without fibre elements, unchanged), :data:`LAW_WORKING` or :data:`LAW_TWO_COMPONENT`;
+  ``EL_FIB`` the offset of the element's fibre record in ``S``;
+* fibre records in ``S`` beyond its ``N_S`` line scalars (a line without fibre elements has
+  exactly ``N_S``, :func:`fibre_record`): ``tau``, the working curve (strains and tensions in
+  N, piecewise linear, extrapolated with the end slopes) and the two coefficients of
+  ``EA_d = MBS alpha + 100 beta T_m`` (the Syrope form of the model);
+* the mean strain of element ``j`` in column :data:`FS_EM` of row ``j`` of the node state
+  ``fs`` (:class:`~.bundles.LineState`): copied with the rest of the state into the trial,
+  committed by accept, dropped by reject.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+__all__ = ["LAW_POLY", "LAW_WORKING", "LAW_TWO_COMPONENT", "EL_LAW", "EL_FIB", "FS_EM",
+           "DEFAULT_TIME_CONSTANT", "fibre_record", "fibre_tension", "fibre_commit",
+           "fibre_start", "working_tension", "dynamic_stiffness"]
+
+LAW_POLY, LAW_WORKING, LAW_TWO_COMPONENT = 0.0, 1.0, 2.0
+EL_LAW, EL_FIB = 5, 6          # element columns (kernels.N_EL = 7)
+FS_EM = 8                      # node-state column of the mean strain (kernels.N_FS = 9)
+DEFAULT_TIME_CONSTANT = 300.0  # s
+
+
+def fibre_record(fibre, mbs: float, tau: float) -> np.ndarray:
+    """The ``S`` record of a fibre segment: ``[tau, n_w, kd0, kd1, eps_w (n_w), T_w (n_w)]``.
+
+    ``fibre`` a :class:`~floatmoor.mooring.fibre.FibreModel`, ``mbs`` (N), ``tau`` (s).  The
+    working curve in N (``T_w = MBS f_w``); the dynamic stiffness ``EA_d = kd0 + kd1 max(T_m,
+    0)`` with ``kd0 = MBS alpha``, ``kd1 = 100 beta`` (:func:`floatmoor.mooring.fibre.
+    dynamic_ea_nb`, the same arithmetic)."""
+    if not (tau > 0.0 and math.isfinite(tau)):
+        raise ValueError(f"fibre time constant must be > 0 s, got {tau!r}")
+    ew, fw = fibre.working_arrays()
+    return np.concatenate([[tau, ew.size, mbs * fibre.alpha, fibre.beta * 100.0], ew, fw * mbs])
+
+
+@njit(cache=True)
+def _pl(S, ox, oy, n, x):
+    """Piecewise-linear ``y(x)`` of the table ``S[ox:ox+n], S[oy:oy+n]`` and its slope;
+    linear extrapolation with the end slopes."""
+    k = 0
+    while k < n - 2 and x > S[ox + k + 1]:
+        k += 1
+    x0 = S[ox + k]
+    y0 = S[oy + k]
+    d = (S[oy + k + 1] - y0) / (S[ox + k + 1] - x0)
+    return y0 + d * (x - x0), d
+
+
+@njit(cache=True)
+def working_tension(S, o, eps):
+    """Working-curve tension ``T_w(eps)`` (N) of the record at ``S[o]`` and ``dT_w/deps``."""
+    n = int(S[o + 1])
+    return _pl(S, o + 4, o + 4 + n, n, eps)
+
+
+@njit(cache=True)
+def dynamic_stiffness(S, o, tm):
+    """Dynamic stiffness ``EA_d(T_m) = kd0 + kd1 max(T_m, 0)`` (N) of the record at ``S[o]``."""
+    return S[o + 2] + S[o + 3] * (tm if tm > 0.0 else 0.0)
+
+
+@njit(cache=True)
+def _working_slack(S, o, eps, e0):
+    """``T_w(eps)`` with zero tension in compression and the C1 cubic blend on ``[0, e0]``."""
+    if eps <= 0.0:
+        return 0.0, 0.0
+    if eps >= e0:
+        return working_tension(S, o, eps)
+    T0, D0 = working_tension(S, o, e0)
+    B = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
+    A = (T0 - B * e0 * e0 * e0) / (e0 * e0)
+    return A * eps * eps + B * eps * eps * eps, 2.0 * A * eps + 3.0 * B * eps * eps
+
+
+@njit(cache=True)
+def fibre_tension(law, eps, em, S, o, e0):
+    """Elastic tension (N) and ``dT/deps`` of a fibre element with strain ``eps``, mean strain
+    ``em`` (two-component law) and slack strain ``e0`` (see the module docstring)."""
+    if law == LAW_WORKING:
+        return _working_slack(S, o, eps, e0)
+    if eps <= 0.0:
+        return 0.0, 0.0
+    tm, _ = _working_slack(S, o, em, e0)
+    kd = dynamic_stiffness(S, o, tm)
+    tl = tm + kd * (eps - em)
+    h = kd * e0
+    if tl >= h:
+        return tl, kd
+    if tl <= -h:
+        return 0.0, 0.0
+    return (tl + h) * (tl + h) / (4.0 * h), kd * (tl + h) / (2.0 * h)
+
+
+@njit(cache=True)
+def fibre_commit(r, fs, E, S, h):
+    """After an accepted step of ``h`` s: ``eps_m += (1 - exp(-h / tau)) (eps - eps_m)`` for
+    every two-component element (``fs[j, FS_EM]``)."""
+    for j in range(r.shape[0] - 1):
+        if E[j, EL_LAW] != LAW_TWO_COMPONENT:
+            continue
+        dx = r[j + 1, 0] - r[j, 0]
+        dy = r[j + 1, 1] - r[j, 1]
+        dz = r[j + 1, 2] - r[j, 2]
+        eps = math.sqrt(dx * dx + dy * dy + dz * dz) / E[j, 0] - 1.0
+        g = 1.0 - math.exp(-h / S[int(E[j, EL_FIB])])
+        fs[j, FS_EM] += g * (eps - fs[j, FS_EM])
+
+
+@njit(cache=True)
+def fibre_start(r, fs, E):
+    """Mean strain of every two-component element at its current strain (start of the
+    dynamics from a static state)."""
+    for j in range(r.shape[0] - 1):
+        if E[j, EL_LAW] != LAW_TWO_COMPONENT:
+            continue
+        dx = r[j + 1, 0] - r[j, 0]
+        dy = r[j + 1, 1] - r[j, 1]
+        dz = r[j + 1, 2] - r[j, 2]
+        fs[j, FS_EM] = math.sqrt(dx * dx + dy * dy + dz * dz) / E[j, 0] - 1.0
