@@ -1,9 +1,10 @@
 """Load-dependent axial law of fibre-rope (polyester) elements of the FE line.
 
-Model (two components, in the spirit of the Syrope method of Falkenberg et al. (2017) and of
-the static/dynamic stiffness split of DNV (2008) for fibre ropes): every fibre element carries a
-slowly varying *mean strain* ``eps_m``, the exponential low-pass filter of its strain ``eps``
-with time constant ``tau`` (s),
+Model (two components, in the spirit of the Syrope method, Falkenberg et al. (2017), as
+described by SINTEF Ocean (2023): the working curve for the mean, a dynamic stiffness linear in
+the mean tension about it).  Where SIMA takes the static tension as the mean of a whole
+analysis, here every fibre element carries a slowly varying *mean strain* ``eps_m``, the
+exponential low-pass filter of its strain ``eps`` with time constant ``tau`` (s),
 
     d eps_m / dt = (eps - eps_m) / tau,
 
@@ -16,7 +17,8 @@ dynamic stiffness at the mean tension ``T_m`` (:class:`floatmoor.mooring.fibre.F
 Loads much slower than ``tau`` follow the working curve (``eps_m -> eps``); wave-frequency
 and, for ``tau`` well above their periods, low-frequency cycles see the dynamic stiffness at
 the mean tension.  Statics use the working curve itself, ``T = T_w(eps)`` (law
-:data:`LAW_WORKING`).  The default ``tau`` is :data:`DEFAULT_TIME_CONSTANT` (300 s): over
+:data:`LAW_WORKING`); so do the dynamics for the ``lower`` stiffness bound of the fibre model
+(the working curve for everything) and for the FE option ``fibre_law: working_curve``.  The default ``tau`` is :data:`DEFAULT_TIME_CONSTANT` (300 s): over
 10 times the wave periods and above the slow-drift periods of a moored semi (100-250 s, where
 the filter passes |1 - 1/(1 + i omega tau)| > 0.99 of the motion to the dynamic stiffness).
 The filter is a Maxwell-type relaxation: cycles with periods near ``2 pi tau`` dissipate
