@@ -154,12 +154,13 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
     grid = _WaveGrid.of(built.vessel.database, sc.environment.waves, opt, notes)
     loads = _MeanLoads(built, grid, viscous, notes)
     eq, C_drift, mean_parts = _mean_position(built, loads, opt)
+    eq, moor = _fibre_dynamics(built, eq, notes)
     model, lf_parts = _linear_model(built, opt, grid, loads, eq, C_drift, viscous, notes)
     sol = solve_frequency_domain(model)
     lf_periods = _lf_natural_periods(model.stiffness, sol.lf_mass, opt, notes)
     mean = mean_parts["mean"]
     motions = _motion_statistics(mean, sol, model, opt.duration)
-    lines = _line_statistics(built.mooring, mean, sol, model, opt.duration)
+    lines = _line_statistics(moor, mean, sol, model, opt.duration)
     if opt.tension_model == "dynamic":
         # WF tension from the FE lines in the frequency domain; LF stays quasi-static
         lines.update(dynamic_line_columns(built, mean, sol, model, lines, opt.duration))
@@ -331,6 +332,22 @@ def _mean_position(built: BuiltScene, loads: _MeanLoads, opt: FDOptions):
         yaw = float(eq.pose[5])
     return eq, C_drift, {"mean": eq.pose.copy(), "mean_force_wind": f_wind,
                          "mean_force_current": f_cur, "mean_force_drift": f_drift}
+
+
+def _fibre_dynamics(built: BuiltScene, eq, notes: _Notes):
+    """Fibre ropes: the mean position comes from the working curve (statics); the WF/LF
+    stiffness and line tensions from the lines linearised about it with the dynamic stiffness at
+    the mean tensions (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`). Returns the
+    equilibrium (its mooring stiffness replaced) and the mooring for the line statistics."""
+    moor = built.mooring
+    if not moor.has_fibre:
+        return eq, moor
+    lin = moor.linearised_fibre(eq.pose)
+    k = lin.stiffness(eq.pose)
+    notes.append("fibre ropes: mean position on the working curve, dynamics with the "
+                 "dynamic stiffness at the mean tension")
+    return replace(eq, mooring_stiffness=k,
+                   total_stiffness=eq.total_stiffness - eq.mooring_stiffness + k), lin
 
 
 def _linear_model(built: BuiltScene, opt: FDOptions, grid: _WaveGrid, loads: _MeanLoads, eq,

@@ -206,6 +206,12 @@ class KernelAssembly:
         its ``fail_time`` (s; inf: intact) on."""
         self._add("mooring", name, (system, np.asarray(fail_time, float)))
 
+    def replace_mooring_system(self, system) -> None:
+        """Swap the :class:`~floatmoor.mooring.MooringSystem` of the mooring term (same lines,
+        same failure times), e.g. for fibre ropes linearised about the mean position."""
+        name, (_, fail_time) = self.terms["mooring"][0]
+        self.terms["mooring"][0] = (name, (system, fail_time))
+
     def add_damping(self, name: str, matrix) -> None:
         """``-T matrix nu`` (N s/m ...), on the yaw-frame velocity."""
         self._add("damping", name, np.asarray(matrix, float).reshape(6, 6))

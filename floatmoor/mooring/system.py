@@ -54,6 +54,7 @@ from .catenary import (
     line_profile,
 )
 from .fibre import FibreModel
+from .fibre_system import FibreSegments, iterate_secant, linearised_lines, linearised_segments
 
 __all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
@@ -345,6 +346,7 @@ class MooringSystem:
         self._line_out = np.zeros((n, OUT_SIZE))
         self._force = np.zeros(6)
         self._stiff = np.zeros((6, 6))
+        self.fibre_segments = FibreSegments.of(segs)
 
     # -- line failure -------------------------------------------------------------------------
     def without_lines(self, names: Iterable[str]) -> MooringSystem:
@@ -371,17 +373,78 @@ class MooringSystem:
                              line_models=self.line_models, line_types=self.line_types)
 
     @property
+    def has_fibre(self) -> bool:
+        """True when a segment has a fibre-rope model (load-dependent stiffness)."""
+        return self.fibre_segments is not None
+
+    def with_fibre_bound(self, bound: str) -> MooringSystem:
+        """A copy whose fibre models carry the stiffness bound ``lower`` or ``upper``
+        (:meth:`floatmoor.mooring.fibre.FibreModel.lower`); itself without fibre segments."""
+        if not self.has_fibre:
+            return self
+        from dataclasses import replace
+        pick = {"lower": lambda m: m.lower(), "upper": lambda m: m.upper(),
+                "nominal": lambda m: replace(m, bound="nominal")}[bound]
+        lines = [replace(l, segments=tuple(replace(s, fibre=pick(s.fibre)) if s.fibre is not None
+                                           else s for s in l.segments)) for l in self.lines]
+        return self._copy_with(lines)
+
+    def linearised_fibre(self, pose, rule: str = "dynamic") -> MooringSystem:
+        """A constant-EA copy for the dynamics about ``pose`` (the mean position): every fibre
+        segment gets its dynamic stiffness at its mean tension there (``rule="tangent"``: the
+        working curve's tangent) with its length adjusted so that the tensions at ``pose``
+        are unchanged (:mod:`floatmoor.mooring.fibre_system`). Itself without fibre segments."""
+        if not self.has_fibre:
+            return self
+        self._evaluate(pose, False)
+        out = self._copy_with(linearised_lines(self, rule))
+        out.warm[:] = self.warm
+        return out
+
+    def _copy_with(self, lines) -> MooringSystem:
+        return MooringSystem(lines, water_depth=self.water_depth, water_density=self.water_density,
+                             gravity=self.gravity, source=self.source, failed=self.failed,
+                             line_models=self.line_models, line_types=self.line_types)
+
+    @property
     def n_lines(self) -> int:
         return len(self.lines)
 
     # -- evaluation -----------------------------------------------------------------------------
     def _evaluate(self, pose, want_k):
         pose = np.ascontiguousarray(pose, dtype=float).reshape(6)
+        if self.fibre_segments is not None:
+            self._evaluate_fibre(pose, want_k)
+            return
         bad = system_force_kernel(pose, self.anchors, self.fairleads, self.seg_L, self.seg_EA,
                                   self.seg_w, self.seg_P, self.line_start, self.cb, self.seabed,
                                   self.active, self.warm, want_k, self._work, self._rot,
                                   self._line_out, self._force, self._stiff)
+        self._raise_failed(bad, pose)
+
+    def _evaluate_fibre(self, pose, want_k):
+        """Fibre segments: the working curve through the secant EA iterated to the segments'
+        mean tensions (:func:`floatmoor.mooring.fibre_system.iterate_secant`); the stiffness
+        is that of the working curve's tangent about those tensions."""
+        def run(L, EA, w, want, line_out, force, warm):
+            bad = system_force_kernel(pose, self.anchors, self.fairleads, L, EA, w, self.seg_P,
+                                      self.line_start, self.cb, self.seabed, self.active, warm,
+                                      want, self._work, self._rot, line_out, force, self._stiff)
+            self._raise_failed(bad, pose, line_out)
+
+        def secant_step():
+            run(self.seg_L, self.seg_EA, self.seg_w, False, self._line_out, self._force, self.warm)
+
+        secant_step()
+        iterate_secant(self, secant_step)
+        if want_k:
+            L, EA, w = linearised_segments(self, "tangent")
+            run(L, EA, w, True, np.zeros_like(self._line_out), np.zeros(6), self.warm.copy())
+
+    def _raise_failed(self, bad, pose, line_out=None):
+        line_out = self._line_out if line_out is None else line_out
         if bad >= 0:
+            self._line_out[bad, OUT_ITER] = line_out[bad, OUT_ITER]
             status = int(self._line_out[bad, OUT_ITER])
             raise ConvergenceError(f"catenary: {STATUS_MESSAGES.get(status, status)}",
                                    where=f"line {self.names[bad]!r} at pose {pose.tolist()}",

@@ -246,9 +246,14 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         if held.any():
             sub = np.ix_(held, held)
             x0[held] = np.linalg.solve(C[sub], (asm.const_force + mean_env)[held])
+    fibre_lin = None
+    if "mooring" in active and built.mooring is not None and built.mooring.has_fibre:
+        fibre_lin = _fibre_dynamics(built, asm, x0, eq, C, mean_env)
     # highest natural frequency of the linearised system (stability check)
     K_lin = C.copy()
-    if eq is not None:
+    if fibre_lin is not None:
+        K_lin = K_lin + fibre_lin.stiffness(x0)
+    elif eq is not None:
         K_lin = K_lin + eq.mooring_stiffness
     elif built.mooring is not None and "mooring" in active:
         K_lin = K_lin + built.mooring.stiffness(x0)
@@ -283,6 +288,25 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
                     inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
                     relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe)
+
+
+def _fibre_dynamics(built, asm, x0, eq, C, mean_env):
+    """Fibre ropes in the quasi-static time domain: the kernel's lines become the constant-EA
+    linearisation about the static equilibrium under the mean loads (the working curve there),
+    every fibre segment with its dynamic stiffness at its mean tension
+    (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`; rule and sources in
+    :mod:`floatmoor.mooring.fibre_system`). With a given start pose the linearisation point is
+    still that equilibrium. Returns the linearised system."""
+    if eq is not None:
+        pose = eq.pose
+    else:
+        built.mooring.warm[:] = 0.0
+        pose = equilibrium(built.mooring, hydrostatic_stiffness=C,
+                           external_force=asm.const_force + mean_env).pose
+    lin = asm.mooring.linearised_fibre(pose)
+    lin.warm[:] = 0.0
+    asm.replace_mooring_system(lin)
+    return lin
 
 
 def _guard_limits(built) -> np.ndarray:

@@ -1,0 +1,195 @@
+"""Fibre-rope segments in the quasi-static mooring system: the working curve in statics and the
+dynamic stiffness about the mean tension.
+
+Statics (the mean offset): the elastic catenary of :mod:`floatmoor.mooring.catenary` has a
+constant ``EA`` per segment. A fibre segment gets the **equivalent EA = secant of the working
+curve at the segment's mean tension**, ``EA_eq = T_m / f_w^-1(T_m / MBS)``, iterated with the
+catenary solution to a fixed point (:func:`iterate_secant`). ``T_m`` is the mean of the tension
+over the segment's length (exact for the suspended catenary, ``T = sqrt(H^2 + V^2)`` with ``V``
+linear along the segment; grounded parts count with ``H``, friction neglected). For a segment
+of uniform tension (a taut, weightless segment) this is exact; with weight it is exact to first
+order in the variation of the tangent stiffness along the segment (verified against the direct
+integration of the extensible catenary with the nonlinear law in the tests).
+
+Dynamics (the frequency domain and the quasi-static time domain): the line is linearised about
+the mean position (:func:`linearised_segments`): every fibre segment gets a constant stiffness
+``K`` (``K = EA_dyn(T_m)``, the rope's dynamic stiffness at its mean tension, or for the lower
+bound the working curve's tangent) and an unstretched length and weight such that
+
+* its stretched length at the mean tension is that of the working curve (the mean position and
+  mean tensions are unchanged), and
+* a small change of its stretched length ``dl`` changes its tension by ``K dl / L`` (``K`` is
+  the stiffness per unit strain on the rope's own length ``L``)::
+
+      L' = L (1 + eps_w(T_m) - T_m / K),   EA' = K L' / L,   w' = w L / L'.
+
+This is the SIMA/Syrope rule of elongating the line so that the dynamic curve meets the working
+curve at the mean tension (SINTEF Ocean (2023); Falkenberg et al. (2017)) and MoorPy's
+``activateDynamicStiffness`` (Hall (2024)). The time domain therefore uses the dynamic stiffness
+about the mean (static-equilibrium) tension for the whole response (wave- and low-frequency),
+not about a slowly varying tension.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numba import njit
+
+from .catenary import OUT_HF, OUT_VF
+from .fibre import table_inverse_nb, table_slope_nb
+
+__all__ = ["FibreSegments", "segment_mean_tensions", "iterate_secant", "linearised_segments",
+           "RULES"]
+
+RULES = ("dynamic", "tangent")
+"""Linearisation rules: the fibre model's dynamic stiffness, or the working-curve tangent."""
+
+SECANT_TOL = 1e-12
+SECANT_MAX_ITER = 100
+
+
+@dataclass(frozen=True, kw_only=True)
+class FibreSegments:
+    """The fibre segments of a system: their indices in the segment arrays, models, MBS and
+    working-curve tables."""
+
+    index: np.ndarray
+    models: tuple
+    mbs: np.ndarray
+    tables: tuple
+
+    @classmethod
+    def of(cls, segments) -> FibreSegments | None:
+        """From the flat list of segments; None when no segment has a fibre model."""
+        idx = [j for j, s in enumerate(segments) if getattr(s, "fibre", None) is not None]
+        if not idx:
+            return None
+        for j in idx:
+            if not math.isfinite(segments[j].mbs):
+                raise ValueError(f"segment {j} ({segments[j].line_type!r}) has a fibre model but "
+                                 "no MBS (the curves are in fractions of MBS)")
+        models = tuple(segments[j].fibre for j in idx)
+        return cls(index=np.array(idx, np.int64), models=models,
+                   mbs=np.array([segments[j].mbs for j in idx], float),
+                   tables=tuple(m.working_arrays() for m in models))
+
+
+@njit(cache=True)
+def _mean_tension(H, Vt, Vb):
+    """Mean of ``sqrt(H^2 + max(V, 0)^2)`` for ``V`` linear from ``Vb`` to ``Vt``."""
+    if Vt < Vb:
+        Vt, Vb = Vb, Vt
+    h = H if H > 1e-9 else 1e-9
+    if Vt - Vb <= 1e-12 * (abs(Vt) + h):
+        v = Vt if Vt > 0.0 else 0.0
+        return math.sqrt(h * h + v * v)
+    hi = Vt if Vt > 0.0 else 0.0
+    lo = Vb if Vb > 0.0 else 0.0
+    f_hi = 0.5 * (hi * math.sqrt(h * h + hi * hi) + h * h * math.asinh(hi / h))
+    f_lo = 0.5 * (lo * math.sqrt(h * h + lo * lo) + h * h * math.asinh(lo / h))
+    neg = (lo - Vb) if Vb < 0.0 else 0.0  # part with V <= 0 (on the seabed): tension h
+    if Vt < 0.0:
+        neg = Vt - Vb
+    return (f_hi - f_lo + h * neg) / (Vt - Vb)
+
+
+@njit(cache=True)
+def segment_mean_tensions(line_out, seg_L, seg_w, seg_P, line_start, active, out):
+    """Length-mean tension of every segment (N) from the lines' fairlead tensions ``HF, VF``
+    in ``line_out`` (written into ``out``; 0 for inactive lines)."""
+    n = line_start.shape[0] - 1
+    for i in range(n):
+        a = line_start[i]
+        b = line_start[i + 1]
+        if not active[i]:
+            for j in range(a, b):
+                out[j] = 0.0
+            continue
+        H = line_out[i, OUT_HF]
+        vt = line_out[i, OUT_VF]
+        for j in range(b - 1, a - 1, -1):
+            vb = vt - seg_w[j] * seg_L[j]
+            out[j] = _mean_tension(H, vt, vb)
+            if j > a:
+                vt = vb - seg_P[j - 1]
+
+
+def _mean_tensions(system) -> np.ndarray:
+    out = np.zeros(system.seg_L.shape[0])
+    segment_mean_tensions(system._line_out, system.seg_L, system.seg_w, system.seg_P,
+                          system.line_start, system.active, out)
+    return out
+
+
+def iterate_secant(system, evaluate) -> int:
+    """Set the fibre segments' ``seg_EA`` to the working-curve secant at their mean tension,
+    re-evaluating the system (``evaluate()``, one catenary solve per line) until the EAs change by
+    less than ``SECANT_TOL`` (relative). Returns the number of extra evaluations."""
+    fs = system.fibre_segments
+    for it in range(SECANT_MAX_ITER):
+        tm = _mean_tensions(system)
+        change = 0.0
+        for k, j in enumerate(fs.index):
+            xs, ys = fs.tables[k]
+            t = tm[j]
+            if t > 0.0:
+                ea = t / table_inverse_nb(t / fs.mbs[k], xs, ys)
+            else:
+                ea = fs.mbs[k] * (ys[1] - ys[0]) / (xs[1] - xs[0])
+            change = max(change, abs(ea - system.seg_EA[j]) / ea)
+            system.seg_EA[j] = ea
+        if change <= SECANT_TOL:
+            return it
+        evaluate()
+    return SECANT_MAX_ITER
+
+
+def linearised_segments(system, rule: str = "dynamic"):
+    """``(L', EA', w')`` arrays of all segments, the fibre ones linearised about the mean
+    tensions of the system's last evaluation (module docstring); other segments unchanged."""
+    if rule not in RULES:
+        raise ValueError(f"rule must be one of {RULES}, found {rule!r}")
+    fs = system.fibre_segments
+    L = system.seg_L.copy()
+    EA = system.seg_EA.copy()
+    w = system.seg_w.copy()
+    tm = _mean_tensions(system)
+    for k, j in enumerate(fs.index):
+        xs, ys = fs.tables[k]
+        mbs = fs.mbs[k]
+        t = max(tm[j], 0.0)
+        eps = table_inverse_nb(t / mbs, xs, ys)
+        if rule == "tangent":
+            K = mbs * table_slope_nb(eps, xs, ys)
+        else:
+            K = float(fs.models[k].dynamic_ea(t, mbs))
+        f = 1.0 + eps - t / K
+        if f <= 0.0:
+            raise ValueError(f"fibre segment {j}: mean tension {t:.4g} N too large for the "
+                             f"stiffness {K:.4g} N (negative linearised length)")
+        L[j] = system.seg_L[j] * f
+        EA[j] = K * f
+        w[j] = system.seg_w[j] / f
+    return L, EA, w
+
+
+def linearised_lines(system, rule: str = "dynamic"):
+    """The system's :class:`LineDef` list with the fibre segments replaced by their constant-EA
+    linearisation (:func:`linearised_segments`; ``fibre`` removed)."""
+    L, EA, w = linearised_segments(system, rule)
+    lines = []
+    j = 0
+    for line in system.lines:
+        segs = []
+        for s in line.segments:
+            if s.fibre is not None:
+                f = float(L[j]) / s.length
+                s = replace(s, length=float(L[j]), ea=float(EA[j]), w=float(w[j]), fibre=None,
+                            mass_per_length=s.mass_per_length / f)
+            segs.append(s)
+            j += 1
+        lines.append(replace(line, segments=tuple(segs)))
+    return lines
