@@ -256,6 +256,23 @@ def test_frequency_domain_uses_the_dynamic_stiffness_at_the_static_tension():
     np.testing.assert_allclose(st.kax_eps, 0.08 / 0.005 * MBS, rtol=1e-9)
 
 
+def test_frequency_response_of_a_taut_fibre_line_has_the_dynamic_stiffness():
+    """The FD line (no drag) under a narrow-band fairlead motion along the line at 0.6 rad/s:
+    tension std = EA_d(T_mean) / L * motion std (quasi-static in the axial mode, inertia
+    (omega L / c)^2 / 3 ~ 1e-4), not the working-curve tangent (16 MBS against 22.8 MBS)."""
+    from floatmoor.mooring.fe import frequency_response
+
+    line = _taut(0.02)
+    line.solve_static(restart=True)
+    w = np.linspace(0.3, 0.9, 61)
+    S = np.zeros((w.size, 3))
+    S[:, 0] = np.exp(-(((w - 0.6) / 0.05) ** 2))
+    ds = frequency_response(line, w, S, seabed="fe", drag=False)
+    sx = math.sqrt(np.trapezoid(S[:, 0], w))
+    expected = _ea_dyn(0.28 * MBS) / 100.0 * sx
+    assert float(ds.fairlead_tension_std) == pytest.approx(expected, rel=1e-3)
+
+
 _NOJIT = """
 import math
 import numpy as np
