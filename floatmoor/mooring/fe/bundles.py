@@ -64,8 +64,9 @@ class LineState(NamedTuple):
     f: np.ndarray
     """(n, 3) total nodal forces."""
     fs: np.ndarray
-    """(n, N_FS) friction state; column ``FS_EM`` of row ``j``: mean strain of the fibre
-    element ``j`` (:mod:`.fibre_law`)."""
+    """(n, N_FS) friction state; columns ``FS_EM, FS_TM, FS_KD`` of row ``j``: mean strain of
+    the fibre element ``j``, the working-curve tension and dynamic stiffness at it
+    (:mod:`.fibre_law`)."""
 
 
 class LineWork(NamedTuple):

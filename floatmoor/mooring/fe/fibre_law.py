@@ -45,8 +45,10 @@ Storage (no allocation in the time loop, trial/accept/reject consistent):
   N, piecewise linear, extrapolated with the end slopes) and the two coefficients of
   ``EA_d = MBS alpha + 100 beta T_m`` (the Syrope form of the model);
 * the mean strain of element ``j`` in column :data:`FS_EM` of row ``j`` of the node state
-  ``fs`` (:class:`~.bundles.LineState`): copied with the rest of the state into the trial,
-  committed by accept, dropped by reject.
+  ``fs`` (:class:`~.bundles.LineState`), with ``T_w`` and ``EA_d`` at it (columns
+  :data:`FS_TM`, :data:`FS_KD`: constant over a step, so a force evaluation does not search
+  the table): copied with the rest of the state into the trial, committed by accept, dropped
+  by reject.
 """
 
 from __future__ import annotations
@@ -62,7 +64,7 @@ __all__ = ["LAW_POLY", "LAW_WORKING", "LAW_TWO_COMPONENT", "EL_LAW", "EL_FIB", "
 
 LAW_POLY, LAW_WORKING, LAW_TWO_COMPONENT = 0.0, 1.0, 2.0
 EL_LAW, EL_FIB = 5, 6          # element columns (kernels.N_EL = 7)
-FS_EM = 8                      # node-state column of the mean strain (kernels.N_FS = 9)
+FS_EM, FS_TM, FS_KD = 8, 9, 10  # node-state columns: mean strain, T_w and EA_d at it (N_FS 11)
 DEFAULT_TIME_CONSTANT = 300.0  # s
 
 
@@ -119,16 +121,16 @@ def _working_slack(S, o, eps, e0):
 
 
 @njit(cache=True)
-def fibre_tension(law, eps, em, S, o, e0):
-    """Elastic tension (N) and ``dT/deps`` of a fibre element with strain ``eps``, mean strain
-    ``em`` (two-component law) and slack strain ``e0`` (see the module docstring)."""
+def fibre_tension(law, eps, fs, j, S, o, e0):
+    """Elastic tension (N) and ``dT/deps`` of the fibre element ``j`` with strain ``eps``,
+    slack strain ``e0`` and (two-component law) the mean strain, ``T_w`` and ``EA_d`` of
+    ``fs[j]`` (see the module docstring)."""
     if law == LAW_WORKING:
         return _working_slack(S, o, eps, e0)
     if eps <= 0.0:
         return 0.0, 0.0
-    tm, _ = _working_slack(S, o, em, e0)
-    kd = dynamic_stiffness(S, o, tm)
-    tl = tm + kd * (eps - em)
+    kd = fs[j, FS_KD]
+    tl = fs[j, FS_TM] + kd * (eps - fs[j, FS_EM])
     h = kd * e0
     if tl >= h:
         return tl, kd
@@ -138,28 +140,41 @@ def fibre_tension(law, eps, em, S, o, e0):
 
 
 @njit(cache=True)
-def fibre_commit(r, fs, E, S, h):
-    """After an accepted step of ``h`` s: ``eps_m += (1 - exp(-h / tau)) (eps - eps_m)`` for
-    every two-component element (``fs[j, FS_EM]``)."""
-    for j in range(r.shape[0] - 1):
-        if E[j, EL_LAW] != LAW_TWO_COMPONENT:
-            continue
-        dx = r[j + 1, 0] - r[j, 0]
-        dy = r[j + 1, 1] - r[j, 1]
-        dz = r[j + 1, 2] - r[j, 2]
-        eps = math.sqrt(dx * dx + dy * dy + dz * dz) / E[j, 0] - 1.0
-        g = 1.0 - math.exp(-h / S[int(E[j, EL_FIB])])
-        fs[j, FS_EM] += g * (eps - fs[j, FS_EM])
+def _strain(r, E, j):
+    dx = r[j + 1, 0] - r[j, 0]
+    dy = r[j + 1, 1] - r[j, 1]
+    dz = r[j + 1, 2] - r[j, 2]
+    return math.sqrt(dx * dx + dy * dy + dz * dz) / E[j, 0] - 1.0
 
 
 @njit(cache=True)
-def fibre_start(r, fs, E):
-    """Mean strain of every two-component element at its current strain (start of the
-    dynamics from a static state)."""
+def _set_mean(fs, j, em, P, E, S):
+    """Mean strain ``em`` of element ``j`` and ``T_w``, ``EA_d`` at it into ``fs[j]`` (the
+    slack strain ``e0`` as in :func:`kernels._line_forces`)."""
+    o = int(E[j, EL_FIB])
+    e0 = max(abs(P[j, 1]) + abs(P[j + 1, 1]), 1e-6) / E[j, 1]
+    tm, _ = _working_slack(S, o, em, e0)
+    fs[j, FS_EM] = em
+    fs[j, FS_TM] = tm
+    fs[j, FS_KD] = dynamic_stiffness(S, o, tm)
+
+
+@njit(cache=True)
+def fibre_commit(r, fs, P, E, S, h):
+    """After an accepted step of ``h`` s: ``eps_m += (1 - exp(-h / tau)) (eps - eps_m)`` for
+    every two-component element (``fs[j, FS_EM]``, and ``T_w``, ``EA_d`` at it)."""
     for j in range(r.shape[0] - 1):
         if E[j, EL_LAW] != LAW_TWO_COMPONENT:
             continue
-        dx = r[j + 1, 0] - r[j, 0]
-        dy = r[j + 1, 1] - r[j, 1]
-        dz = r[j + 1, 2] - r[j, 2]
-        fs[j, FS_EM] = math.sqrt(dx * dx + dy * dy + dz * dz) / E[j, 0] - 1.0
+        g = 1.0 - math.exp(-h / S[int(E[j, EL_FIB])])
+        em = fs[j, FS_EM]
+        _set_mean(fs, j, em + g * (_strain(r, E, j) - em), P, E, S)
+
+
+@njit(cache=True)
+def fibre_start(r, fs, P, E, S):
+    """Mean strain of every two-component element at its current strain (start of the
+    dynamics from a static state)."""
+    for j in range(r.shape[0] - 1):
+        if E[j, EL_LAW] == LAW_TWO_COMPONENT:
+            _set_mean(fs, j, _strain(r, E, j), P, E, S)

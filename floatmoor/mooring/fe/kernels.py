@@ -30,7 +30,7 @@ import math
 from numba import njit
 
 from .bundles import LineParams, LineState, LineWork
-from .fibre_law import EL_FIB, EL_LAW, FS_EM, fibre_commit, fibre_tension  # noqa: F401
+from .fibre_law import EL_FIB, EL_LAW, fibre_commit, fibre_tension  # noqa: F401
 
 # node parameter columns
 NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL, \
@@ -49,8 +49,9 @@ FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 # branch_axial, branch_lateral (model of Lu 2012: 0 stick, +-1 sliding direction in this step).
 # The double-quadratic velocity ramp (FR_VDQ) keeps the horizontal speed (m/s) and the
 # transition factor f of the last accepted step in columns FS_UPREV and FS_FPREV.  Column
-# FS_EM (8) of row j: mean strain of the fibre element j (fibre_law).
-N_FS = 9
+# FS_EM, FS_TM, FS_KD (8-10) of row j: mean strain of the fibre element j, its working-curve
+# tension and dynamic stiffness (fibre_law).
+N_FS = 11
 FS_UPREV, FS_FPREV = 0, 1
 V_MEANINGFUL = 1e-8     # Lu (2012): below this a node is at rest (m/s)
 D_MEANINGFUL = 1e-4     # Lu (2012): displacement ramp active beyond this (m)
@@ -324,7 +325,7 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
         if E[j, EL_LAW] == 0.0:
             T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3], e0)
         else:
-            T, dTde = fibre_tension(E[j, EL_LAW], eps, fs[j, FS_EM], S, int(E[j, EL_FIB]), e0)
+            T, dTde = fibre_tension(E[j, EL_LAW], eps, fs, j, S, int(E[j, EL_FIB]), e0)
         # stiff element (slack transition narrower than E0_STIFF): managed by the tension
         # estimate of the iteration when one is given
         managed = use_act and _stiff(P, E, j)
@@ -1440,7 +1441,7 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
                 fnA[i, k] = fA[i, k]
         friction_commit(rA, vA, q, fric, fs1, P, S, S[S_ZC])
         if S.shape[0] > N_S:
-            fibre_commit(rA, fs1, lp.E, S, sz * hmin)
+            fibre_commit(rA, fs1, P, lp.E, S, sz * hmin)
         pos += sz
         while sz < full and pos % (2 * sz) == 0:
             sz *= 2

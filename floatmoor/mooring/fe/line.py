@@ -438,7 +438,7 @@ class FELine:
         self.a[:] = 0.0
         self.fs[:] = 0.0
         self.fs[:, 4:6] = self.r[:, 0:2]
-        fibre_start(self.r, self.fs, self.E_dynamic)
+        fibre_start(self.r, self.fs, self.P, self.E_dynamic, self.S)
         self.time = float(t0)
         K.line_forces(self.r, self.v, self.fs, self._par, False, 0.0, 0.0, self.fn, self.work)
         self._trial = False
@@ -556,7 +556,7 @@ class FELine:
                 K.friction_commit(tr.r, tr.v, w.q, self.fric_code, tr.fs, self.P, self.S,
                                   self.S[K.S_ZC])
                 if self.S.shape[0] > K.N_S:
-                    K.fibre_commit(tr.r, tr.fs, self.E_dynamic, self.S, h)
+                    K.fibre_commit(tr.r, tr.fs, self.P, self.E_dynamic, self.S, h)
         self.trial(t1)
         K.end_forces(tr.r, tr.v, self.P, tr.f, w.tens, self._ends)
         return self._ends[3:6].copy()
