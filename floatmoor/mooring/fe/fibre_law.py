@@ -18,11 +18,15 @@ Loads much slower than ``tau`` follow the working curve (``eps_m -> eps``); wave
 and, for ``tau`` well above their periods, low-frequency cycles see the dynamic stiffness at
 the mean tension.  Statics use the working curve itself, ``T = T_w(eps)`` (law
 :data:`LAW_WORKING`); so do the dynamics for the ``lower`` stiffness bound of the fibre model
-(the working curve for everything) and for the FE option ``fibre_law: working_curve``.  The default ``tau`` is :data:`DEFAULT_TIME_CONSTANT` (300 s): over
-10 times the wave periods and above the slow-drift periods of a moored semi (100-250 s, where
-the filter passes |1 - 1/(1 + i omega tau)| > 0.99 of the motion to the dynamic stiffness).
-The filter is a Maxwell-type relaxation: cycles with periods near ``2 pi tau`` dissipate
-energy (a hysteresis of the rope), faster and slower ones hardly.
+(the working curve for everything) and for the FE option ``fibre_law: working_curve``.
+
+In the linear limit about a mean state the law is a standard linear solid (Zener): a small
+harmonic strain ``eps' e^{i omega t}`` gives the tension ``[EA_d - (EA_d - k_w) / (1 + i omega
+tau)] eps'`` with ``k_w`` the working-curve tangent: ``k_w`` for ``omega tau << 1``, ``EA_d``
+for ``omega tau >> 1``, and a hysteresis loss (the imaginary part) peaking near
+``omega tau = sqrt(EA_d / k_w)``.  The default ``tau`` is :data:`DEFAULT_TIME_CONSTANT`
+(300 s): over 10 times the wave periods and above the slow-drift periods of a moored semi
+(100-250 s, where ``omega tau`` > 7.5 and the stiffness is within 1 % of ``EA_d``).
 
 Time discretisation: ``eps_m`` is held over a line (sub-)step (the Newton tangent is then
 ``dT/deps = EA_d``, exact for the step) and updated after every accepted (sub-)step of length

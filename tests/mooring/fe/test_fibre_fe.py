@@ -184,6 +184,35 @@ def test_slow_cycle_follows_the_working_curve():
     assert bound < 0.05 * abs(kd - kw) * 0.01
 
 
+def test_cycle_at_the_filter_frequency_gives_the_standard_linear_solid_modulus():
+    """A small stretch (strain amplitude 2e-4) at omega tau = 1 about 2 % strain: the tension
+    follows the complex modulus of the linearised law, ``EA_d - (EA_d - k_w) / (1 + i)`` =
+    ``(EA_d + k_w) / 2 + i (EA_d - k_w) / 2`` (module docstring of ``fibre_law``; ``k_w`` = 16
+    MBS the working-curve slope, EA_d = 22.8 MBS): 19.7 MBS in amplitude with a 9.9 deg phase
+    lead, between the two stiffnesses.  Fitted over the last two of five cycles."""
+    L, tau, dt = 100.0, 10.0, 0.1
+    w = 1.0 / tau
+    A = 2e-4 * L
+    line = _taut(0.02, length=L, fibre_time_constant=tau)
+    line.solve_static(restart=True)
+    line.start()
+    x0 = line.r[-1].copy()
+    n = int(round(5 * 2 * math.pi / w / dt))
+    t = dt * np.arange(1, n + 1)
+    F = np.zeros(n)
+    for k in range(n):
+        s, c = math.sin(w * t[k]), math.cos(w * t[k])
+        F[k] = np.linalg.norm(line.step(t[k], dt, x0 + [A * s, 0, 0], [A * w * c, 0, 0]))
+    sel = t >= t[-1] - 2 * 2 * math.pi / w
+    X = np.column_stack([np.ones(sel.sum()), np.sin(w * t[sel]), np.cos(w * t[sel])])
+    _, a, b = np.linalg.lstsq(X, F[sel], rcond=None)[0]
+    kd = _ea_dyn(0.28 * MBS)
+    kw = 16.0 * MBS
+    M = kd - (kd - kw) / (1.0 + 1.0j)
+    assert (a + 1j * b) / (A / L) == pytest.approx(M, rel=5e-3)
+    assert math.degrees(math.atan2(b, a)) == pytest.approx(9.9, abs=0.3)
+
+
 def test_reject_restores_the_mean_strain_and_accept_commits_it():
     """The mean strain lives in the line state: a rejected trial leaves no trace (the next
     advance equals that of a line that never made the trial), an accepted one moves the mean
