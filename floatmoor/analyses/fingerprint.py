@@ -62,7 +62,9 @@ def scene_fingerprint(scene, overrides: dict | None = None) -> dict[str, str]:
                                    if hasattr(scene.environment, "source") else
                                    scene.environment),
         "analysis": _value_hash({"duration": an.duration, "dt": an.dt, "ramp": an.ramp,
-                                 "transient": an.transient}),
+                                 "transient": an.transient,
+                                 **({"fibre_stiffness": an.fibre_stiffness}
+                                    if an.fibre_stiffness != "upper" else {})}),
         "forces": _value_hash(scene.forces),
         "models": ",".join(scene.active_models()),
         "overrides": _value_hash(dict(overrides or {})),

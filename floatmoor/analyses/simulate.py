@@ -58,7 +58,7 @@ def _versions() -> dict:
 def simulate(scene, *, seed: int | None = None, duration: float | None = None,
              dt: float | None = None, ramp: float | None = None, transient: float | None = None,
              forces=None, record_forces: bool | None = None, models=None, waves=None,
-             start_pose=None, start_velocity=None) -> xr.Dataset:
+             start_pose=None, start_velocity=None, fibre_stiffness=None) -> xr.Dataset:
     """Simulate one realisation of a scene in the time domain.
 
     Parameters
@@ -81,6 +81,10 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         wave instead of the scene's sea state).
     start_pose, start_velocity : (6,), optional (advanced: free decay; default: static
         equilibrium at rest).
+    fibre_stiffness : ``"lower"`` or ``"upper"``, optional
+        Fibre-rope stiffness bound instead of the scene's ``analysis.fibre_stiffness``
+        (:mod:`floatmoor.io.analysis`; ``both`` runs ``upper`` here). Attribute
+        ``fibre_stiffness`` of the result when the mooring has fibre ropes.
 
     Notes
     -----
@@ -113,7 +117,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         NaN, exploding state, line far beyond MBS, failed catenary, or dt beyond the stability
         limit (names the time, DOF or line, and a likely remedy).
     """
-    from ..io.build import BuiltScene, build
+    from ..io.build import BuiltScene, build, with_fibre_bound
     from ..io.scene import Scene, load_scene
     from ..solvers.time_domain import assemble, integrate
 
@@ -128,6 +132,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         check_built(built)
     sc = built.scene
     an = sc.analysis
+    built = with_fibre_bound(built, fibre_stiffness)
     seed = an.seeds[0] if seed is None else seed
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise SceneError(sc.file, "seed", "an integer seed >= 0", seed)
@@ -170,6 +175,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
                           f"the start heading and do not follow the body: beyond about "
                           f"{YAW_WARNING_DEG:g} deg that assumption is stretched",
                           FloatmoorWarning, stacklevel=2)
+    if built.mooring is not None and built.mooring.has_fibre:
+        ds.attrs["fibre_stiffness"] = fibre_stiffness or an.fibre_bounds[-1]
     mbs = built.mooring.mbs if built.mooring is not None else None
     if mbs is not None and r.line_tension.size:
         over = np.nonzero(r.line_tension.max(axis=0) > mbs)[0]

@@ -53,7 +53,8 @@ def run(args: argparse.Namespace) -> int:
         check_out_file(args.out)
     from ..io.build import build
     from ..io.plausibility import check_built
-    check_built(build(args.scene), time_domain=False)
+    built0 = build(args.scene)
+    check_built(built0, time_domain=False)
     overrides = {}
     if args.duration is not None:
         overrides["duration"] = args.duration
@@ -65,10 +66,53 @@ def run(args: argparse.Namespace) -> int:
         overrides["lf_cutoff_period"] = args.lf_cutoff
     if args.tension_model is not None:
         overrides["tension_model"] = args.tension_model
+    bounds = _fibre_bounds(built0)
+    if bounds:
+        return _run_fibre_bounds(args, overrides, bounds)
     ds = frequency_domain(args.scene, **overrides)
     print(format_table(ds))
     if args.out:
         from ..analyses.fingerprint import FINGERPRINT_ATTR, fingerprint_json
         ds.attrs[FINGERPRINT_ATTR] = fingerprint_json(args.scene, overrides)
         print(f"written: {to_netcdf(ds, args.out)}")
+    return 0
+
+
+def _fibre_bounds(built) -> tuple[str, ...]:
+    """The fibre stiffness bounds of a built scene whose mooring has fibre ropes (``()``
+    without)."""
+    if built.mooring is None or not built.mooring.has_fibre:
+        return ()
+    return built.scene.analysis.fibre_bounds
+
+
+def _run_fibre_bounds(args, overrides, bounds) -> int:
+    """Fibre ropes: the analysis per stiffness bound (``analysis.fibre_stiffness``); with both,
+    both tables, ``--out`` as FILE_lower.nc and FILE_upper.nc, and the governing bound (the
+    smaller line safety factor)."""
+    import numpy as np
+
+    from ..analyses.fd_dataset import format_table
+    from ..analyses.fingerprint import FINGERPRINT_ATTR, fingerprint_json
+    from ..analyses.frequency_domain import frequency_domain
+    from ..io.build import build, with_fibre_bound
+    sf = {}
+    for b in bounds:
+        ds = frequency_domain(with_fibre_bound(build(args.scene), b), **overrides)
+        ds.attrs["fibre_stiffness"] = b
+        print(f"fibre stiffness bound: {b}")
+        print(format_table(ds))
+        sf[b] = float(np.nanmin(ds["safety_factor"].values))
+        if args.out:
+            out = Path(args.out)
+            if len(bounds) > 1:
+                out = out.with_name(f"{out.stem}_{b}{out.suffix}")
+            ds.attrs[FINGERPRINT_ATTR] = fingerprint_json(args.scene,
+                                                          {**overrides, "fibre_stiffness": b})
+            print(f"written: {to_netcdf(ds, out)}")
+    if len(bounds) > 1:
+        gov = min(sf, key=sf.get)
+        print("fibre stiffness bounds: " + ", ".join(f"{b} smallest safety factor {v:.2f}"
+                                                     for b, v in sf.items())
+              + f"; governing: {gov}")
     return 0

@@ -14,6 +14,12 @@ one line failed (a scene whose ``mooring`` lists ``failed_lines``, or whose ``fo
 failure time is after ``analysis.transient``).  The failed line is found in the results (its
 tension is zero at the end of every seed) or named with ``--failed-line NAME``.
 
+Fibre ropes with ``analysis.fibre_stiffness: both``: RESULTS_DIR holds the sub-folders
+``fibre_lower`` and ``fibre_upper`` of ``floatmoor run``; the report is written for each
+(``--out``/fibre_lower, ``--out``/fibre_upper) and ``fibre_bounds.md``/``fibre_bounds.csv``
+show both side by side with the governing bound (the larger ULS utilisation); exit status 1
+if a line fails in either bound.
+
 ``--fd FILE`` adds the frequency-domain result of ``floatmoor fd SCENE --out FILE`` beside the
 time-domain values (per-line maximum tension and safety factor, offsets).
 
@@ -276,6 +282,9 @@ def run(args: argparse.Namespace) -> int:
     if is_campaign_dir(args.results_dir):  # a floatmoor campaign folder: the matrix report
         from .campaign import report_campaign
         return report_campaign(args)
+    bound_dirs = fibre_bound_dirs(args.results_dir)
+    if bound_dirs:  # floatmoor run of a scene with analysis.fibre_stiffness: both
+        return report_fibre_bounds(args, bound_dirs)
     if args.failed_line and not args.als_dir:
         raise UsageError("--failed-line names the failed line of the ALS results: give the "
                          "folder of those results with --als-dir (run them with floatmoor run "
@@ -351,3 +360,70 @@ def run(args: argparse.Namespace) -> int:
     print(f"report: {files.html}  (also report.md, summary.csv, summary.nc)")
     sys.stdout.flush()
     return EXIT_PASS if passed else EXIT_FAIL
+
+
+FIBRE_BOUNDS = ("lower", "upper")
+
+
+def fibre_bound_dirs(folder) -> dict[str, Path]:
+    """``{"lower": dir, "upper": dir}`` when ``folder`` holds no result file but the
+    ``fibre_lower`` and ``fibre_upper`` sub-folders of ``floatmoor run`` (else empty)."""
+    folder = Path(folder)
+    if not folder.is_dir() or any(folder.glob("*.nc")):
+        return {}
+    dirs = {b: folder / f"fibre_{b}" for b in FIBRE_BOUNDS}
+    if all(d.is_dir() and any(d.glob("*.nc")) for d in dirs.values()):
+        return dirs
+    return {}
+
+
+def report_fibre_bounds(args: argparse.Namespace, dirs: dict[str, Path]) -> int:
+    """The report of each fibre stiffness bound and the table of both with the governing one
+    (the larger ULS utilisation of any line). Returns the exit status."""
+    import numpy as np
+    import xarray as xr
+
+    out = Path(args.out) if args.out else Path(args.results_dir) / "report"
+    status, util, offset, per_line = {}, {}, {}, {}
+    for b, d in dirs.items():
+        print(f"== fibre stiffness bound: {b} ==")
+        sub = argparse.Namespace(**{**vars(args), "results_dir": str(d),
+                                    "out": str(out / f"fibre_{b}")})
+        status[b] = run(sub)
+        with xr.open_dataset(out / f"fibre_{b}" / "summary.nc") as nc:
+            c = nc.sel(limit_state="ULS")
+            per_line[b] = dict(zip(map(str, c["line"].values),
+                                   np.asarray(c["utilisation"].values, float)))
+            util[b] = float(np.nanmax(c["utilisation"].values))
+            offset[b] = (float(np.mean(nc["seed_offset_max"].values))
+                         if "seed_offset_max" in nc else float("nan"))
+    gov = max(FIBRE_BOUNDS, key=lambda b: util[b])
+    lines = list(per_line[gov])
+    md = ["# Fibre rope stiffness bounds", "",
+          "DNV-OS-E301 / API RP 2SM: the mean offset with the static (working-curve) stiffness; "
+          "the dynamic response with the lower bound (working-curve tangent) and the upper "
+          "bound (storm dynamic stiffness at the mean tension); the governing bound has the "
+          "larger ULS utilisation.", "",
+          "| bound | max ULS utilisation | mean of seed max offset (m) | verdict | report |",
+          "|---|---|---|---|---|"]
+    for b in FIBRE_BOUNDS:
+        md.append(f"| {b}{' (governing)' if b == gov else ''} | {util[b]:.3f} | "
+                  f"{offset[b]:.2f} | {'PASS' if status[b] == EXIT_PASS else 'FAIL'} | "
+                  f"fibre_{b}/report.md |")
+    md += ["", "| line | " + " | ".join(f"ULS utilisation {b}" for b in FIBRE_BOUNDS) + " |",
+           "|---" * (1 + len(FIBRE_BOUNDS)) + "|"]
+    for ln in lines:
+        md.append(f"| {ln} | " + " | ".join(f"{per_line[b].get(ln, float('nan')):.3f}"
+                                          for b in FIBRE_BOUNDS) + " |")
+    (out / "fibre_bounds.md").write_text("\n".join(md) + "\n", encoding="utf-8")
+    rows = ["line," + ",".join(f"utilisation_{b}" for b in FIBRE_BOUNDS) + ",governing_bound"]
+    for ln in lines:
+        rows.append(f"{ln}," + ",".join(repr(per_line[b].get(ln, float("nan")))
+                                        for b in FIBRE_BOUNDS) + f",{gov}")
+    (out / "fibre_bounds.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
+    print("fibre stiffness bounds: " + ", ".join(
+        f"{b} max ULS utilisation {util[b]:.3f}, mean max offset {offset[b]:.2f} m"
+        for b in FIBRE_BOUNDS) + f"; governing: {gov}")
+    print(f"report: {out / 'fibre_bounds.md'} (and fibre_lower/, fibre_upper/)")
+    sys.stdout.flush()
+    return EXIT_FAIL if any(st != EXIT_PASS for st in status.values()) else EXIT_PASS

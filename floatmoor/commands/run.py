@@ -80,8 +80,7 @@ def summary_table(files, n_lines: int = 3) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``floatmoor run``; returns the exit status."""
-    from ..analyses.runner import BatchInterrupted, run_seeds
-    from ..cli import EXIT_INTERRUPTED, EXIT_NUMERICAL_ERROR, EXIT_OK, UsageError
+    from ..cli import EXIT_INTERRUPTED, EXIT_OK, UsageError
     from ..io.analysis import seeds_from_text
     from ..io.scene import load_scene
 
@@ -113,7 +112,38 @@ def run(args: argparse.Namespace) -> int:
         check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None
                          else "--duration")
     print(f"scene: {scene.name}  [{scene.file}]")
+    bounds = _fibre_bounds(scene)
+    if bounds:
+        status = EXIT_OK
+        for b in bounds:
+            print(f"fibre stiffness bound {b}: {len(seeds)} seed(s) -> {out / ('fibre_' + b)}")
+            st = _run_batch(args, seeds, out / f"fibre_{b}", {**overrides, "fibre_stiffness": b},
+                            resume_out=out)
+            if st == EXIT_INTERRUPTED:
+                return st
+            status = max(status, st)
+        return status
     print(f"{len(seeds)} seed(s) -> {out}")
+    return _run_batch(args, seeds, out, overrides)
+
+
+def _fibre_bounds(scene) -> tuple[str, ...]:
+    """``("lower", "upper")`` when the scene asks for both fibre stiffness bounds and its
+    mooring has fibre ropes, else ``()`` (one run with the scene's bound)."""
+    if scene.analysis.fibre_stiffness != "both" or scene.mooring is None:
+        return ()
+    from ..io.mooring_section import parse_mooring
+    site = scene.site
+    ms = parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
+                       water_density=site.water_density, gravity=site.gravity)
+    return scene.analysis.fibre_bounds if ms.has_fibre else ()
+
+
+def _run_batch(args, seeds, out, overrides, resume_out=None) -> int:
+    """One ``run_seeds`` batch with the table and the exit status of ``floatmoor run``
+    (``resume_out``: the ``--out`` of the command that resumes it, default ``out``)."""
+    from ..analyses.runner import BatchInterrupted, run_seeds
+    from ..cli import EXIT_INTERRUPTED, EXIT_NUMERICAL_ERROR, EXIT_OK
     try:
         batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
                           echo=lambda s: print(s, flush=True), force=args.force,
@@ -122,7 +152,7 @@ def run(args: argparse.Namespace) -> int:
         done = [o.seed for o in exc.finished]
         print(f"floatmoor: interrupted: {len(done)} seed(s) finished, {len(exc.interrupted)} "
               f"not computed (listed in {exc.record}); resume with the same command:\n"
-              f"  {_resume_command(args, out)}",
+              f"  {_resume_command(args, resume_out or out)}",
               file=sys.stderr, flush=True)
         return EXIT_INTERRUPTED
     files = batch.files

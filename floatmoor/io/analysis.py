@@ -17,6 +17,14 @@ duration) at dt = 0.1 s, no transient window, no ramp, seed 1.
 
 A list of any other length is refused (``[3, 7]`` would otherwise mean something different from
 ``[3, 7, 11]``); write an explicit list as a string.
+
+``fibre_stiffness`` (mooring with fibre-rope line types, :mod:`floatmoor.mooring.fibre`):
+``upper`` (default: the storm dynamic stiffness ``alpha + beta L_m`` about the mean tension,
+the bound that governs the tensions), ``lower`` (the working curve's tangent also for the
+dynamics: the bound that governs the offsets) or ``both`` (``floatmoor run`` runs both bounds
+into the sub-folders ``fibre_lower`` and ``fibre_upper``; ``floatmoor report`` of the folder
+takes the governing one and shows both; a single :func:`floatmoor.simulate` runs ``upper``).
+The mean offset always comes from the working curve. Ignored without fibre ropes.
 """
 
 from __future__ import annotations
@@ -31,7 +39,10 @@ from ..core.errors import FloatmoorWarning, SceneError
 __all__ = ["AnalysisSpec", "parse_analysis", "parse_seeds", "seeds_from_text", "ANALYSIS_KEYS",
            "check_time_steps", "MAX_SEEDS", "MAX_TIME_STEPS", "MAX_SEED"]
 
-ANALYSIS_KEYS = ("duration", "dt", "transient", "ramp", "seeds")
+ANALYSIS_KEYS = ("duration", "dt", "transient", "ramp", "seeds", "fibre_stiffness")
+
+FIBRE_STIFFNESS = ("lower", "upper", "both")
+"""Values of ``analysis.fibre_stiffness``."""
 
 MAX_SEED = 2**32 - 1
 """Largest seed accepted (numpy's SeedSequence takes any non-negative integer; we keep seeds to
@@ -42,13 +53,20 @@ MAX_SEED = 2**32 - 1
 class AnalysisSpec:
     """Time-domain settings: ``duration`` (s, the simulated length including the transient),
     ``dt`` (s), ``transient`` (s removed from the start before statistics), ``ramp`` (s of
-    smooth start of the loads) and ``seeds`` (tuple of ints, one realisation each)."""
+    smooth start of the loads), ``seeds`` (tuple of ints, one realisation each) and
+    ``fibre_stiffness`` (``lower``, ``upper`` or ``both``; module docstring)."""
 
     duration: float = 10800.0
     dt: float = 0.1
     transient: float = 0.0
     ramp: float = 0.0
     seeds: tuple[int, ...] = (1,)
+    fibre_stiffness: str = "upper"
+
+    @property
+    def fibre_bounds(self) -> tuple[str, ...]:
+        """The fibre stiffness bounds to run: ``("lower", "upper")`` for ``both``."""
+        return ("lower", "upper") if self.fibre_stiffness == "both" else (self.fibre_stiffness,)
 
 
 def parse_analysis(node: Node) -> AnalysisSpec:
@@ -66,6 +84,7 @@ def parse_analysis(node: Node) -> AnalysisSpec:
     transient = node.float("transient", d.transient, ge=0.0, lt=duration, unit="s")
     ramp = node.float("ramp", d.ramp, ge=0.0, lt=duration, unit="s")
     seeds = parse_seeds(node, "seeds", d.seeds)
+    fibre = node.str("fibre_stiffness", d.fibre_stiffness, choices=FIBRE_STIFFNESS)
     check_time_steps(node.file, duration, dt, key=node.key("dt"))
     if ramp > transient:
         _warn(node, "ramp", f"the ramp ({ramp:g} s) is longer than the transient window "
@@ -76,7 +95,8 @@ def parse_analysis(node: Node) -> AnalysisSpec:
         _warn(node, "duration", f"the statistics window (duration - transient = "
               f"{duration - transient:g} s) is shorter than one hour; extreme values from it "
               "are not those of a 3-hour storm")
-    return AnalysisSpec(duration=duration, dt=dt, transient=transient, ramp=ramp, seeds=seeds)
+    return AnalysisSpec(duration=duration, dt=dt, transient=transient, ramp=ramp, seeds=seeds,
+                        fibre_stiffness=fibre)
 
 
 def parse_seeds(node: Node, key: str, default=SceneError.MISSING) -> tuple[int, ...]:
@@ -199,6 +219,9 @@ def describe_analysis(a: AnalysisSpec) -> list[str]:
         seeds = f"{n} seeds {a.seeds[0]}-{a.seeds[-1]}"
     else:
         seeds = f"{n} seeds " + ", ".join(str(s) for s in a.seeds)
-    return [f"analysis: duration {a.duration:g} s ({a.duration / 3600.0:.3g} h), dt {a.dt:g} s "
-            f"({round(a.duration / a.dt)} steps), transient {a.transient:g} s, ramp {a.ramp:g} s",
-            f"          statistics over {a.duration - a.transient:g} s; {seeds}"]
+    out = [f"analysis: duration {a.duration:g} s ({a.duration / 3600.0:.3g} h), dt {a.dt:g} s "
+           f"({round(a.duration / a.dt)} steps), transient {a.transient:g} s, ramp {a.ramp:g} s",
+           f"          statistics over {a.duration - a.transient:g} s; {seeds}"]
+    if a.fibre_stiffness != "upper":
+        out.append(f"          fibre rope stiffness bound(s): {', '.join(a.fibre_bounds)}")
+    return out

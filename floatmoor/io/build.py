@@ -9,7 +9,7 @@ for: no ``mooring:`` key, no mooring system.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -43,6 +43,19 @@ class BuiltScene:
     def model_inputs(self, options, names, *, yaw: float = 0.0) -> ModelInputs:
         """:func:`model_inputs` of this scene (the solvers call it without importing io)."""
         return model_inputs(self, options, names, yaw=yaw)
+
+
+def with_fibre_bound(built: BuiltScene, bound: str | None) -> BuiltScene:
+    """``built`` with its fibre ropes at the stiffness bound ``lower`` or ``upper``
+    (:meth:`floatmoor.mooring.MooringSystem.with_fibre_bound`); None or a mooring without fibre
+    ropes: ``built`` itself."""
+    if bound is None:
+        return built
+    if bound not in ("lower", "upper"):
+        raise SceneError(built.scene.file, "fibre_stiffness", "lower or upper", bound)
+    if built.mooring is None or not built.mooring.has_fibre:
+        return built
+    return replace(built, mooring=built.mooring.with_fibre_bound(bound))
 
 
 def net_buoyancy_force(vessel: Vessel, water_density: float, gravity: float = GRAVITY):
@@ -109,6 +122,8 @@ def build(scene: Scene | str | os.PathLike, *, failed_lines=None, need_vessel: b
     static_force, vol = (np.zeros(6), None)
     if vessel is not None:
         static_force, vol = net_buoyancy_force(vessel, scene.site.water_density, scene.site.gravity)
+    if mooring is not None and mooring.has_fibre:
+        mooring = mooring.with_fibre_bound(scene.analysis.fibre_bounds[-1])
     return BuiltScene(scene=scene, vessel=vessel, mooring=mooring, static_force=static_force,
                       displaced_volume=vol)
 

@@ -216,8 +216,32 @@ def _tn_fields(e: Node) -> dict:
     return out
 
 
+POLYNOMIAL_POINTS = 41
+"""Table points a polynomial tension-strain curve is sampled at (0 to ``max_strain``)."""
+
+
+def _polynomial_curve(c: Node) -> tuple[tuple, tuple]:
+    """``{polynomial: [c1, c2, ...], max_strain: e}``: ``T/MBS = c1 eps + c2 eps^2 + ...``
+    sampled at :data:`POLYNOMIAL_POINTS` strains from 0 to ``max_strain`` (linear beyond)."""
+    c.reject_unknown({"polynomial", "max_strain"})
+    coef = c.list("polynomial", min_len=1)
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+               for v in coef):
+        raise c.error("polynomial", "a list of numbers c1, c2, ... (T/MBS = c1 eps + c2 eps^2 "
+                      "+ ...)", coef)
+    e_max = c.float("max_strain", gt=0.0, le=1.0)
+    eps = [e_max * i / (POLYNOMIAL_POINTS - 1) for i in range(POLYNOMIAL_POINTS)]
+    t = [sum(ck * e ** (k + 1) for k, ck in enumerate(coef)) for e in eps]
+    if any(b <= a for a, b in zip(t, t[1:])):
+        raise c.error("polynomial", f"a tension increasing with the strain up to max_strain "
+                      f"{e_max:g}", coef)
+    return tuple(eps), tuple(t)
+
+
 def _curve(n: Node, key: str) -> tuple[tuple, tuple]:
     c = n.child(key)
+    if "polynomial" in c:
+        return _polynomial_curve(c)
     c.reject_unknown({"strain", "tension_mbs"})
     out = []
     for k in ("strain", "tension_mbs"):
@@ -239,7 +263,9 @@ def _curve(n: Node, key: str) -> tuple[tuple, tuple]:
 def _fibre_field(e: Node) -> dict:
     """The optional ``fibre`` key of a library entry: a preset name (``polyester_default``) or
     ``{preset, working_curve: {strain, tension_mbs}, original_curve: {...},
-    dynamic: {alpha, beta}, source}`` (a preset's values overridden by the keys given)."""
+    dynamic: {alpha, beta}, source}`` (a preset's values overridden by the keys given); a curve
+    may instead be a polynomial ``{polynomial: [c1, c2, ...], max_strain: e}`` with
+    ``T/MBS = c1 eps + c2 eps^2 + ...`` (sampled into a table)."""
     if "fibre" not in e:
         return {}
     raw = e.raw("fibre")

@@ -108,6 +108,7 @@ def test_line_type_keys():
     lib = default_library()
     plain, _ = lib.get("polyester", diameter=0.185)
     assert plain.fibre is None
+    assert lib.get("polyester_fibre", diameter=0.185)[0].fibre is POLYESTER_DEFAULT  # shipped
     user = Node({
         "poly_preset": {"family": "polyester", "fibre": "polyester_default"},
         "poly_own": {"family": "polyester", "fibre": {
@@ -137,3 +138,21 @@ def test_line_type_keys():
         lib2.get("no_dynamic", diameter=0.185)
     with pytest.raises(SceneError, match="alfa"):
         lib2.get("typo", diameter=0.185)
+
+
+def test_polynomial_curve_is_sampled_into_the_table():
+    """T/MBS = 10 eps + 100 eps^2: at 2 % strain 0.2 + 0.04 = 0.24 (hand computation); the
+    41-point table (spacing h = 0.002) interpolates it at 2.1 %, midway between nodes, within
+    the linear-interpolation error c2 h^2 / 4 = 1e-4 MBS."""
+    lib = default_library().extended(Node({
+        "p": {"family": "polyester", "fibre": {
+            "working_curve": {"polynomial": [10.0, 100.0], "max_strain": 0.08},
+            "dynamic": {"alpha": 12.0, "beta": 0.4}}},
+        "bad": {"family": "polyester", "fibre": {
+            "working_curve": {"polynomial": [10.0, -200.0], "max_strain": 0.08},
+            "dynamic": {"alpha": 12.0, "beta": 0.4}}}}, "types.yaml"))
+    f = lib.get("p", diameter=0.185)[0].fibre
+    assert f.static_tension(0.02, MBS) == pytest.approx(0.24 * MBS, rel=1e-12)
+    assert f.static_tension(0.021, MBS) / MBS == pytest.approx(0.21 + 100 * 0.021 ** 2, abs=1.01e-4)
+    with pytest.raises(SceneError, match="increasing"):
+        lib.get("bad", diameter=0.185)

@@ -36,6 +36,24 @@ def fibre_mooring(tmp_path, fibre: str = "polyester_default") -> Path:
     return p
 
 
+def taut_mooring(tmp_path) -> Path:
+    """Four taut all-polyester lines (185 mm, the Floatel-like rope with ``polyester_default``)
+    from the Floatel-like fairleads, 300 m out and down to the seabed at 150 m: chord 331.6 m,
+    unstretched 327.5 m, about 16 % MBS pretension on the working curve."""
+    lt = ("line_types:\n  poly: {material: polyester, diameter: 0.185, mass_per_length: 22.59, "
+          "density: 1380.0, elastic_modulus: 6.43e+9, mbs: 8.5e+6, cdn: 1.8, cdt: 0.18, "
+          "fibre: polyester_default}\n")
+    text = lt + "defaults:\n  segments: [{type: poly, length: 327.5}]\nlines:\n"
+    for k, (sx, sy) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
+        fx, fy = 31.5 * sx, 31.75 * sy
+        az = math.atan2(fy, fx)
+        text += (f"  - name: line{k + 1}\n    anchor: {{x: {fx + 300 * math.cos(az):.4f}, "
+                 f"y: {fy + 300 * math.sin(az):.4f}}}\n    fairlead: [{fx}, {fy}, -8.7]\n")
+    p = tmp_path / "mooring_taut.yaml"
+    p.write_text(text)
+    return p
+
+
 def scene(tmp_path, mooring: Path, env: str = "", analysis: str = "") -> Path:
     p = tmp_path / "scene.yaml"
     p.write_text(f"name: fibre\nsite: {{water_depth: 150.0}}\nvessel: {FL / 'vessel.yaml'}\n"
@@ -84,16 +102,27 @@ def test_steady_offset_time_domain_equals_working_curve_statics(tmp_path):
     np.testing.assert_allclose(tens, eq.tensions["fairlead_tension"].values, rtol=5e-3)
 
 
-@pytest.mark.parametrize("omega", [0.6])
-def test_regular_wave_tension_against_frequency_domain(built, omega):
+@pytest.fixture(scope="module")
+def built_taut(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("fibre_taut")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return build(load_scene(scene(tmp, taut_mooring(tmp))))
+
+
+@pytest.mark.parametrize("system", ["chain_polyester_chain", "taut_polyester"])
+def test_regular_wave_tension_against_frequency_domain(built, built_taut, system):
     """Small regular head wave (amplitude 0.1 m): the steady WF tension amplitude of the most
     loaded line in the QS time domain against the transfer function built independently here
     from the RAO (database A, B, X; stiffness = hydrostatics + the mooring linearised with the
     dynamic stiffness at the mean tension) and the tension gradient of that linearised mooring:
     1 % (measured 0.3 %). The transfer function with the lower bound (working-curve tangent)
-    is 1.9 % lower here (the geometric stiffness of the heavy chain dominates at this wave
-    frequency); the time domain must be nearer to the upper than to the lower one."""
+    differs (by 1.9 % for the Floatel-like lines, where the heavy chain's geometric stiffness
+    dominates; by 11 % for the taut polyester lines); the time domain must be nearer to the
+    upper than to the lower one."""
     from floatmoor.analyses.simulate import simulate
+    built = built if system == "chain_polyester_chain" else built_taut
+    omega = 0.6
     a_w = 0.1
     v = built.vessel
     eq = equilibrium(built.mooring, hydrostatic_stiffness=v.total_restoring,
