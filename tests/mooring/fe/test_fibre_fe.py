@@ -367,6 +367,18 @@ def test_fe_statics_agree_with_the_catenary_statics_of_the_fibre_system():
     assert abs(ms.force(np.array([8.0, 0, 0, 0, 0, 0]))[0]) > 1e4 * 1e-5 * np.abs(t_qs).max()
 
 
+def test_the_stiffness_bound_of_the_system_reaches_the_fe_lines():
+    """``MooringSystem.with_fibre_bound("lower")`` (the scene's ``analysis.fibre_stiffness``):
+    the FE lines use the working curve also in dynamics; ``upper``: the two-component law."""
+    from floatmoor.mooring.fe.body import FEMooring
+
+    ms = _taut_system()
+    for bound, law in (("lower", 1.0), ("upper", 2.0)):
+        fm, _ = FEMooring.from_system(ms.with_fibre_bound(bound))
+        for ln in fm.lines:
+            assert set(ln.E_dynamic[:, 5]) == {law} and set(ln.E_static[:, 5]) == {1.0}
+
+
 def test_fe_dynamic_stiffness_agrees_with_the_linearised_fibre_system():
     """A small surge oscillation of the body (0.05 m at 30 s) about the static pose: the FE
     lines' force amplitude equals the surge stiffness of the mooring system linearised with the
