@@ -367,6 +367,34 @@ def test_fe_statics_agree_with_the_catenary_statics_of_the_fibre_system():
     assert abs(ms.force(np.array([8.0, 0, 0, 0, 0, 0]))[0]) > 1e4 * 1e-5 * np.abs(t_qs).max()
 
 
+def test_multi_line_kernel_carries_the_mean_strain_like_the_line_by_line_path():
+    """All lines of a body in one numba call (the coupled runs' path, ``multi.body_advance`` /
+    ``body_accept``) give bit for bit the forces and mean strains of line-by-line advances,
+    with a rejected trial in between."""
+    from floatmoor.mooring.fe.body import FEMooring
+
+    ms = _taut_system()
+    out = []
+    for fast in (True, False):
+        fm, _ = FEMooring.from_system(ms, fast=fast)
+        fm.solve_static(np.zeros(6))
+        fm.start()
+        em0 = np.array([ln.fs[:, FS_EM] for ln in fm.lines])
+        Q = []
+        for k in range(1, 11):
+            t = 0.2 * k
+            pose = np.array([0.5 * math.sin(t), 0, 0.2 * math.sin(2 * t), 0, 0, 0])
+            fm.advance(t, 0.2, pose + 1.0, np.zeros(6))
+            for ln in fm.lines:
+                ln.reject()
+            Q.append(fm.advance(t, 0.2, pose, np.zeros(6)))
+            fm.accept()
+        out.append((np.array(Q), np.array([ln.fs[:, FS_EM] for ln in fm.lines])))
+    np.testing.assert_array_equal(out[0][0], out[1][0])
+    np.testing.assert_array_equal(out[0][1], out[1][1])
+    assert np.abs(out[0][1] - em0).max() > 1e-8      # the mean strains moved
+
+
 def test_the_stiffness_bound_of_the_system_reaches_the_fe_lines():
     """``MooringSystem.with_fibre_bound("lower")`` (the scene's ``analysis.fibre_stiffness``):
     the FE lines use the working curve also in dynamics; ``upper``: the two-component law."""
