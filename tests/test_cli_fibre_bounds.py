@@ -88,3 +88,47 @@ def test_fd_command_runs_both_bounds(tmp_path, capsys):
     np.testing.assert_allclose(mean["lower"], mean["upper"], rtol=1e-9, atol=1e-9)
     assert sf["lower"] != sf["upper"]
     assert f"governing: {min(sf, key=sf.get)}" in text
+
+
+def test_campaign_runs_every_condition_at_both_bounds(tmp_path):
+    """A campaign on a base scene with ``fibre_stiffness: both``: every condition twice (lower,
+    upper); the case's scene and built mooring carry its bound, and the FD of the two cases
+    differ in the tensions but share the mean position (same working curve)."""
+    from floatmoor.campaign.matrix import build_matrix
+    from floatmoor.campaign.spec import load_campaign
+    from floatmoor.campaign.tasks import _built_for
+    scene = _scene(tmp_path)
+    c = tmp_path / "c.yaml"
+    c.write_text(f"name: c\nbase_scene: {scene}\nsea_states: {{list: [{{hs: 10.0, tp: 13.0}}]}}\n"
+                 "headings: {waves_deg: [0]}\nconditions: {intact: true, failed_lines: [line7]}\n"
+                 "seeds: \"1-3\"\n")
+    spec = load_campaign(c)
+    assert [k.name for k in spec.conditions] == [
+        "intact_fibre-lower", "intact_fibre-upper", "failed-line7_fibre-lower",
+        "failed-line7_fibre-upper"]
+    cases = build_matrix(spec)
+    assert len(cases) == 4 and len({k.id for k in cases}) == 4
+    fd = {}
+    for case in cases[:2]:
+        built, _ = _built_for(str(scene), case, {})
+        b = case.condition.fibre_bound
+        assert built.scene.analysis.fibre_stiffness == b
+        assert {m.bound for m in built.mooring.fibre_segments.models} == {b}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            import floatmoor
+            fd[b] = floatmoor.frequency_domain(built)
+    np.testing.assert_allclose(fd["lower"]["mean"].values, fd["upper"]["mean"].values,
+                               rtol=1e-9, atol=1e-9)
+    assert not np.allclose(fd["lower"]["tension_std_wf"].values,
+                           fd["upper"]["tension_std_wf"].values, rtol=1e-3)
+
+
+def test_campaign_report_reads_the_bound_tagged_conditions():
+    """The campaign report finds the failed lines of a condition name with a bound tag (an
+    end-to-end campaign with both bounds ran in the session that added it: report OK)."""
+    from floatmoor.campaign.report import _condition_lines
+    assert _condition_lines("intact_fibre-upper") == []
+    assert _condition_lines("failed-line7_fibre-lower") == ["line7"]
+    assert _condition_lines("break-line1+line2-t100_fibre-upper") == ["line1", "line2"]
+    assert _condition_lines("failed-line7") == ["line7"]

@@ -95,6 +95,9 @@ def case_scene(base, case: Case, analysis: dict | None = None):
     if analysis:
         changes["analysis"] = dataclasses.replace(base.analysis, **analysis)
     c = case.condition
+    if c.fibre_bound:
+        changes["analysis"] = dataclasses.replace(changes.get("analysis", base.analysis),
+                                                  fibre_stiffness=c.fibre_bound)
     failed = None
     if c.kind == "failed":
         failed = list(c.lines)

@@ -22,6 +22,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+import re
 from pathlib import Path
 
 import numpy as np
@@ -151,6 +152,7 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE) -> dict:
 
 
 def _condition_lines(name: str) -> list[str]:
+    name = re.sub(r"_fibre-(lower|upper)$", "", name)  # the fibre stiffness bound tag
     if name == "intact":
         return []
     body = name.split("-", 1)[1]

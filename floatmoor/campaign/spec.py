@@ -38,6 +38,7 @@ absent.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from dataclasses import dataclass, field
@@ -81,14 +82,16 @@ class Condition:
     kind: str                       # intact | failed | transient
     lines: tuple[str, ...] = ()
     break_time: float | None = None
+    fibre_bound: str = ""           # lower | upper: fibre-rope stiffness bound ("": the scene's)
 
     @property
     def name(self) -> str:
+        tag = f"_fibre-{self.fibre_bound}" if self.fibre_bound else ""
         if self.kind == "intact":
-            return "intact"
+            return "intact" + tag
         if self.kind == "failed":
-            return "failed-" + "+".join(self.lines)
-        return f"break-{'+'.join(self.lines)}-t{self.break_time:g}"
+            return "failed-" + "+".join(self.lines) + tag
+        return f"break-{'+'.join(self.lines)}-t{self.break_time:g}" + tag
 
     @property
     def limit_state(self) -> str:
@@ -252,6 +255,22 @@ def _conditions(node: Node, lines: list[str]) -> tuple[Condition, ...]:
     return tuple(out)
 
 
+def _fibre_conditions(conditions, scene) -> tuple[Condition, ...]:
+    """A base scene with ``analysis.fibre_stiffness: both`` and fibre ropes: every condition
+    twice, at the lower and at the upper stiffness bound (the report then takes the governing
+    case of either, and shows both)."""
+    if scene.analysis.fibre_stiffness != "both":
+        return conditions
+    from ..io.mooring_section import parse_mooring
+    site = scene.site
+    ms = parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
+                       water_density=site.water_density, gravity=site.gravity)
+    if not ms.has_fibre:
+        return conditions
+    return tuple(dataclasses.replace(c, fibre_bound=b) for c in conditions
+                 for b in scene.analysis.fibre_bounds)
+
+
 def _storage(node: Node) -> Storage:
     if "storage" not in node:
         return Storage()
@@ -320,7 +339,8 @@ def load_campaign(path: str | os.PathLike) -> CampaignSpec:
         wave_headings_deg=_angles(h, "waves_deg"),
         wind_offsets_deg=_angles(h, "wind_offset_deg", (0.0,)),
         current_offsets_deg=_angles(h, "current_offset_deg", (0.0,)),
-        conditions=_conditions(node, lines), seeds=tuple(seeds), analysis=_analysis(node),
+        conditions=_fibre_conditions(_conditions(node, lines), scene),
+        seeds=tuple(seeds), analysis=_analysis(node),
         screening=screening, design=design, storage=_storage(node))
     _check_analysis(spec, scene, node)
     return spec

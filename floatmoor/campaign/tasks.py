@@ -75,6 +75,8 @@ def _built_for(base_path: str, case, analysis: dict, failed_override=None):
         failed = failed_override
     built = _built_base(base_path, os.path.getmtime(base_path), tuple(failed or ()))
     mooring = None if built.mooring is None else copy.deepcopy(built.mooring)
+    if mooring is not None and case.condition.fibre_bound:
+        mooring = mooring.with_fibre_bound(case.condition.fibre_bound)
     return dataclasses.replace(built, scene=scene, mooring=mooring), failed
 
 

@@ -40,9 +40,18 @@ class QuasiStaticMooring(ForceModel):
         self.fail_time = fail
         self._freeze()
 
+    def linearise_fibre(self, pose):
+        """Fibre ropes: use (in :meth:`force` and the time loop) the lines linearised about
+        ``pose`` with the dynamic stiffness at the mean tensions
+        (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`); returns that system."""
+        lin = self.system.linearised_fibre(pose)
+        object.__setattr__(self, "_dynamic_system", lin)
+        return lin
+
     def _system_at(self, t):
-        failed = [n for n, tf in zip(self.system.names, self.fail_time) if t >= tf]
-        return self.system.without_lines(failed) if failed else self.system
+        system = getattr(self, "_dynamic_system", None) or self.system
+        failed = [n for n, tf in zip(system.names, self.fail_time) if t >= tf]
+        return system.without_lines(failed) if failed else system
 
     def force(self, t, pose, velocity, out):
         out += self._system_at(t).force(np.asarray(pose, float))

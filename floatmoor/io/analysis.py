@@ -23,7 +23,8 @@ A list of any other length is refused (``[3, 7]`` would otherwise mean something
 the bound that governs the tensions), ``lower`` (the working curve's tangent also for the
 dynamics: the bound that governs the offsets) or ``both`` (``floatmoor run`` runs both bounds
 into the sub-folders ``fibre_lower`` and ``fibre_upper``; ``floatmoor report`` of the folder
-takes the governing one and shows both; a single :func:`floatmoor.simulate` runs ``upper``).
+takes the governing one and shows both; ``floatmoor fd`` writes both; a campaign runs every
+condition at both bounds; a single :func:`floatmoor.simulate` runs ``upper``).
 The mean offset always comes from the working curve. Ignored without fibre ropes.
 """
 

@@ -143,6 +143,12 @@ class FibreModel:
         Growth of the dynamic stiffness over MBS per % MBS of mean load.
     source : str
         Where the numbers come from.
+    max_tension_mbs : float
+        Largest mean tension the rope has seen, fraction of MBS (0: the length a scene gives is
+        already the bedded-in length). With an original curve, the statics lengthen the segment
+        by the permanent strain after that tension (:meth:`length_factor`), as SIMA does before
+        its static analysis (SINTEF Ocean (2023)); the working curve then applies to the strain
+        on the lengthened segment (the shift of the curve to first order in that strain).
     bound : str
         ``nominal`` (= ``upper``) or ``lower`` (dynamic stiffness = working-curve tangent).
     """
@@ -154,6 +160,7 @@ class FibreModel:
     alpha: float
     beta: float
     source: str = ""
+    max_tension_mbs: float = 0.0
     bound: str = "nominal"
 
     def __post_init__(self):
@@ -166,6 +173,11 @@ class FibreModel:
             raise ValueError(f"alpha must be a positive number, found {self.alpha}")
         if not (math.isfinite(self.beta) and self.beta >= 0.0):
             raise ValueError(f"beta must be a number >= 0, found {self.beta}")
+        if not (math.isfinite(self.max_tension_mbs) and 0.0 <= self.max_tension_mbs < 1.0):
+            raise ValueError(f"max_tension_mbs must be in [0, 1), found {self.max_tension_mbs}")
+        if self.max_tension_mbs > 0.0 and self.original_strain is None:
+            raise ValueError("max_tension_mbs needs the original curve (the permanent strain "
+                             "is the gap between the original and the working curve)")
         if self.bound not in BOUNDS:
             raise ValueError(f"bound must be one of {BOUNDS}, found {self.bound!r}")
         object.__setattr__(self, "working_strain", tuple(float(x) for x in self.working_strain))
@@ -236,6 +248,11 @@ class FibreModel:
         xw, yw = self.working_arrays()
         return max(table_inverse_nb(t_max / mbs, xo, yo) - table_inverse_nb(t_max / mbs, xw, yw),
                    0.0)
+
+    def length_factor(self, mbs) -> float:
+        """``1 + permanent strain`` after ``max_tension_mbs``: the factor the statics apply to
+        the segment's (new-rope) length."""
+        return 1.0 + self.permanent_strain(self.max_tension_mbs * mbs, mbs)
 
     def quasi_static_path(self, strain, mbs):
         """Tensions (N) along a slow strain history (strain on the *new* rope length).

@@ -38,6 +38,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numba import njit
 
+from ..core.errors import ConvergenceError
 from .catenary import OUT_HF, OUT_VF
 from .fibre import table_inverse_nb, table_slope_nb
 
@@ -49,6 +50,8 @@ RULES = ("dynamic", "tangent")
 
 SECANT_TOL = 1e-12
 SECANT_MAX_ITER = 100
+SECANT_ACCEPT = 1e-8
+"""Largest relative EA change accepted when the iteration cap is reached."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -75,6 +78,15 @@ class FibreSegments:
         return cls(index=np.array(idx, np.int64), models=models,
                    mbs=np.array([segments[j].mbs for j in idx], float),
                    tables=tuple(m.working_arrays() for m in models))
+
+    def bed_in(self, seg_L, seg_w) -> None:
+        """Lengthen the fibre segments by their permanent strain after the largest mean
+        tension of their model (:meth:`FibreModel.length_factor`), in place; the weight per
+        length shrinks so that the segment's weight is unchanged."""
+        for k, j in enumerate(self.index):
+            f = self.models[k].length_factor(self.mbs[k])
+            seg_L[j] *= f
+            seg_w[j] /= f
 
 
 @njit(cache=True)
@@ -144,6 +156,12 @@ def iterate_secant(system, evaluate) -> int:
         if change <= SECANT_TOL:
             return it
         evaluate()
+    if change > SECANT_ACCEPT:
+        raise ConvergenceError(
+            f"fibre rope: the secant EA of the working curve changed by {change:.2g} after "
+            f"{SECANT_MAX_ITER} iterations", where="mooring statics (fibre segments)",
+            remedy="check the working curve (strictly increasing, no near-flat part) and the "
+                   "line lengths")
     return SECANT_MAX_ITER
 
 

@@ -263,7 +263,8 @@ def _curve(n: Node, key: str) -> tuple[tuple, tuple]:
 def _fibre_field(e: Node) -> dict:
     """The optional ``fibre`` key of a library entry: a preset name (``polyester_default``) or
     ``{preset, working_curve: {strain, tension_mbs}, original_curve: {...},
-    dynamic: {alpha, beta}, source}`` (a preset's values overridden by the keys given); a curve
+    dynamic: {alpha, beta}, max_tension_mbs, source}`` (a preset's values overridden by the keys
+    given; ``max_tension_mbs``: the largest mean tension seen, for the bedding-in); a curve
     may instead be a polynomial ``{polynomial: [c1, c2, ...], max_strain: e}`` with
     ``T/MBS = c1 eps + c2 eps^2 + ...`` (sampled into a table)."""
     if "fibre" not in e:
@@ -272,7 +273,8 @@ def _fibre_field(e: Node) -> dict:
     if isinstance(raw, str):
         return {"fibre": FIBRE_PRESETS[e.choice("fibre", FIBRE_PRESETS, what="fibre rope model")]}
     f = e.child("fibre")
-    f.reject_unknown({"preset", "working_curve", "original_curve", "dynamic", "source"})
+    f.reject_unknown({"preset", "working_curve", "original_curve", "dynamic", "source",
+                      "max_tension_mbs"})
     base = (FIBRE_PRESETS[f.choice("preset", FIBRE_PRESETS, what="fibre rope model")]
             if "preset" in f else None)
     kw = {}
@@ -291,6 +293,8 @@ def _fibre_field(e: Node) -> dict:
     elif base is None:
         raise f.error("dynamic", "the dynamic stiffness {alpha: EA_dyn/MBS at zero mean load, "
                       "beta: per % MBS of mean load}")
+    if "max_tension_mbs" in f:
+        kw["max_tension_mbs"] = f.float("max_tension_mbs", ge=0.0, lt=1.0)
     kw["source"] = f.str("source", base.source if base is not None else f"user-defined in {e.file}")
     try:
         model = replace(base, **kw) if base is not None else FibreModel(**kw)

@@ -347,6 +347,8 @@ class MooringSystem:
         self._force = np.zeros(6)
         self._stiff = np.zeros((6, 6))
         self.fibre_segments = FibreSegments.of(segs)
+        if self.fibre_segments is not None:
+            self.fibre_segments.bed_in(self.seg_L, self.seg_w)
 
     # -- line failure -------------------------------------------------------------------------
     def without_lines(self, names: Iterable[str]) -> MooringSystem:

@@ -248,7 +248,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
             x0[held] = np.linalg.solve(C[sub], (asm.const_force + mean_env)[held])
     fibre_lin = None
     if "mooring" in active and built.mooring is not None and built.mooring.has_fibre:
-        fibre_lin = _fibre_dynamics(built, asm, x0, eq, C, mean_env)
+        fibre_lin = _fibre_dynamics(built, asm, active["mooring"], eq, C, mean_env)
     # highest natural frequency of the linearised system (stability check)
     K_lin = C.copy()
     if fibre_lin is not None:
@@ -290,7 +290,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
                     relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe)
 
 
-def _fibre_dynamics(built, asm, x0, eq, C, mean_env):
+def _fibre_dynamics(built, asm, model, eq, C, mean_env):
     """Fibre ropes in the quasi-static time domain: the kernel's lines become the constant-EA
     linearisation about the static equilibrium under the mean loads (the working curve there),
     every fibre segment with its dynamic stiffness at its mean tension
@@ -303,7 +303,7 @@ def _fibre_dynamics(built, asm, x0, eq, C, mean_env):
         built.mooring.warm[:] = 0.0
         pose = equilibrium(built.mooring, hydrostatic_stiffness=C,
                            external_force=asm.const_force + mean_env).pose
-    lin = asm.mooring.linearised_fibre(pose)
+    lin = model.linearise_fibre(pose)
     lin.warm[:] = 0.0
     asm.replace_mooring_system(lin)
     return lin

@@ -123,6 +123,10 @@ def test_line_type_keys():
         "no_dynamic": {"family": "polyester", "fibre": {
             "working_curve": {"strain": [0, 0.01], "tension_mbs": [0, 0.1]}}},
         "typo": {"family": "polyester", "fibre": {"preset": "polyester_default", "alfa": 3}},
+        "bedded": {"family": "polyester", "fibre": {"preset": "polyester_default",
+                                                    "max_tension_mbs": 0.3}},
+        "bad_tmax": {"family": "polyester", "fibre": {"preset": "polyester_default",
+                                                      "max_tension_mbs": 1.5}},
     }, "types.yaml")
     lib2 = lib.extended(user)
     assert lib2.get("poly_preset", diameter=0.185)[0].fibre is POLYESTER_DEFAULT
@@ -138,6 +142,12 @@ def test_line_type_keys():
         lib2.get("no_dynamic", diameter=0.185)
     with pytest.raises(SceneError, match="alfa"):
         lib2.get("typo", diameter=0.185)
+    bedded = lib2.get("bedded", diameter=0.185)[0].fibre
+    # polyester_default after 30 % MBS: original curve 4.1 % - working curve 2.125 % = 1.975 %
+    assert bedded.length_factor(MBS) == pytest.approx(1.0 + (0.04 + 0.01 / 0.10 * 0.01)
+                                                      - (0.02 + 0.02 / 0.08 * 0.005))
+    with pytest.raises(SceneError, match="max_tension_mbs"):
+        lib2.get("bad_tmax", diameter=0.185)
 
 
 def test_polynomial_curve_is_sampled_into_the_table():

@@ -136,3 +136,35 @@ def test_no_fibre_system_is_unchanged():
     # constant EA 15 MBS: T = 15 MBS * 0.02
     assert float(ms.tensions(np.zeros(6))["fairlead_tension"][0]) == pytest.approx(
         0.3 * MBS, rel=1e-9)
+
+
+def test_secant_iteration_cap_raises(monkeypatch):
+    """An iteration that has not converged at the cap is a ConvergenceError naming the fibre
+    segments (cap forced to 1 on a weighted segment, which needs several iterations)."""
+    import floatmoor.mooring.fibre_system as fsys
+    from floatmoor.core.errors import ConvergenceError
+    monkeypatch.setattr(fsys, "SECANT_MAX_ITER", 1)
+    ms = taut_system(POLYESTER_DEFAULT, dist=1015.0, w=300.0)
+    with pytest.raises(ConvergenceError, match="fibre"):
+        ms.tensions(np.zeros(6))
+
+
+def test_bedding_in_after_the_largest_tension():
+    """``max_tension_mbs`` 0.4 with the original curve of SIMPLE_OC: permanent strain
+    5 % - 3 % = 2 % (hand computation), so the new 1000 m rope is 1020 m long in statics; at a
+    chord of 1040.4 m its strain is 2 % on the working curve, T = 25 % MBS."""
+    from dataclasses import replace
+    oc = replace(SIMPLE, original_strain=(0.0, 0.02, 0.05), original_tension_mbs=(0.0, 0.1, 0.4))
+    assert oc.length_factor(MBS) == 1.0  # no largest tension given: the length as given
+    bedded = replace(oc, max_tension_mbs=0.4)
+    assert bedded.length_factor(MBS) == pytest.approx(1.02)
+    ms = taut_system(bedded, length=1000.0, dist=1040.4)
+    assert ms.seg_L[0] == pytest.approx(1020.0)
+    assert float(ms.tensions(np.zeros(6))["fairlead_tension"][0]) == pytest.approx(
+        0.25 * MBS, rel=1e-9)
+    # linearised about there: tension unchanged, the segment weight kept
+    lin = ms.linearised_fibre(np.zeros(6))
+    assert float(lin.tensions(np.zeros(6))["fairlead_tension"][0]) == pytest.approx(
+        0.25 * MBS, rel=1e-9)
+    with pytest.raises(ValueError, match="original curve"):
+        replace(SIMPLE, max_tension_mbs=0.3)
