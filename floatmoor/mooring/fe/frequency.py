@@ -32,7 +32,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -111,10 +111,16 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
     wnode = np.zeros(nn)
     j = 0
     dmax = 0.0
-    for seg in sp.segments:
+    for k, seg in enumerate(sp.segments):
         lt = seg.line_type
         dmax = max(dmax, lt.diameter)
         le = seg.length / seg.n_elements
+        f = line.length_factors[k] if hasattr(line, "length_factors") else 1.0
+        if f != 1.0:
+            # a bedded-in fibre segment, lumped as in FELine (same totals, longer)
+            lt = replace(lt, mass_per_length=lt.mass_per_length / f,
+                         displaced_volume=lt.displaced_volume / f)
+            le = line.E_static[j, 0]
         w = lt.submerged_weight(rho, g)
         for _ in range(seg.n_elements):
             L0[j] = le

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -93,6 +93,18 @@ class StaticSolution:
         return float(np.linalg.norm(self.anchor_force))
 
 
+def _bedded_in(lt, le, fib):
+    """Line type and element length of a fibre segment after bedding in: lengthened by the
+    permanent strain after its largest mean tension (``FibreModel.length_factor``, 1 without
+    one), mass and displaced volume per length reduced so that the segment's totals are
+    unchanged (as the catenary statics of :mod:`floatmoor.mooring.fibre_system` do)."""
+    f = fib.length_factor(lt.mbs) if fib is not None and hasattr(fib, "length_factor") else 1.0
+    if f == 1.0:
+        return lt, le, 1.0
+    return (replace(lt, mass_per_length=lt.mass_per_length / f,
+                    displaced_volume=lt.displaced_volume / f), le * f, f)
+
+
 class FELine:
     """A lumped-mass line built from a :class:`FELineSpec`.
 
@@ -119,7 +131,9 @@ class FELine:
         strain (:mod:`.fibre_law`; the working curve also in dynamics for the ``lower`` bound
         or with ``dynamic_ea=False``); ``"working_curve"`` the working curve in statics and
         dynamics; ``"constant"`` the constant ``ea`` / ``ea_dynamic`` of the line type, as for
-        any other segment.
+        any other segment.  With the fibre laws a segment whose model has seen a largest mean
+        tension (``max_tension_mbs``) is lengthened by its permanent strain, its mass and
+        displaced volume kept (:attr:`length_factors`), as in the catenary statics.
     fibre_time_constant : float
         Time constant of the mean-strain filter of the two-component law, s (default
         :data:`.fibre_law.DEFAULT_TIME_CONSTANT`).
@@ -149,6 +163,8 @@ class FELine:
         P = np.zeros((nn, K.N_NP))
         seg_of = np.zeros(ne, dtype=np.int64)
         fib_rec = []         # fibre records appended to S (fibre_law)
+        self.length_factors = []
+        """Unstretched length of each segment over its given length (bedded-in fibre)."""
         fib_at = K.N_S
         j = 0
         dmax = 0.0
@@ -156,9 +172,11 @@ class FELine:
             lt = seg.line_type
             dmax = max(dmax, lt.diameter)
             le = seg.length / seg.n_elements
-            w = lt.submerged_weight(rho, g)
             fib = (getattr(lt, "fibre", None) if fibre_law != "constant" and not seg.tension_poly
                    else None)
+            lt, le, f_len = _bedded_in(lt, le, fib)
+            self.length_factors.append(f_len)
+            w = lt.submerged_weight(rho, g)
             if fib is not None:
                 fib_rec.append(fibre_record(fib, lt.mbs, fibre_time_constant))
                 fib_off = fib_at
@@ -296,7 +314,7 @@ class FELine:
         zf = float(F[2] - A[2])
         u = dh / xf if xf > 0 else np.array([1.0, 0.0])
         rho, g = sp.water_density, sp.gravity
-        L = np.array([s.length for s in sp.segments])
+        L = np.array([s.length for s in sp.segments]) * np.array(self.length_factors)
         EA = np.array([s.line_type.ea for s in sp.segments])
         w = np.array([s.line_type.submerged_weight(rho, g) for s in sp.segments])
         on_seabed = A[2] <= -sp.seabed.depth + 1e-6

@@ -328,7 +328,7 @@ def test_fibre_law_runs_without_jit():
     np.testing.assert_allclose(vals[0], vals[1], rtol=1e-12)
 
 
-def _taut_system(w=50.0):
+def _taut_system(w=50.0, fibre=PD):
     """Two heavy taut polyester lines (1000 m, 50 N/m submerged) from mid-water anchors to
     fairleads on opposite sides of a body (mooring system with the fibre model; the catenary
     statics of :mod:`floatmoor.mooring.fibre_system`)."""
@@ -339,7 +339,7 @@ def _taut_system(w=50.0):
                      fairlead=(s * 10.0, 0.0, -10.0),
                      segments=(Segment(length=1000.0, ea=14 * MBS, ea_dynamic=20 * MBS, w=w,
                                        mbs=MBS, mass_per_length=MASS, diameter=0.185,
-                                       fibre=PD),),
+                                       fibre=fibre),),
                      anchor_on_seabed=False)
              for k, s in enumerate((1.0, -1.0))]
     return MooringSystem(lines, water_depth=2000.0)
@@ -435,3 +435,26 @@ def test_fe_dynamic_stiffness_agrees_with_the_linearised_fibre_system():
     k_static = ms.stiffness(p0)[0, 0]
     assert amp == pytest.approx(k_dyn * a, rel=5e-3)
     assert abs(k_dyn - k_static) > 0.1 * k_static
+
+
+def test_bedded_in_fibre_segments_agree_with_the_catenary_statics():
+    """A rope that has seen 10 % MBS (``max_tension_mbs``): the FE line lengthens its fibre
+    segments by the permanent strain (``FibreModel.length_factor``: the gap between the
+    original and the working curve at that tension) with the segment's mass and weight kept, as
+    the catenary statics do; both give the same tensions (and lower ones than the new rope)."""
+    from floatmoor.mooring.fe.body import FEMooring
+
+    bedded = replace(PD, max_tension_mbs=0.1)
+    f = bedded.length_factor(MBS)
+    assert f > 1.005
+    t = {}
+    for name, model in (("new", PD), ("bedded", bedded)):
+        ms = _taut_system(fibre=model)
+        fm, _ = FEMooring.from_system(ms)
+        fm.solve_static(np.zeros(6))
+        t[name] = ms.tensions(np.zeros(6))["fairlead_tension"].values
+        np.testing.assert_allclose(np.linalg.norm(fm.line_forces, axis=1), t[name], rtol=1e-5)
+    ln = fm.lines[0]
+    assert ln.s_nodes[-1] == pytest.approx(1000.0 * f, rel=1e-12)
+    assert ln.P[:, K.NP_MASS].sum() == pytest.approx(MASS * 1000.0, rel=1e-12)
+    assert t["bedded"].max() < 0.6 * t["new"].max()      # 1.22 against 2.40 MN
