@@ -8,8 +8,9 @@ one numba typed list of :class:`LineBundle` (:mod:`.multi`).  The shapes use ``n
 number of nodes; column layouts are the constants of :mod:`.kernels`.
 
 * :class:`LineParams`: read-only parameters of one analysis (statics or dynamics).
-* :class:`LineState`: node positions, velocities, accelerations, forces and friction state;
-  a line has three (accepted, trial, sub-step result).
+* :class:`LineState`: node positions, velocities, accelerations, forces and friction state
+  (with the mean strains of fibre elements); a line has three (accepted, trial, sub-step
+  result).
 * :class:`LineWork`: scratch and per-call outputs of the Newton iterations.
 * :class:`LineBundle`: all of a line's bundles, for the multi-line kernels.
 """
@@ -63,7 +64,9 @@ class LineState(NamedTuple):
     f: np.ndarray
     """(n, 3) total nodal forces."""
     fs: np.ndarray
-    """(n, N_FS) friction state."""
+    """(n, N_FS) friction state; columns ``FS_EM, FS_TM, FS_KD`` of row ``j``: mean strain of
+    the fibre element ``j``, the working-curve tension and dynamic stiffness at it
+    (:mod:`.fibre_law`)."""
 
 
 class LineWork(NamedTuple):

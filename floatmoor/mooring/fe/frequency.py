@@ -7,7 +7,10 @@ Line", eq. 9-75 and table 9.1):
 - mass: structural plus added mass, ``m I + m_an (I - q q^T) + m_at q q^T`` at every node
   (``q`` the static node tangent), point bodies included;
 - stiffness: per element the axial and geometric stiffness ``dT/dl e e^T + T/l (I - e e^T)``
-  from the static tension and direction (dynamic EA, or the slope of the tension polynomial);
+  from the static tension and direction (dynamic EA, or the slope of the tension polynomial;
+  fibre segments (:mod:`.fibre_law`): the tension of the working curve and the dynamic
+  stiffness at that mean tension, or the working-curve tangent for the ``working_curve`` law,
+  the ``lower`` bound and ``dynamic_ea=False``);
 - damping: the axial internal damping ``B / L0 e e^T`` of every element, the stochastically
   linearised normal and tangential drag on the velocity relative to the current
   (:mod:`~floatmoor.mooring.fe.drag_linearisation`), iterated to convergence with the node
@@ -29,7 +32,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -38,6 +41,7 @@ import xarray as xr
 from ...core.errors import FloatmoorWarning, NumericalError
 from ...core.quadrature import trapezoid_weights
 from .drag_linearisation import drag_damping_1d, drag_damping_2d
+from .fibre_law import EL_FIB, EL_LAW, LAW_TWO_COMPONENT, dynamic_stiffness, working_tension
 from .frequency_kernels import line_transfer, spectral_moments
 from .touchdown_springs import (
     LowerPart,
@@ -91,7 +95,8 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
     """The static state of ``line`` (an :class:`FELine` after ``solve_static``) as plain arrays.
 
     The only place that reads an FE line: its node positions ``line.r``, arc lengths
-    ``line.s_nodes`` and its specification ``line.spec`` (lumping as in :class:`FELine`)."""
+    ``line.s_nodes``, its specification ``line.spec`` (lumping as in :class:`FELine`) and, for
+    fibre elements, their law and record (``E_static``, ``E_dynamic``, ``S``)."""
     sp = line.spec
     r = np.array(line.r, float)
     s = np.array(line.s_nodes, float)
@@ -106,16 +111,29 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
     wnode = np.zeros(nn)
     j = 0
     dmax = 0.0
-    for seg in sp.segments:
+    for k, seg in enumerate(sp.segments):
         lt = seg.line_type
         dmax = max(dmax, lt.diameter)
         le = seg.length / seg.n_elements
+        f = line.length_factors[k] if hasattr(line, "length_factors") else 1.0
+        if f != 1.0:
+            # a bedded-in fibre segment, lumped as in FELine (same totals, longer)
+            lt = replace(lt, mass_per_length=lt.mass_per_length / f,
+                         displaced_volume=lt.displaced_volume / f)
+            le = line.E_static[j, 0]
         w = lt.submerged_weight(rho, g)
         for _ in range(seg.n_elements):
             L0[j] = le
             eps = np.linalg.norm(r[j + 1] - r[j]) / le - 1.0
             ea_d = lt.ea_dynamic if dynamic_ea else lt.ea
-            if seg.tension_poly:
+            if line.E_static[j, EL_LAW] != 0.0:
+                # fibre element: working curve, dynamic stiffness at the static (mean) tension
+                o = int(line.E_static[j, EL_FIB])
+                T[j], kw_ = working_tension(line.S, o, max(eps, 0.0))
+                kax[j] = (dynamic_stiffness(line.S, o, T[j])
+                          if dynamic_ea and line.E_dynamic[j, EL_LAW] == LAW_TWO_COMPONENT
+                          else kw_)
+            elif seg.tension_poly:
                 c = list(seg.tension_poly) + [0.0] * (3 - len(seg.tension_poly))
                 T[j] = c[0] * eps + c[1] * eps ** 2 + c[2] * eps ** 3
                 kax[j] = c[0] + 2 * c[1] * eps + 3 * c[2] * eps ** 2

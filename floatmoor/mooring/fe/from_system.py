@@ -41,8 +41,8 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
         segments in proportion to their lengths (largest remainder, at least one each).
     line_types : mapping, optional
         Line types by name for the hydrodynamic coefficients (``cdn, cdt, can, cat``); a
-        segment whose type is missing keeps the ``LineType`` defaults.  Mass, diameter, EA and
-        the submerged weight always come from the segment.
+        segment whose type is missing keeps the ``LineType`` defaults.  Mass, diameter, EA,
+        the fibre model and the submerged weight always come from the segment.
     friction : Friction, optional
         Default: no friction when ``line.cb`` is 0, else the velocity ramp with ``cb`` as axial
         and lateral coefficient.
@@ -77,7 +77,8 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
         kw = dict(name=s.line_type or f"{line.name}_seg{k}",
                   material=base.material if base else "user",
                   diameter=d, mass_per_length=mass, displaced_volume=vol, ea=s.ea,
-                  ea_dynamic=s.ea_dynamic if s.ea_dynamic else s.ea, mbs=s.mbs)
+                  ea_dynamic=s.ea_dynamic if s.ea_dynamic else s.ea, mbs=s.mbs,
+                  fibre=getattr(s, "fibre", None))
         lt = replace(base, **kw) if base is not None else LineType(**kw)
         n = counts[k] if counts is not None else max(1, int(round(s.length / element_length)))
         segs.append(FESegment(line_type=lt, length=s.length, n_elements=n,

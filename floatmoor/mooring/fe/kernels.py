@@ -30,14 +30,16 @@ import math
 from numba import njit
 
 from .bundles import LineParams, LineState, LineWork
+from .fibre_law import EL_FIB, EL_LAW, fibre_commit, fibre_tension  # noqa: F401
 
 # node parameter columns
 NP_MASS, NP_W, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_KC, NP_MAC, NP_KS, NP_CS, NP_MUA, NP_MUL, \
     NP_MD, NP_CB = range(14)
 N_NP = 14
-# element parameter columns
+# element parameter columns; EL_LAW (0: the polynomial law C1..C3) and EL_FIB (offset of the
+# fibre record in S) of fibre elements: see fibre_law
 EL_L0, EL_C1, EL_C2, EL_C3, EL_B = range(5)
-N_EL = 5
+N_EL = 7
 # scalar parameters
 S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC, S_BEND = range(8)
 N_S = 8
@@ -46,8 +48,10 @@ FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
 # branch_axial, branch_lateral (model of Lu 2012: 0 stick, +-1 sliding direction in this step).
 # The double-quadratic velocity ramp (FR_VDQ) keeps the horizontal speed (m/s) and the
-# transition factor f of the last accepted step in columns FS_UPREV and FS_FPREV.
-N_FS = 8
+# transition factor f of the last accepted step in columns FS_UPREV and FS_FPREV.  Column
+# FS_EM, FS_TM, FS_KD (8-10) of row j: mean strain of the fibre element j, its working-curve
+# tension and dynamic stiffness (fibre_law).
+N_FS = 11
 FS_UPREV, FS_FPREV = 0, 1
 V_MEANINGFUL = 1e-8     # Lu (2012): below this a node is at rest (m/s)
 D_MEANINGFUL = 1e-4     # Lu (2012): displacement ramp active beyond this (m)
@@ -101,7 +105,7 @@ def _stiff(P, E, j):
     (the slack transition e0 uses the net weight; the weight in air keeps weightless test
     elements out)."""
     w = 9.80665 * (P[j, NP_MASS] + P[j + 1, NP_MASS]) + abs(P[j, NP_W]) + abs(P[j + 1, NP_W])
-    return w < E0_STIFF * E[j, EL_C1]
+    return w < E0_STIFF * E[j, EL_C1] and E[j, EL_LAW] == 0.0
 
 
 @njit(cache=True)
@@ -318,7 +322,10 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
         eps = ll / L0 - 1.0
         # slack transition strain: the element's weight over its axial stiffness
         e0 = max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / E[j, EL_C1]
-        T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3], e0)
+        if E[j, EL_LAW] == 0.0:
+            T, dTde = _tension(eps, E[j, EL_C1], E[j, EL_C2], E[j, EL_C3], e0)
+        else:
+            T, dTde = fibre_tension(E[j, EL_LAW], eps, fs, j, S, int(E[j, EL_FIB]), e0)
         # stiff element (slack transition narrower than E0_STIFF): managed by the tension
         # estimate of the iteration when one is given
         managed = use_act and _stiff(P, E, j)
@@ -1433,6 +1440,8 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
                 aA[i, k] = aB[i, k]
                 fnA[i, k] = fA[i, k]
         friction_commit(rA, vA, q, fric, fs1, P, S, S[S_ZC])
+        if S.shape[0] > N_S:
+            fibre_commit(rA, fs1, P, lp.E, S, sz * hmin)
         pos += sz
         while sz < full and pos % (2 * sz) == 0:
             sz *= 2

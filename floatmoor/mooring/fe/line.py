@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -38,8 +38,20 @@ from ..catenary import line_profile, solve_line
 from . import kernels as K
 from .bundles import LineBundle, LineParams, LineState, new_state, new_work
 from .config import FRICTION_MODELS, FELineSpec
+from .fibre_law import (
+    DEFAULT_TIME_CONSTANT,
+    EL_FIB,
+    EL_LAW,
+    LAW_TWO_COMPONENT,
+    LAW_WORKING,
+    fibre_record,
+    fibre_start,
+)
 
-__all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients"]
+__all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients", "FIBRE_LAWS"]
+
+FIBRE_LAWS = ("two_component", "working_curve", "constant")
+"""Axial laws of the segments whose line type has a fibre model (:class:`FELine`)."""
 
 _NO_COEF = np.zeros(4)   # generalised-alpha coefficients of a static parameter bundle (unused)
 
@@ -81,6 +93,18 @@ class StaticSolution:
         return float(np.linalg.norm(self.anchor_force))
 
 
+def _bedded_in(lt, le, fib):
+    """Line type and element length of a fibre segment after bedding in: lengthened by the
+    permanent strain after its largest mean tension (``FibreModel.length_factor``, 1 without
+    one), mass and displaced volume per length reduced so that the segment's totals are
+    unchanged (as the catenary statics of :mod:`floatmoor.mooring.fibre_system` do)."""
+    f = fib.length_factor(lt.mbs) if fib is not None and hasattr(fib, "length_factor") else 1.0
+    if f == 1.0:
+        return lt, le, 1.0
+    return (replace(lt, mass_per_length=lt.mass_per_length / f,
+                    displaced_volume=lt.displaced_volume / f), le * f, f)
+
+
 class FELine:
     """A lumped-mass line built from a :class:`FELineSpec`.
 
@@ -98,7 +122,21 @@ class FELine:
         EA = 3.84e14 N at dt 0.2 s (rho_inf 0.7) and 0.1 s (rho_inf 0.5); see RESULTS.md,
         "Stiff lines at full EA".  A limit such as 3.84e11 N (strain 4e-6 at 1.4 MN) gives
         the same tensions with slightly fewer Newton iterations.  A ``FloatmoorWarning`` says
-        when the limit is active.
+        when the limit is active.  Not applied to the fibre laws.
+    fibre_law : str
+        Axial law of the segments whose line type has a fibre model
+        (``line_type.fibre``, :class:`floatmoor.mooring.fibre.FibreModel`; other segments and
+        segments with a ``tension_poly`` are not affected): ``"two_component"`` (default) the
+        working curve in statics and, in dynamics, the dynamic stiffness about a filtered mean
+        strain (:mod:`.fibre_law`; the working curve also in dynamics for the ``lower`` bound
+        or with ``dynamic_ea=False``); ``"working_curve"`` the working curve in statics and
+        dynamics; ``"constant"`` the constant ``ea`` / ``ea_dynamic`` of the line type, as for
+        any other segment.  With the fibre laws a segment whose model has seen a largest mean
+        tension (``max_tension_mbs``) is lengthened by its permanent strain, its mass and
+        displaced volume kept (:attr:`length_factors`), as in the catenary statics.
+    fibre_time_constant : float
+        Time constant of the mean-strain filter of the two-component law, s (default
+        :data:`.fibre_law.DEFAULT_TIME_CONSTANT`).
     waves : floatmoor.metocean.realisation.WaveRealisation, optional
         Wave kinematics in dynamics (option): the particle velocity enters the drag (relative
         velocity), the particle acceleration the fluid inertia ``(rho V l) a + m_a a`` of every
@@ -109,7 +147,11 @@ class FELine:
     """
 
     def __init__(self, spec: FELineSpec, *, dynamic_ea: bool = True,
-                 axial_stiffness_limit: float | None = None, waves=None, wheeler: bool = True):
+                 axial_stiffness_limit: float | None = None, waves=None, wheeler: bool = True,
+                 fibre_law: str = "two_component",
+                 fibre_time_constant: float = DEFAULT_TIME_CONSTANT):
+        if fibre_law not in FIBRE_LAWS:
+            raise ValueError(f"fibre_law must be one of {FIBRE_LAWS}, got {fibre_law!r}")
         self.spec = spec
         rho = spec.water_density
         g = spec.gravity
@@ -120,13 +162,27 @@ class FELine:
         E_dy = np.zeros((ne, K.N_EL))
         P = np.zeros((nn, K.N_NP))
         seg_of = np.zeros(ne, dtype=np.int64)
+        fib_rec = []         # fibre records appended to S (fibre_law)
+        self.length_factors = []
+        """Unstretched length of each segment over its given length (bedded-in fibre)."""
+        fib_at = K.N_S
         j = 0
         dmax = 0.0
         for k, seg in enumerate(spec.segments):
             lt = seg.line_type
             dmax = max(dmax, lt.diameter)
             le = seg.length / seg.n_elements
+            fib = (getattr(lt, "fibre", None) if fibre_law != "constant" and not seg.tension_poly
+                   else None)
+            lt, le, f_len = _bedded_in(lt, le, fib)
+            self.length_factors.append(f_len)
             w = lt.submerged_weight(rho, g)
+            if fib is not None:
+                fib_rec.append(fibre_record(fib, lt.mbs, fibre_time_constant))
+                fib_off = fib_at
+                fib_at += fib_rec[-1].size
+                two = (fibre_law == "two_component" and dynamic_ea
+                       and getattr(fib, "bound", "nominal") != "lower")
             for _ in range(seg.n_elements):
                 seg_of[j] = k
                 for E, ea in ((E_st, lt.ea), (E_dy, lt.ea_dynamic if dynamic_ea else lt.ea)):
@@ -137,6 +193,10 @@ class FELine:
                     else:
                         E[j, K.EL_C1] = ea
                     E[j, K.EL_B] = seg.damping_coefficient(ea)
+                if fib is not None:
+                    E_st[j, EL_LAW] = LAW_WORKING
+                    E_dy[j, EL_LAW] = LAW_TWO_COMPONENT if two else LAW_WORKING
+                    E_st[j, EL_FIB] = E_dy[j, EL_FIB] = fib_off
                 for i in (j, j + 1):
                     h = 0.5 * le
                     P[i, K.NP_MASS] += lt.mass_per_length * h
@@ -181,6 +241,8 @@ class FELine:
         S[K.S_BEND] = 1.0 if np.any(P[:, K.NP_CB] > 0.0) else 0.0
         cs_ = spec.seabed.contact_smoothing
         S[K.S_DC] = 0.5 * dmax if cs_ is None else cs_
+        if fib_rec:
+            S = np.concatenate([S] + fib_rec)
         if axial_stiffness_limit is not None:
             f = np.minimum(1.0, axial_stiffness_limit / E_dy[:, K.EL_C1])
             if np.any(f < 1.0):
@@ -252,7 +314,7 @@ class FELine:
         zf = float(F[2] - A[2])
         u = dh / xf if xf > 0 else np.array([1.0, 0.0])
         rho, g = sp.water_density, sp.gravity
-        L = np.array([s.length for s in sp.segments])
+        L = np.array([s.length for s in sp.segments]) * np.array(self.length_factors)
         EA = np.array([s.line_type.ea for s in sp.segments])
         w = np.array([s.line_type.submerged_weight(rho, g) for s in sp.segments])
         on_seabed = A[2] <= -sp.seabed.depth + 1e-6
@@ -394,6 +456,7 @@ class FELine:
         self.a[:] = 0.0
         self.fs[:] = 0.0
         self.fs[:, 4:6] = self.r[:, 0:2]
+        fibre_start(self.r, self.fs, self.P, self.E_dynamic, self.S)
         self.time = float(t0)
         K.line_forces(self.r, self.v, self.fs, self._par, False, 0.0, 0.0, self.fn, self.work)
         self._trial = False
@@ -510,6 +573,8 @@ class FELine:
                                "reduce dt below the axial-wave limit or use generalized_alpha")
                 K.friction_commit(tr.r, tr.v, w.q, self.fric_code, tr.fs, self.P, self.S,
                                   self.S[K.S_ZC])
+                if self.S.shape[0] > K.N_S:
+                    K.fibre_commit(tr.r, tr.fs, self.P, self.E_dynamic, self.S, h)
         self.trial(t1)
         K.end_forces(tr.r, tr.v, self.P, tr.f, w.tens, self._ends)
         return self._ends[3:6].copy()

@@ -13,6 +13,9 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
         internal_damping: -0.8         # N s, or -zeta (fraction of critical per element)
         rho_inf: 0.7                   # generalised-alpha spectral radius
         axial_stiffness_limit: 3.84e11 # N, optional (practically inextensible lines)
+        fibre_law: two_component       # segments whose line type has a `fibre` model:
+                                       #   two_component | working_curve | constant
+        fibre_time_constant: 300.0     # s, mean-strain filter of two_component (fibre_law.py)
         seabed: {model: springs, stiffness: 2.7e5, damping: 2.7e4}
                                        # or {model: mud_layer, mud_depth: 0.1}
         friction: {model: velocity_ramp, mu_axial: 0.7, mu_lateral: 1.0, zero_crossing_period: 10.0}
@@ -35,6 +38,8 @@ from dataclasses import dataclass, field
 
 from ...core.config import Node
 from .config import FRICTION_MODELS, SEABED_MODELS, Friction, Seabed
+from .fibre_law import DEFAULT_TIME_CONSTANT
+from .line import FIBRE_LAWS
 
 __all__ = ["FEOptions", "parse_fe_options", "MOORING_MODELS", "INTEGRATORS", "LineModels",
            "parse_line_models"]
@@ -44,7 +49,8 @@ MOORING_MODELS = ("quasi-static", "finite-element")
 INTEGRATORS = ("generalized_alpha", "explicit")
 
 _KEYS = {"element_length", "n_elements", "internal_damping", "rho_inf", "substeps", "dt",
-         "integrator", "axial_stiffness_limit", "seabed", "friction"}
+         "integrator", "axial_stiffness_limit", "seabed", "friction", "fibre_law",
+         "fibre_time_constant"}
 _SEABED_KEYS = {"model", "stiffness", "damping", "mud_depth", "contact_smoothing"}
 _FRICTION_KEYS = {"model", "mu_axial", "mu_lateral", "ramp_velocity", "zero_crossing_period",
                   "ramp_displacement"}
@@ -65,6 +71,8 @@ class FEOptions:
     axial_stiffness_limit: float | None = None
     seabed: dict = field(default_factory=dict)
     friction: Friction | None = None
+    fibre_law: str = "two_component"
+    fibre_time_constant: float = DEFAULT_TIME_CONSTANT
 
     def seabed_for(self, water_depth: float) -> Seabed:
         """The :class:`Seabed` at ``water_depth`` (m) with the scene's settings."""
@@ -82,7 +90,8 @@ class FEOptions:
 
     def line_kw(self) -> dict:
         """Keywords of :class:`~floatmoor.mooring.fe.line.FELine`."""
-        return {"axial_stiffness_limit": self.axial_stiffness_limit}
+        return {"axial_stiffness_limit": self.axial_stiffness_limit,
+                "fibre_law": self.fibre_law, "fibre_time_constant": self.fibre_time_constant}
 
     def start_kw(self) -> dict:
         """Keywords of :meth:`~floatmoor.mooring.fe.line.FELine.start`."""
@@ -123,6 +132,10 @@ def parse_fe_options(node: Node | None) -> FEOptions:
         kw["substeps"] = node.int("substeps", ge=1)
     if "axial_stiffness_limit" in node:
         kw["axial_stiffness_limit"] = node.float("axial_stiffness_limit", gt=0.0, unit="N")
+    if "fibre_law" in node:
+        kw["fibre_law"] = node.str("fibre_law", choices=list(FIBRE_LAWS))
+    if "fibre_time_constant" in node:
+        kw["fibre_time_constant"] = node.float("fibre_time_constant", gt=0.0, unit="s")
     if "seabed" in node:
         sb = node.child("seabed")
         sb.reject_unknown(_SEABED_KEYS)
