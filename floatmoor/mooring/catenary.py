@@ -550,8 +550,16 @@ def _raise_status(status, what):
                            remedy=remedy)
 
 
-def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) -> CatenaryResult:
+def _is_scalar(v) -> bool:
+    return isinstance(v, (float, int)) or np.ndim(v) == 0
+
+
+def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0):
     """Solve a single elastic catenary line between anchor and fairlead.
+
+    With arrays for any of the inputs, solves every element of their broadcast shape in one
+    compiled loop and returns a ``CatenaryBatch`` of arrays (failed elements NaN with a status
+    code): see :func:`floatmoor.mooring.catenary_batch.catenary_batch`.
 
     Parameters
     ----------
@@ -577,7 +585,8 @@ def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) ->
     Returns
     -------
     CatenaryResult
-        ``HF, VF, HA, VA, grounded_length, stiffness`` (2x2, N/m) and ``profile()``.
+        ``HF, VF, HA, VA, grounded_length, stiffness`` (2x2, N/m) and ``profile()``
+        (a ``CatenaryBatch`` of arrays when an input is an array).
 
     Raises
     ------
@@ -585,6 +594,11 @@ def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) ->
         No convergence to 1e-9 relative within 100 Newton iterations; the message names the
         inputs.
     """
+    if not (_is_scalar(xf) and _is_scalar(zf) and _is_scalar(length) and _is_scalar(ea)
+            and _is_scalar(w) and _is_scalar(cb) and _is_scalar(seabed) and _is_scalar(hf0)
+            and _is_scalar(vf0)):
+        from .catenary_batch import catenary_batch
+        return catenary_batch(xf, zf, length, ea, w, cb, seabed=seabed, hf0=hf0, vf0=vf0)
     xf = float(xf)
     zf = float(zf)
     what = (f"catenary(xf={xf!r}, zf={zf!r}, length={length!r}, ea={ea!r}, w={w!r}, cb={cb!r}, "
