@@ -30,6 +30,7 @@ from ..metocean.wind import wind_mean_speed, wind_spectrum
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .kernels import relative_flow_force_into
 from .series import complex_envelope, grid_for
+from .terms import as_kernel_array
 
 __all__ = ["Wind", "Current", "derived_seed"]
 
@@ -53,6 +54,11 @@ def _table(vessel, attr, what):
 
 
 class _FlowModel(ForceModel):
+    def _tables(self):
+        """Writeable copies of the (frozen) coefficient tables: the argument types of the time
+        loop's call, so that relative_flow_force_into is compiled once."""
+        return as_kernel_array(self.table_heading, float), as_kernel_array(self.table, float)
+
     def force(self, t, pose, velocity, out, wf_velocity=None):
         """Add the force at time t (s) for the pose and the pose rate ``velocity`` (earth).
 
@@ -65,18 +71,19 @@ class _FlowModel(ForceModel):
             vx -= float(wf_velocity[0])
             vy -= float(wf_velocity[1])
         relative_flow_force_into(self._speed_at(t), self.heading, vx, vy, float(pose[5]), 1.0,
-                                 self.table_heading, self.table, coef, out)
+                                 *self._tables(), coef, out)
 
     def mean_force(self):
         out = np.zeros(6)
         coef = np.zeros(6)
         relative_flow_force_into(self.mean_speed, self.heading, 0.0, 0.0, 0.0, 1.0,
-                                 self.table_heading, self.table, coef, out)
+                                 *self._tables(), coef, out)
         return out
 
     def damping_linearized(self, yaw: float = 0.0):
         """-dF/dv (6x6) at rest, by central differences of the exact force (N s/m)."""
         D = np.zeros((6, 6))
+        th, tab = self._tables()
         for k in (0, 1):
             dv = 1e-4 * max(1.0, self.mean_speed)
             fp = np.zeros(6)
@@ -85,10 +92,10 @@ class _FlowModel(ForceModel):
             v[k] = dv
             coef = np.zeros(6)
             relative_flow_force_into(self.mean_speed, self.heading, v[0], v[1], yaw, 1.0,
-                                     self.table_heading, self.table, coef, fp)
+                                     th, tab, coef, fp)
             v[k] = -dv
             relative_flow_force_into(self.mean_speed, self.heading, v[0], v[1], yaw, 1.0,
-                                     self.table_heading, self.table, coef, fm)
+                                     th, tab, coef, fm)
             D[:, k] = -(fp - fm) / (2 * dv)
         return D
 

@@ -45,6 +45,7 @@ import math
 
 import numpy as np
 from numba import njit
+from numba.extending import overload
 
 from ..core.frames import rotation_matrix_into
 
@@ -364,3 +365,28 @@ def slender_packed_into(j, x, v, fel, iel, eta_tab, u_tab, a_tab, par, cur, ramp
                        iel[:, 0], iel[:, 1], iel[:, 2], eta_tab, u_tab, a_tab, par[7] > 0.5,
                        par[1], par[2], par[3], par[4] > 0.5, ramp[jj], cur[:, 0], cur[:, 1],
                        par[5], par[6], R, out)
+
+
+def strips_into(j, x, v, sl, R, sc, out):
+    """Add the force of the strips bundle ``sl`` (:class:`~floatmoor.forces.terms.StripTerm`,
+    :func:`slender_packed_into`) into ``out``; nothing for a
+    :class:`~floatmoor.forces.terms.NoStrips` bundle.  Compiled, the choice is made on the
+    bundle's type (:func:`_strips_into_typed`): a time loop compiled for a run without strips
+    neither contains nor compiles the strip code."""
+    if sl.on:
+        slender_packed_into(j, x, v, sl.fel, sl.iel, sl.eta, sl.u, sl.a, sl.par, sl.cur,
+                            sl.ramp, R, sc, out)
+
+
+@overload(strips_into)
+def _strips_into_typed(j, x, v, sl, R, sc, out):
+    from .terms import NoStrips
+    if getattr(sl, "instance_class", None) is NoStrips:
+        def nothing(j, x, v, sl, R, sc, out):
+            return None
+        return nothing
+
+    def strips(j, x, v, sl, R, sc, out):
+        slender_packed_into(j, x, v, sl.fel, sl.iel, sl.eta, sl.u, sl.a, sl.par, sl.cur,
+                            sl.ramp, R, sc, out)
+    return strips

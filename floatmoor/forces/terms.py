@@ -36,7 +36,7 @@ from typing import NamedTuple
 import numpy as np
 
 __all__ = ["KINDS", "FlowTerms", "ForceTerms", "MatrixTerms", "MemoryTerm", "RestoringTerms",
-           "StripTerm", "as_kernel_array"]
+           "StripTerm", "NoStrips", "as_kernel_array"]
 
 KINDS = ("restoring", "mooring", "damping", "quadratic_damping", "memory", "relative_flow",
          "strips", "series")
@@ -107,6 +107,15 @@ class StripTerm(NamedTuple):
     ramp: np.ndarray
 
 
+class NoStrips(NamedTuple):
+    """``strips`` kind of a run without strips (``on`` False).  A type of its own: the time loop
+    compiled for it leaves the strip code out (:func:`floatmoor.forces.slender_kernels.
+    strips_into` chooses on the bundle's type), so a scene without slender elements does not
+    compile it."""
+
+    on: bool
+
+
 class ForceTerms(NamedTuple):
     """All force terms but the mooring's (its bundle,
     :class:`floatmoor.solvers.td_bundles.Lines`, also carries the line states):
@@ -117,12 +126,9 @@ class ForceTerms(NamedTuple):
     quadratic_damping: MatrixTerms
     memory: MemoryTerm
     flow: FlowTerms
-    strips: StripTerm
+    strips: StripTerm | NoStrips
     series: np.ndarray
 
 
-def empty_strips() -> StripTerm:
-    return StripTerm(False, np.zeros((0, 21)), np.zeros((0, 3), np.int64),
-                     np.zeros((2, 0), np.float32), np.zeros((2, 0, 2, 3), np.float32),
-                     np.zeros((2, 1, 2, 3), np.float32), np.ones(9), np.zeros((0, 2)),
-                     np.zeros(1))
+def empty_strips() -> NoStrips:
+    return NoStrips(False)

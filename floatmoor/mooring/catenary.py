@@ -550,8 +550,16 @@ def _raise_status(status, what):
                            remedy=remedy)
 
 
-def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) -> CatenaryResult:
+def _is_scalar(v) -> bool:
+    return isinstance(v, (float, int)) or np.ndim(v) == 0
+
+
+def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0):
     """Solve a single elastic catenary line between anchor and fairlead.
+
+    With arrays for any of the inputs, solves every element of their broadcast shape in one
+    compiled loop and returns a ``CatenaryBatch`` of arrays (failed elements NaN with a status
+    code): see :func:`floatmoor.mooring.catenary_batch.catenary_batch`.
 
     Parameters
     ----------
@@ -577,7 +585,8 @@ def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) ->
     Returns
     -------
     CatenaryResult
-        ``HF, VF, HA, VA, grounded_length, stiffness`` (2x2, N/m) and ``profile()``.
+        ``HF, VF, HA, VA, grounded_length, stiffness`` (2x2, N/m) and ``profile()``
+        (a ``CatenaryBatch`` of arrays when an input is an array).
 
     Raises
     ------
@@ -585,20 +594,31 @@ def catenary(xf, zf, length, ea, w, cb=0.0, *, seabed=True, hf0=0.0, vf0=0.0) ->
         No convergence to 1e-9 relative within 100 Newton iterations; the message names the
         inputs.
     """
+    num = (float, int)
+    if not ((isinstance(xf, num) and isinstance(zf, num) and isinstance(length, num)
+             and isinstance(ea, num) and isinstance(w, num) and isinstance(cb, num)
+             and isinstance(seabed, num) and isinstance(hf0, num) and isinstance(vf0, num))
+            or all(_is_scalar(v) for v in (xf, zf, length, ea, w, cb, seabed, hf0, vf0))):
+        from .catenary_batch import catenary_batch
+        return catenary_batch(xf, zf, length, ea, w, cb, seabed=seabed, hf0=hf0, vf0=vf0)
     xf = float(xf)
     zf = float(zf)
-    what = (f"catenary(xf={xf!r}, zf={zf!r}, length={length!r}, ea={ea!r}, w={w!r}, cb={cb!r}, "
-            f"seabed={seabed!r})")
-    if not (length > 0) or not (ea > 0) or not (xf >= 0) or not np.isfinite([xf, zf, w, cb]).all():
-        raise ValueError(f"invalid input: length and ea must be > 0, xf >= 0, all finite: {what}")
+
+    def what():  # the call, for error messages (formatted only when one is raised)
+        return (f"catenary(xf={xf!r}, zf={zf!r}, length={length!r}, ea={ea!r}, w={w!r}, "
+                f"cb={cb!r}, seabed={seabed!r})")
+    if not (length > 0) or not (ea > 0) or not (xf >= 0) or not (
+            math.isfinite(xf) and math.isfinite(zf) and math.isfinite(w) and math.isfinite(cb)):
+        raise ValueError(f"invalid input: length and ea must be > 0, xf >= 0, all finite: "
+                         f"{what()}")
     if seabed and zf < 0:
-        raise ValueError(f"the fairlead end must not be below an anchor on the seabed: {what}")
+        raise ValueError(f"the fairlead end must not be below an anchor on the seabed: {what()}")
     work = np.empty(24)
     out = np.zeros(OUT_SIZE)
     status = catenary_kernel(xf, zf, float(length), float(ea), float(w), float(cb), bool(seabed),
                              float(hf0), float(vf0), work, out)
     if status != 0:
-        _raise_status(status, what)
+        _raise_status(status, what())
     return CatenaryResult(HF=out[OUT_HF], VF=out[OUT_VF], HA=out[OUT_HA], VA=out[OUT_VA],
                           grounded_length=out[OUT_LB],
                           stiffness=np.array([[out[OUT_K11], out[OUT_K12]],

@@ -53,7 +53,7 @@ import math
 from numba import njit
 
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
-from ..forces.slender_kernels import slender_packed_into
+from ..forces.slender_kernels import strips_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.system import system_force_kernel
 from .td_bundles import new_state
@@ -113,9 +113,12 @@ def _rhs(j, c, dt, x, v, terms, lines, st):
     # mooring (earth axes)
     if lines.on:
         cat = lines.cat
+        # want_k typed bool like the statics' calls (a literal False would compile a second
+        # specialisation of system_force_kernel); j >= 0, so it is False
+        want_k = j < 0
         bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
                                   cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
-                                  lines.active, lines.warm, False, st.work, st.rot,
+                                  lines.active, lines.warm, want_k, st.work, st.rot,
                                   st.line_out, st.fm, st.stiff)
         if bad >= 0:
             return bad
@@ -175,8 +178,7 @@ def _rhs(j, c, dt, x, v, terms, lines, st):
     # strips (slender elements): drag with the total body velocity (Wang (2016) eq. 6.7-6.8)
     sl = terms.strips
     if sl.on:
-        slender_packed_into(j, x, v, sl.fel, sl.iel, sl.eta, sl.u, sl.a, sl.par, sl.cur,
-                            sl.ramp, st.rot, st.sl_sc, parts[r])
+        strips_into(j, x, v, sl, st.rot, st.sl_sc, parts[r])
         r += 1
     # precomputed series
     series = terms.series

@@ -1,0 +1,82 @@
+"""First run from an empty numba cache: a scene compiles only the kernels it uses, each once.
+
+The first command of the README (the flagship storm) pays for every numba compilation before
+its first seed result; a second type specialisation of a kernel, or a kernel the scene does not
+use, costs seconds there (benchmarks/RESULTS.md, "First run").  These tests run in a fresh
+process with an empty cache directory (NUMBA_CACHE_DIR) and record numba's compile events.
+"""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+RECORDER = """
+import json, sys
+from numba.core import event
+compiled = []
+class Listener(event.Listener):
+    def on_start(self, ev):
+        pass
+    def on_end(self, ev):
+        f = ev.data["dispatcher"].py_func
+        compiled.append([f.__module__ + "." + f.__qualname__, str(ev.data["args"])])
+event.register("numba:compile", Listener())
+"""
+
+
+def _run(code, tmp_path):
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba_cache"),
+               PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env.pop("NUMBA_DISABLE_JIT", None)
+    out = subprocess.run([sys.executable, "-W", "ignore", "-c", RECORDER + code], env=env,
+                         cwd=ROOT, capture_output=True, text=True, timeout=900)
+    assert out.returncode == 0, out.stderr[-3000:]
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_no_strips_compiles_no_strip_code(tmp_path):
+    """A kernel given the strips bundle of a run without strips (NoStrips) compiles the empty
+    choice of strips_into, not the slender-element kernels."""
+    compiled = _run("""
+import numpy as np
+from numba import njit
+from floatmoor.forces.slender_kernels import strips_into
+from floatmoor.forces.terms import empty_strips
+
+@njit
+def f(sl, out):
+    if sl.on:
+        strips_into(0, np.zeros(6), np.zeros(6), sl, np.zeros((3, 3)), np.zeros(6), out)
+    return sl.on
+
+out = np.zeros(6)
+assert f(empty_strips(), out) is False and not out.any()
+print(json.dumps(compiled))
+""", tmp_path)
+    names = [c[0] for c in compiled]
+    assert any(n.endswith("strips_into_typed.<locals>.nothing") for n in names), names
+    assert not [n for n in names if n.rsplit(".", 1)[-1].startswith("slender_")], names
+
+
+@pytest.mark.slow
+def test_flagship_compiles_each_kernel_once_and_no_strip_code(tmp_path):
+    """The flagship scene (no slender elements), 300 s of storm from an empty cache: every
+    numba function is compiled for one signature only, and no slender-element kernel."""
+    compiled = _run("""
+from floatmoor.analyses.simulate import simulate
+from floatmoor.io.scene import load_scene
+simulate(load_scene("scenes/floatel_100yr.yaml"), seed=1, duration=300.0)
+print(json.dumps(compiled))
+""", tmp_path)
+    names = [c[0] for c in compiled]
+    assert "floatmoor.solvers.td_kernel.td_steps" in names
+    assert "floatmoor.mooring.system.system_force_kernel" in names
+    twice = sorted({n for n in names if names.count(n) > 1 and n.startswith("floatmoor.")})
+    assert not twice, [c for c in compiled if c[0] in twice]
+    assert not [n for n in names if n.rsplit(".", 1)[-1].startswith("slender_")], names
