@@ -291,18 +291,10 @@ def _guard_limits(built) -> np.ndarray:
     return np.array([trans, trans, max(depth, 50.0), 1.0, 1.0, 1e3])
 
 
-def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guard: float = 10.0,
-              built=None) -> TimeDomainResult:
-    """Run the time loop of an :class:`Assembly`.
-
-    Raises
-    ------
-    NumericalError
-        NaN or an exploding state (names the time and DOF), a line tension above
-        ``tension_guard`` x MBS or a failed catenary solve (names the time and line), or a time
-        step beyond the integrator's stability limit (before running).
-    """
-    t_start = _time.perf_counter()
+def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
+                   tension_guard: float = 10.0, built=None):
+    """The bundles ``(body, terms, lines, out)`` of :func:`floatmoor.solvers.td_kernel.td_steps`
+    for a run of ``a`` (NumericalError when ``dt`` is beyond the RK4 stability limit)."""
     asm = a.asm
     dt = a.dt
     n = a.n_steps
@@ -318,20 +310,43 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
         lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
                       np.zeros((moor.n_lines, 2)), as_kernel_array(asm.fail_time, float),
                       as_kernel_array(moor.mbs, float))
-        line_names = list(moor.names)
     else:
         lines = no_lines()
-        line_names = []
-    mbs = lines.mbs
-    n_lines = len(line_names)
+    n_lines = lines.mbs.shape[0]
     terms = asm.force_terms()
-    part_names = asm.part_names
-    out = new_outputs(n, n_lines, len(part_names), record_parts=bool(record_forces))
+    out = new_outputs(n, n_lines, len(asm.part_names), record_parts=bool(record_forces))
     x0 = as_kernel_array(a.x0, float)
     v0 = np.zeros(6) if v0 is None else as_kernel_array(v0, float)
     guard = _guard_limits(built) if built is not None else np.array([1e4, 1e4, 1e3, 1.0, 1.0, 1e3])
     body = Body(int(n), float(dt), as_kernel_array(a.inertia, float), minv, x0, v0, guard,
                 float(tension_guard), bool(record_forces))
+    return body, terms, lines, out
+
+
+def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guard: float = 10.0,
+              built=None) -> TimeDomainResult:
+    """Run the time loop of an :class:`Assembly`.
+
+    Raises
+    ------
+    NumericalError
+        NaN or an exploding state (names the time and DOF), a line tension above
+        ``tension_guard`` x MBS or a failed catenary solve (names the time and line), or a time
+        step beyond the integrator's stability limit (before running).
+    """
+    t_start = _time.perf_counter()
+    asm = a.asm
+    dt = a.dt
+    n = a.n_steps
+    body, terms, lines, out = kernel_bundles(a, record_forces=record_forces, v0=v0,
+                                             tension_guard=tension_guard, built=built)
+    moor = asm.mooring
+    line_names = list(moor.names) if moor is not None else []
+    mbs = lines.mbs
+    n_lines = len(line_names)
+    part_names = asm.part_names
+    x0 = body.x0
+    guard = body.guard
     setup_time = _time.perf_counter() - t_start
     t0 = _time.perf_counter()
     fe_records = None
