@@ -4,8 +4,9 @@ Numba has no profiler, so every component kernel of the step is timed on its own
 calls it makes in a 3-hour run of ``scenes/floatel_100yr.yaml`` (seed 1, dt 0.1 s, 108000
 steps, 4 RK4 stages each), with the inputs of that run (the recorded poses and velocities):
 
-* catenary solves: :func:`floatmoor.mooring.system.system_force_kernel` at the 4 stage poses of
-  every step (recorded by a copy of the loop), warm-started from the previous call as in the
+* catenary solves: :func:`floatmoor.mooring.system.system_force_kernel` (or with
+  ``--catenary predictor`` :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)
+  at the 4 stage poses of every step (recorded by a copy of the loop), warm-started from the previous call as in the
   loop; the mean number of Newton iterations per line solve;
 * radiation memory: the convolution sum once per step and its stage update 4 times per step;
 * relative flow: the wind and current terms (table look-up, atan2) at every stage;
@@ -15,7 +16,8 @@ steps, 4 RK4 stages each), with the inputs of that run (the recorded poses and v
   record, the guards): the whole loop less the components.
 
 CPU time (``time.process_time``), the best of ``--repeat`` repeats (the machine is shared).
-Run: ``.venv/bin/python benchmarks/profile_qs_step.py [--duration 10800] [--repeat 3]``
+Run: ``.venv/bin/python benchmarks/profile_qs_step.py [--duration 10800] [--repeat 3]
+[--catenary exact|predictor]``
 """
 
 from __future__ import annotations
@@ -41,7 +43,7 @@ def setup(duration: float, dt: float, seed: int, solver=None):
     scene = load_scene(SCENE)
     built = build(scene)
     a = assemble(built, seed=seed, dt=dt, duration=duration, ramp=scene.analysis.ramp,
-                 options=scene.forces)
+                 options=scene.forces, solver=solver)
     return a, built
 
 
@@ -65,10 +67,12 @@ def main() -> None:
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--catenary", default="exact", help="solver.catenary: exact | predictor")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     from floatmoor.forces.kernels import relative_flow_force_into, turn_horizontal
     from floatmoor.mooring.catenary import OUT_ITER
+    from floatmoor.mooring.catenary_step import system_force_step_kernel
     from floatmoor.mooring.system import system_force_kernel
     from floatmoor.solvers.td_kernel import _memory_sum, _push_history, _stage, new_run_state
 
@@ -96,15 +100,22 @@ def main() -> None:
             _push_history(n + 1, st)
 
     @njit
-    def catenary_loop(poses, cat, active, warm, work, rot, line_out, fm, stiff, xs, iters):
+    def catenary_loop(poses, cat, active, warm, work, rot, line_out, fm, stiff, xs, iters, tol):
         n_lines = line_out.shape[0]
         for n in range(poses.shape[0]):
             for i in range(6):
                 xs[i] = poses[n, i]
-            bad = system_force_kernel(xs, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
-                                      cat.seg_w, cat.seg_P, cat.line_start, cat.cb,
-                                      cat.seabed, active, warm, False, work, rot, line_out,
-                                      fm, stiff)
+            if tol > 0.0:
+                bad = system_force_step_kernel(xs, cat.anchors, cat.fairleads, cat.seg_L,
+                                               cat.seg_EA, cat.seg_w, cat.seg_P,
+                                               cat.line_start, cat.cb, cat.seabed, active,
+                                               warm, tol, n % 4 == 2, work, rot,
+                                               line_out, fm)
+            else:
+                bad = system_force_kernel(xs, cat.anchors, cat.fairleads, cat.seg_L,
+                                          cat.seg_EA, cat.seg_w, cat.seg_P, cat.line_start,
+                                          cat.cb, cat.seabed, active, warm, False, work, rot,
+                                          line_out, fm, stiff)
             if bad >= 0:
                 return bad
             for i in range(n_lines):
@@ -182,8 +193,11 @@ def main() -> None:
                         parts[i] -= s
                     turn_horizontal(parts, cy, sy)
 
-    print(f"scene {SCENE.name}: {args.duration:g} s at dt {args.dt:g} s, seed {args.seed}")
-    a, built = setup(args.duration, args.dt, args.seed)
+    from floatmoor.io.solver_section import SolverSpec
+    solver = SolverSpec(catenary=args.catenary)
+    print(f"scene {SCENE.name}: {args.duration:g} s at dt {args.dt:g} s, seed {args.seed}, "
+          f"solver {solver}")
+    a, built = setup(args.duration, args.dt, args.seed, solver)
     n = a.n_steps
     best = {}
 
@@ -210,7 +224,7 @@ def main() -> None:
         if rep == 0:  # compile
             m = min(n, 50)
             catenary_loop(st_poses[:m], lines.cat, lines.active, lines.warm, st.work, st.rot,
-                          st.line_out, st.fm, st.stiff, st.xs, np.zeros(2))
+                          st.line_out, st.fm, st.stiff, st.xs, np.zeros(2), lines.step_tol)
             memory_loop(vel[:m], terms.memory, st, body.dt, st.f)
             flow_loop(poses[:m], vel[:m], terms.flow, st.coef, st.f)
             series_loop(m - 1, terms.series, st.parts)
@@ -220,7 +234,7 @@ def main() -> None:
         iters[:] = 0.0
         t0 = time.process_time()
         catenary_loop(st_poses, lines.cat, lines.active, lines.warm, st.work, st.rot,
-                      st.line_out, st.fm, st.stiff, st.xs, iters)
+                      st.line_out, st.fm, st.stiff, st.xs, iters, lines.step_tol)
         keep("catenary solves (12 lines x 4 stages)", time.process_time() - t0)
         st = new_run_state(body, terms, lines, out2)
         t0 = time.process_time()

@@ -55,6 +55,7 @@ from numba import njit
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import slender_packed_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
+from ..mooring.catenary_step import system_force_step_kernel
 from ..mooring.system import system_force_kernel
 from .td_bundles import new_state
 
@@ -84,14 +85,16 @@ def set_status(status, code, step, index):
 
 
 @njit(cache=True)
-def _rhs(j, c, dt, x, v, terms, lines, st):
+def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
     """Total force ``st.f`` (6,) and the force of every term ``st.parts`` (n_terms, 6), earth
     axes (moments about the displaced reference point), at sample j (time j dt/2), stage
     fraction c, pose ``x`` and yaw-frame velocity ``v``: the kinds in the order of
     :data:`floatmoor.forces.terms.KINDS`, each over its terms.  ``st.mcorr`` is added to the
     mooring force when ``st.has_mcorr`` (the dynamic part of coupled FE lines,
     :mod:`floatmoor.solvers.fe_coupling`).  Returns -1, or the index of a line whose catenary
-    failed."""
+    failed.  ``stage`` the RK4 stage (0-3): with the predictor-corrector catenaries
+    (``lines.step_tol`` > 0) stage 2 takes the predictor alone (its pose is within millimetres
+    of stage 1's, :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)."""
     parts = st.parts
     cy = math.cos(x[5])
     sy = math.sin(x[5])
@@ -113,10 +116,17 @@ def _rhs(j, c, dt, x, v, terms, lines, st):
     # mooring (earth axes)
     if lines.on:
         cat = lines.cat
-        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
-                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
-                                  lines.active, lines.warm, False, st.work, st.rot,
-                                  st.line_out, st.fm, st.stiff)
+        if lines.step_tol > 0.0:
+            bad = system_force_step_kernel(x, cat.anchors, cat.fairleads, cat.seg_L,
+                                           cat.seg_EA, cat.seg_w, cat.seg_P, cat.line_start,
+                                           cat.cb, cat.seabed, lines.active, lines.warm,
+                                           lines.step_tol, stage == 2, st.work, st.rot,
+                                           st.line_out, st.fm)
+        else:
+            bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                      cat.seg_w, cat.seg_P, cat.line_start, cat.cb,
+                                      cat.seabed, lines.active, lines.warm, False, st.work,
+                                      st.rot, st.line_out, st.fm, st.stiff)
         if bad >= 0:
             return bad
         for i in range(6):
@@ -240,7 +250,7 @@ def _stage(j, c, x, v, k, body, terms, lines, st):
     """Stage ``k`` of RK4 at sample j, fraction c, state (x, v): the force (``st.f``,
     ``st.parts``), the pose rate ``st.q[k]`` and the acceleration ``st.a[k]``.  Returns -1 or
     the index of a line whose catenary failed."""
-    bad = _rhs(j, c, body.dt, x, v, terms, lines, st)
+    bad = _rhs(j, c, body.dt, x, v, terms, lines, st, k)
     if bad >= 0:
         return bad
     _pose_rate(x, v, st.q[k])

@@ -57,6 +57,7 @@ from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.slender import refuse_qtf_with_correction
 from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
+from ..mooring.catenary_step import WARM_SIZE
 from .statics import solve_equilibrium as equilibrium
 from .td_bundles import Body, Lines, new_outputs, no_lines
 from .td_kernel import (
@@ -93,6 +94,9 @@ class Assembly:
     wave_yaw: float = 0.0
     fe: object = None
     """The finite-element lines (:class:`floatmoor.solvers.fe_coupling.FECoupling`) or None."""
+    solver: object = None
+    """Options of the time loop (:class:`floatmoor.io.solver_section.SolverSpec`) or None (the
+    exact path)."""
 
     @property
     def wf_velocity(self):
@@ -180,7 +184,7 @@ def default_models(built, options=None) -> list[str]:
 
 def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
              options=None, models: list[str] | None = None, waves=None,
-             start_pose=None) -> Assembly:
+             start_pose=None, solver=None) -> Assembly:
     """Build the models and the kernel arrays of one run.
 
     Parameters
@@ -192,6 +196,8 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     waves : a :class:`floatmoor.forces.waves.WaveComponents` to use instead of realising the
         scene's sea state (e.g. a regular wave); needs ``models`` to include ``wave1``.
     start_pose : (6,) start pose instead of the static equilibrium (free decay).
+    solver : the scene's ``solver`` options (:class:`floatmoor.io.solver_section.SolverSpec`)
+        or None: the exact path.
     """
     if built.vessel is None:
         raise SceneError(built.scene.file, "vessel", "a vessel for a time-domain simulation")
@@ -282,7 +288,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
             built.mooring.warm[:] = 0.0
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
                     inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
-                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe)
+                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe, solver=solver)
 
 
 def _guard_limits(built) -> np.ndarray:
@@ -294,7 +300,9 @@ def _guard_limits(built) -> np.ndarray:
 def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
                    tension_guard: float = 10.0, built=None):
     """The bundles ``(body, terms, lines, out)`` of :func:`floatmoor.solvers.td_kernel.td_steps`
-    for a run of ``a`` (NumericalError when ``dt`` is beyond the RK4 stability limit)."""
+    for a run of ``a`` (NumericalError when ``dt`` is beyond the RK4 stability limit); the
+    catenary solves of ``a.solver`` (:func:`floatmoor.io.solver_section.catenary_tol`)."""
+    from ..io.solver_section import catenary_tol
     asm = a.asm
     dt = a.dt
     n = a.n_steps
@@ -308,8 +316,8 @@ def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
     moor = asm.mooring
     if moor is not None:
         lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
-                      np.zeros((moor.n_lines, 2)), as_kernel_array(asm.fail_time, float),
-                      as_kernel_array(moor.mbs, float))
+                      np.zeros((moor.n_lines, WARM_SIZE)), as_kernel_array(asm.fail_time, float),
+                      as_kernel_array(moor.mbs, float), catenary_tol(a.solver))
     else:
         lines = no_lines()
     n_lines = lines.mbs.shape[0]
