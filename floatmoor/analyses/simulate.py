@@ -164,7 +164,10 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     ds.attrs["stiffest_mode_period_s"] = float(2 * np.pi / om) if om > 0 else float("inf")
     ds.attrs["real_time_factor"] = float(a.n_steps * dt / max(r.wall_time, 1e-12))
     if solver is not None and not solver.exact:
-        ds.attrs["solver"] = f"catenary {solver.catenary}"
+        ds.attrs["solver"] = solver.describe()
+        rad = a.models.get("radiation")
+        if rad is not None and rad.state_space is not None:
+            ds.attrs["memory_fit_error"] = float(np.max(rad.fit_error, initial=0.0))
     wave_models = [m for m in r.models if m == "wave1" or m.startswith("drift")]
     if wave_models and r.motion.size:
         yaw0 = float(r.info.get("wave_heading_yaw", 0.0))

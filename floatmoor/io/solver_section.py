@@ -3,6 +3,7 @@
 ```yaml
 solver:
   catenary: predictor      # exact (default) | predictor
+  memory: state_space      # convolution (default) | state_space
 ```
 
 ``catenary``: ``exact`` solves every quasi-static line at every RK4 stage by Newton's method to
@@ -10,7 +11,11 @@ the catenary tolerance (1e-9, warm-started from the previous solution); ``predic
 the previous solution with its stiffness and one Newton correction, falling back to the exact
 solve when the correction exceeds 1e-4 of the tension (:mod:`floatmoor.mooring.catenary_step`;
 the flagship storm's tensions agree with the exact path to about 1e-11, the loop is about
-twice as fast).  ``floatmoor convergence --solver`` reports the difference against run time.
+twice as fast).  ``memory``: ``convolution`` sums the sampled retardation functions over the
+whole memory once per step; ``state_space`` replaces that sum by the recursion of a sum of
+decaying exponentials fitted to each retardation function (1 % relative L2 error,
+:mod:`floatmoor.hydro.memory_fit`; the fit errors are the attribute ``memory_fit_error``).
+``floatmoor convergence --solver`` reports the differences against run time.
 
 Every key is optional; the defaults are the exact path (bit-identical results).
 """
@@ -22,10 +27,11 @@ from dataclasses import dataclass, field
 from ..core.config import Node
 
 __all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES",
-           "catenary_tol"]
+           "MEMORY_MODES", "catenary_tol"]
 
-SOLVER_KEYS = ("catenary",)
+SOLVER_KEYS = ("catenary", "memory")
 CATENARY_MODES = ("exact", "predictor")
+MEMORY_MODES = ("convolution", "state_space")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -33,12 +39,16 @@ class SolverSpec:
     """Options of the time loop (module docstring); ``file`` for messages."""
 
     catenary: str = "exact"
+    memory: str = "convolution"
     file: object = field(default=None, compare=False)
 
     @property
     def exact(self) -> bool:
         """True when every option is the exact path."""
-        return self.catenary == "exact"
+        return self.catenary == "exact" and self.memory == "convolution"
+
+    def describe(self) -> str:
+        return f"catenary {self.catenary}, memory {self.memory}"
 
 
 def parse_solver(node: Node) -> SolverSpec:
@@ -46,6 +56,7 @@ def parse_solver(node: Node) -> SolverSpec:
     node.reject_unknown(SOLVER_KEYS)
     d = SolverSpec()
     return SolverSpec(catenary=node.str("catenary", d.catenary, choices=CATENARY_MODES),
+                      memory=node.str("memory", d.memory, choices=MEMORY_MODES),
                       file=node.file)
 
 
@@ -59,4 +70,4 @@ def describe_solver(spec: SolverSpec | None, scene=None) -> list[str]:
     """Lines for ``Scene.describe()``."""
     if spec is None or spec.exact:
         return []
-    return [f"solver: catenary {spec.catenary}"]
+    return [f"solver: {spec.describe()}"]

@@ -302,11 +302,23 @@ def _fail_lines(t, lines):
 def _memory_sum(n, mem, st):
     """Convolution sum S_{n+1} = sum_{j=1}^{n_k-1} K_j v_{n+1-j} into ``st.s1``; the history
     is stored twice (columns p and p + n_k) so that the window is contiguous without a
-    modulo."""
+    modulo.  With ``mem.ss`` the recursion of the fitted exponentials instead (called once
+    per step n, ``st.v`` = v_n)."""
+    n_pairs = mem.i.shape[0]
+    if mem.ss:
+        # recursive history sum (floatmoor.hydro.memory_fit): y <- z (v_n + y), S = Re(c y)
+        for p in range(n_pairs):
+            vj = st.v[mem.j[p]]
+            s = 0.0
+            for r in range(mem.ss_z.shape[1]):
+                y = mem.ss_z[p, r] * (vj + mem.ss_y[p, r])
+                mem.ss_y[p, r] = y
+                s += (mem.ss_c[p, r] * y).real
+            st.s1[p] = s
+        return
     hist = st.hist
     n_k = hist.shape[1] // 2
     b = (n + 1) % n_k + n_k
-    n_pairs = mem.i.shape[0]
     kernel = mem.kernel
     # four pairs at a time in four independent sums (each summed in the same order as one
     # pair alone, so the same bits; the one-pair loop waits on its adder, 2x slower)

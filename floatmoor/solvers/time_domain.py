@@ -213,7 +213,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
                                 h=0.5 * dt, water_depth=site.water_depth, gravity=site.gravity)
     ctx = SetupContext(built=built, seed=int(seed), dt=float(dt), n_steps=n_steps,
                        ramp=float(ramp), yaw0=0.0, options=options, waves=waves,
-                       inputs=built.model_inputs(options, names, yaw=0.0))
+                       inputs=built.model_inputs(options, names, yaw=0.0), solver=solver)
     active = {}
     for name in names:
         m = model_class(name, key="forces")()
