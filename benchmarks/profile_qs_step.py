@@ -8,7 +8,8 @@ steps, 4 RK4 stages each), with the inputs of that run (the recorded poses and v
   ``--catenary predictor`` :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)
   at the 4 stage poses of every step (recorded by a copy of the loop), warm-started from the previous call as in the
   loop; the mean number of Newton iterations per line solve;
-* radiation memory: the convolution sum once per step and its stage update 4 times per step;
+* radiation memory: the convolution sum (or with ``--memory state_space`` its recursion) once
+  per step and its stage update 4 times per step;
 * relative flow: the wind and current terms (table look-up, atan2) at every stage;
 * series: the wave and drift force samples copied at every stage;
 * restoring and damping matrices at every stage;
@@ -17,7 +18,7 @@ steps, 4 RK4 stages each), with the inputs of that run (the recorded poses and v
 
 CPU time (``time.process_time``), the best of ``--repeat`` repeats (the machine is shared).
 Run: ``.venv/bin/python benchmarks/profile_qs_step.py [--duration 10800] [--repeat 3]
-[--catenary exact|predictor]``
+[--catenary exact|predictor] [--memory convolution|state_space]``
 """
 
 from __future__ import annotations
@@ -68,6 +69,8 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--catenary", default="exact", help="solver.catenary: exact | predictor")
+    ap.add_argument("--memory", default="convolution",
+                    help="solver.memory: convolution | state_space")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     from floatmoor.forces.kernels import relative_flow_force_into, turn_horizontal
@@ -194,9 +197,9 @@ def main() -> None:
                     turn_horizontal(parts, cy, sy)
 
     from floatmoor.io.solver_section import SolverSpec
-    solver = SolverSpec(catenary=args.catenary)
+    solver = SolverSpec(catenary=args.catenary, memory=args.memory)
     print(f"scene {SCENE.name}: {args.duration:g} s at dt {args.dt:g} s, seed {args.seed}, "
-          f"solver {solver}")
+          f"solver: {solver.describe()}")
     a, built = setup(args.duration, args.dt, args.seed, solver)
     n = a.n_steps
     best = {}
@@ -260,7 +263,7 @@ def main() -> None:
     print(f"  {'rest (RK4 bookkeeping, sums, record, guards)':52s} {rest:7.3f} s "
           f"{100 * rest / total:5.1f} %  {1e6 * rest / n:6.2f} us/step")
     print(f"  catenary: {iters[0] / max(iters[1], 1):.2f} Newton iterations per line solve "
-          f"(mean over {iters[1]:.0f} solves)")
+          f"(mean over {iters[1]:.0f} solves; 0: a predictor-corrector step)")
 
 
 if __name__ == "__main__":
