@@ -14,6 +14,12 @@ convolution's, so the only approximation is the fit of ``K_j``, j >= 1.
 Fit: the exponents by the eigensystem realisation (Kung (1978): SVD of the Hankel matrix of the
 samples, on every ``decimate``-th sample), the smallest order whose least-squares residues
 (on every sample) reach ``rel_tol`` (relative L2 error over j >= 1); unstable roots dropped.
+The sum of the samples (the memory at zero frequency, which damps the slow drift) is kept to
+round-off by a heavily weighted row of the least squares.
+
+Accuracy on the flagship storm (3 hours, seed 1, benchmarks/RESULTS.md): fits of 0.2-0.9 %,
+max offset and max tension within 0.03-0.07 % of the convolution, the order of the time-step
+error at dt = 0.1 s; standard deviations within 0.03 %.
 """
 
 from __future__ import annotations
@@ -53,7 +59,11 @@ def _residues(k: np.ndarray, z: np.ndarray):
     j = np.arange(1, k.size + 1)
     phi = z[None, :] ** j[:, None]
     basis = np.hstack([phi.real, -phi.imag[:, np.abs(z.imag) > 1e-14]])
-    coef, *_ = np.linalg.lstsq(basis, k, rcond=None)
+    # the sum of the samples (the zero-frequency memory: the slow drift's radiation force)
+    # as a heavily weighted row, i.e. kept to round-off
+    w = 1e3 * np.sqrt(k.size)
+    a = np.vstack([basis, w * basis.sum(axis=0)])
+    coef, *_ = np.linalg.lstsq(a, np.append(k, w * k.sum()), rcond=None)
     c = coef[:z.size].astype(complex)
     c[np.abs(z.imag) > 1e-14] += 1j * coef[z.size:]
     return z, c, basis @ coef
