@@ -40,9 +40,19 @@ def parse_solver_option(text: str):
     for item in text.split(","):
         key, _, value = item.partition("=")
         key, value = key.strip(), value.strip()
+        if key == "memory_fit_tol":
+            try:
+                kw[key] = float(value)
+            except ValueError:
+                raise UsageError(f"--solver: memory_fit_tol is a number, found {value!r}") \
+                    from None
+            if not 0.0 < kw[key] < 1.0:
+                raise UsageError(f"--solver: memory_fit_tol between 0 and 1, found {value}")
+            continue
         if key not in choices or value not in choices[key]:
             raise UsageError("--solver: expected KEY=VALUE with " + "; ".join(
-                f"{k} one of {', '.join(v)}" for k, v in choices.items()) + f", found {item!r}")
+                f"{k} one of {', '.join(v)}" for k, v in choices.items())
+                + f"; memory_fit_tol a number, found {item!r}")
         kw[key] = value
     return SolverSpec(**kw)
 

@@ -19,7 +19,7 @@ import weakref
 
 import numpy as np
 
-from ..hydro.memory_fit import fit_exponentials
+from ..hydro.memory_fit import FIT_REL_TOL, fit_exponentials
 from ..hydro.retardation import cutoff_time, fit_infinite_frequency_added_mass, retardation_function
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .kernels import to_earth, to_yaw_frame
@@ -33,11 +33,11 @@ CUTOFF_REL_TOL = 1e-3
 # a free heave decay); with the 1e-3 cut-off (about 30 s) it is reconstructed as +27 N s/m.
 
 
-def state_space_memory(kernel):
+def state_space_memory(kernel, *, rel_tol: float = FIT_REL_TOL):
     """Roots and residues (n_pairs, n_roots) complex, zero-padded, of the recursive history
     sums of ``kernel`` (n_pairs, n_k) (:func:`floatmoor.hydro.memory_fit.fit_exponentials` on
-    K_1, K_2, ...), and the relative L2 fit error of every pair (n_pairs,)."""
-    fits = [fit_exponentials(k[1:]) for k in kernel]
+    K_1, K_2, ... to ``rel_tol``), and the relative L2 fit error of every pair (n_pairs,)."""
+    fits = [fit_exponentials(k[1:], rel_tol=rel_tol) for k in kernel]
     n = max([1] + [f[0].size for f in fits])
     z = np.zeros((len(fits), n), complex)
     c = np.zeros((len(fits), n), complex)
@@ -113,7 +113,8 @@ class Radiation(ForceModel):
         self.state_space = None
         self.fit_error = np.zeros(0)
         if getattr(ctx.solver, "memory", "convolution") == "state_space":
-            self.state_space, self.fit_error = state_space_memory(self.kernel)
+            self.state_space, self.fit_error = state_space_memory(
+                self.kernel, rel_tol=ctx.solver.memory_fit_tol)
         self._freeze()
 
     def force(self, t, pose, velocity, out, history=None):

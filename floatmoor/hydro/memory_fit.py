@@ -31,7 +31,7 @@ __all__ = ["fit_exponentials", "FIT_REL_TOL", "MAX_ORDER"]
 FIT_REL_TOL = 0.01
 """Relative L2 error of the fitted retardation function (j >= 1) to reach."""
 
-MAX_ORDER = 24
+MAX_ORDER = 60
 """Largest ERA order tried (the roots kept, one per conjugate pair, are about half of it)."""
 
 

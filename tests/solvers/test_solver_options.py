@@ -47,6 +47,10 @@ def test_bad_option_is_a_scene_error(tmp_path):
         load_scene(flagship(tmp_path, {"catenary": "fast"}))
     with pytest.raises(SceneError, match="solver"):
         load_scene(flagship(tmp_path, {"catenery": "predictor"}))
+    with pytest.raises(SceneError, match="solver.memory_fit_tol"):
+        load_scene(flagship(tmp_path, {"memory": "state_space", "memory_fit_tol": 0.0}))
+    spec = load_scene(flagship(tmp_path, {"memory": "state_space", "memory_fit_tol": 1e-3}))
+    assert spec.solver.memory_fit_tol == 1e-3 and not spec.solver.exact
 
 
 def test_predictor_catenary_against_the_exact_path(tmp_path, exact_storm):
@@ -75,7 +79,7 @@ def test_state_space_memory_against_the_convolution(tmp_path, exact_storm):
         warnings.simplefilter("ignore")
         ds = simulate(flagship(tmp_path, {"catenary": "predictor", "memory": "state_space"}),
                       seed=1, duration=1500.0)
-    assert ds.attrs["solver"] == "catenary predictor, memory state_space"
+    assert ds.attrs["solver"] == "catenary predictor, memory state_space (fit 0.01)"
     assert 0.0 < ds.attrs["memory_fit_error"] <= 0.01
     ref = exact_storm
     sel = ref["time"].values >= 200.0
@@ -103,7 +107,7 @@ def test_convergence_command_reports_the_options(tmp_path, capsys):
     assert main(["convergence", str(p), "--levels", "2", "--dt0", "0.2",
                  "--solver", "catenary=predictor,memory=state_space"]) == 0
     out = capsys.readouterr().out
-    rows = [ln for ln in out.splitlines() if "memory state_space (" in ln]
+    rows = [ln for ln in out.splitlines() if "memory state_space (fit 0.01) (" in ln]
     assert len(rows) == 2
     assert all(float(r.rsplit("(", 1)[1].split()[0]) < 1.0 for r in rows)  # percent
     assert main(["convergence", str(p), "--solver", "memory=fast"]) == 2
