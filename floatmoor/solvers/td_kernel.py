@@ -36,6 +36,11 @@ the kinds in a fixed order and over each kind's terms, writing one row of ``part
 the total force is the sum of the rows in that order.  The kernels take the bundles of
 :mod:`floatmoor.forces.terms` and :mod:`floatmoor.solvers.td_bundles`.
 
+Opt-in approximations (scene ``solver:``, :mod:`floatmoor.io.solver_section`; the default is
+the exact path above): ``lines.step_tol`` > 0 takes the predictor-corrector catenary solves of
+:mod:`floatmoor.mooring.catenary_step` (the predictor alone at stage 2), ``memory.ss`` the
+recursive history sum of :mod:`floatmoor.hydro.memory_fit` instead of the convolution sum.
+
 Structure of a step (:func:`td_steps`): line failures and the convolution sum, the first
 stage at t_n (:func:`_stage`), the record and its tension guard (:func:`_record`), the rest of
 the RK4 step (:func:`rk4_step`), the state guards (:func:`_state_status`) and the velocity
@@ -468,6 +473,7 @@ def new_run_state(body, terms, lines, out, *, has_mcorr: bool = False):
     st = new_state(out.parts.shape[1], lines.cat.anchors.shape[0], mem.i.shape[0],
                    max(1, mem.kernel.shape[1]), has_mcorr=has_mcorr)
     start_state(body.x0, body.v0, st.x, st.v, st.hist)
+    mem.ss_y[...] = 0.0  # the state-space memory starts at rest, like the history
     return st
 
 
