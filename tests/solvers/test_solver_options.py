@@ -111,3 +111,25 @@ def test_convergence_command_reports_the_options(tmp_path, capsys):
     assert len(rows) == 2
     assert all(float(r.rsplit("(", 1)[1].split()[0]) < 1.0 for r in rows)  # percent
     assert main(["convergence", str(p), "--solver", "memory=fast"]) == 2
+
+
+@pytest.mark.slow
+def test_options_run_without_jit(tmp_path):
+    """Both options as plain Python (NUMBA_DISABLE_JIT=1) give the compiled numbers (8 s of
+    the storm; about 2 minutes: the setup's statics run as plain Python too)."""
+    import os
+    import subprocess
+    import sys
+
+    p = flagship(tmp_path, {"catenary": "predictor", "memory": "state_space"})
+    code = ("import warnings; warnings.simplefilter('ignore')\n"
+            "from floatmoor.analyses.simulate import simulate\n"
+            f"ds = simulate({str(p)!r}, seed=1, duration=8.0, dt=0.1)\n"
+            "print(repr(float(ds['line_tension'].values[-1].sum())), "
+            "repr(float(ds['motion'].values[-1, 0])))")
+    outs = []
+    for flag in ("1", "0"):
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           env=dict(os.environ, NUMBA_DISABLE_JIT=flag), check=True)
+        outs.append([float(v) for v in r.stdout.split()])
+    np.testing.assert_allclose(outs[0], outs[1], rtol=1e-12)
