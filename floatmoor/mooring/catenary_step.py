@@ -63,7 +63,7 @@ WARM_SIZE = 8
 """Columns of the line states: H, V, x, z, K11, K12, K21, K22."""
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def _keep(xf, zf, out, warm, i):
     """Line state ``warm[i]`` from a solution ``out`` at (xf, zf)."""
     warm[i, 0] = out[OUT_HF]
@@ -76,7 +76,7 @@ def _keep(xf, zf, out, warm, i):
     warm[i, 7] = out[OUT_K22]
 
 
-@njit(cache=True)
+@njit(cache=True, inline='always')
 def line_step_kernel(xf, zf, L, EA, w, P, i0, i1, cb, seabed, warm, i, tol, work, out):
     """Solve line ``i`` (segments ``i0 .. i1-1``) at fairlead (xf, zf) from its state
     ``warm[i]`` (module docstring); arguments as :func:`floatmoor.mooring.catenary.line_kernel`.
