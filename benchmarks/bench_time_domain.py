@@ -11,7 +11,8 @@ dt = 0.1 s, 10800 s simulated.  Prints
   separately, and the real-time factor of the loop and of the
   whole call.
 
-Run: ``.venv/bin/python benchmarks/bench_time_domain.py [--duration 10800] [--dt 0.1]``
+Run: ``.venv/bin/python benchmarks/bench_time_domain.py [--duration 10800] [--dt 0.1]
+[--solver catenary=predictor,memory=state_space]``
 """
 
 from __future__ import annotations
@@ -53,6 +54,8 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=10800.0)
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--solver", default=None, metavar="KEY=VALUE[,KEY=VALUE]",
+                    help="solver options, e.g. catenary=predictor,memory=state_space")
     ap.add_argument("--extreme", action="store_true",
                     help="instead: dt sweep of the storm / taut / slack cases (1200 s each)")
     args = ap.parse_args()
@@ -73,9 +76,14 @@ def main() -> None:
     warnings.simplefilter("ignore")
     from floatmoor.analyses.simulate import simulate
 
-    simulate(SCENE, seed=args.seed, duration=60.0, dt=args.dt)  # load the kernels
+    solver = None
+    if args.solver:
+        from floatmoor.commands.convergence import parse_solver_option
+        solver = parse_solver_option(args.solver)
+        print(f"solver options: {solver.describe()}")
+    simulate(SCENE, seed=args.seed, duration=60.0, dt=args.dt, solver=solver)  # load kernels
     t0 = time.perf_counter()
-    ds = simulate(SCENE, seed=args.seed, duration=args.duration, dt=args.dt)
+    ds = simulate(SCENE, seed=args.seed, duration=args.duration, dt=args.dt, solver=solver)
     total = time.perf_counter() - t0
     loop = ds.attrs["run_time_s"]
     setup = ds.attrs["setup_time_s"]

@@ -58,7 +58,8 @@ def _versions() -> dict:
 def simulate(scene, *, seed: int | None = None, duration: float | None = None,
              dt: float | None = None, ramp: float | None = None, transient: float | None = None,
              forces=None, record_forces: bool | None = None, models=None, waves=None,
-             start_pose=None, start_velocity=None, fibre_stiffness=None) -> xr.Dataset:
+             start_pose=None, start_velocity=None, fibre_stiffness=None,
+             solver=None) -> xr.Dataset:
     """Simulate one realisation of a scene in the time domain.
 
     Parameters
@@ -85,6 +86,9 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         Fibre-rope stiffness bound instead of the scene's ``analysis.fibre_stiffness``
         (:mod:`floatmoor.io.analysis`; ``both`` runs ``upper`` here). Attribute
         ``fibre_stiffness`` of the result when the mooring has fibre ropes.
+    solver : :class:`floatmoor.io.solver_section.SolverSpec`, optional
+        Options of the time loop (default: the scene's ``solver`` section, if any, else the
+        exact path); attribute ``solver``.
 
     Notes
     -----
@@ -152,8 +156,10 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         forces = getattr(sc, "forces", None)
     if record_forces is None:
         record_forces = bool(getattr(forces, "record_forces", False))
+    if solver is None:
+        solver = getattr(sc, "solver", None)
     a = assemble(built, seed=int(seed), dt=dt, duration=duration, ramp=ramp, options=forces,
-                 models=models, waves=waves, start_pose=start_pose)
+                 models=models, waves=waves, start_pose=start_pose, solver=solver)
     r = integrate(a, record_forces=record_forces, built=built, v0=start_velocity)
     setup = _time.perf_counter() - t_all - r.wall_time
     ds = result_dataset(r, built, seed=int(seed), dt=dt, duration=a.n_steps * dt, ramp=ramp,
@@ -163,6 +169,11 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     om = float(r.info.get("omega_max", 0.0))
     ds.attrs["stiffest_mode_period_s"] = float(2 * np.pi / om) if om > 0 else float("inf")
     ds.attrs["real_time_factor"] = float(a.n_steps * dt / max(r.wall_time, 1e-12))
+    if solver is not None and not solver.exact:
+        ds.attrs["solver"] = solver.describe()
+        rad = a.models.get("radiation")
+        if rad is not None and rad.state_space is not None:
+            ds.attrs["memory_fit_error"] = float(np.max(rad.fit_error, initial=0.0))
     wave_models = [m for m in r.models if m == "wave1" or m.startswith("drift")]
     if wave_models and r.motion.size:
         yaw0 = float(r.info.get("wave_heading_yaw", 0.0))

@@ -64,6 +64,8 @@ class SetupContext:
         that combine models (viscous drift: extra linear damping, hull current coefficients
         without double counting, corrected mean drift), applied once where the scene's models
         are chosen; None: the vessel's data as they are (a model set up on its own).
+    solver : the ``solver:`` options (:class:`floatmoor.io.solver_section.SolverSpec`) or
+        None (the exact path).
     """
 
     built: Any
@@ -75,6 +77,7 @@ class SetupContext:
     options: Any = None
     waves: Any = None
     inputs: Any = None
+    solver: Any = None
 
     @property
     def n_samples(self) -> int:
@@ -220,11 +223,13 @@ class KernelAssembly:
         """``F_i = -T sum_j matrix_ij nu_j |nu_j|`` on the yaw-frame velocity."""
         self._add("quadratic_damping", name, np.asarray(matrix, float).reshape(6, 6))
 
-    def add_memory(self, name: str, kernel, i, j) -> None:
+    def add_memory(self, name: str, kernel, i, j, state_space=None) -> None:
         """Radiation memory: ``kernel`` (n_pairs, n_k) K_ij at 0, dt, 2 dt, ... for the DOF
-        pairs ``i``, ``j``."""
+        pairs ``i``, ``j``; ``state_space``: None (the convolution) or the roots and residues
+        (n_pairs, n_roots) complex of the recursive history sum
+        (:mod:`floatmoor.hydro.memory_fit`)."""
         self._add("memory", name, (np.asarray(kernel, float), np.asarray(i, np.int64),
-                                   np.asarray(j, np.int64)))
+                                   np.asarray(j, np.int64), state_space))
 
     def add_relative_flow(self, name: str, *, speed, heading: float, table_heading,
                           table) -> None:
@@ -301,12 +306,18 @@ class KernelAssembly:
                               c(np.array([m for _, (_, m) in t["restoring"]]).reshape(-1, 6, 6)))
         damp = MatrixTerms(c(np.array([m for _, m in t["damping"]]).reshape(-1, 6, 6)))
         quad = MatrixTerms(c(np.array([m for _, m in t["quadratic_damping"]]).reshape(-1, 6, 6)))
+        no_ss = np.zeros((0, 1), complex)
         if t["memory"]:
-            kernel, i, j = t["memory"][0][1]
-            mem = MemoryTerm(True, c(kernel if kernel.size else np.zeros((0, 1))), c(i), c(j))
+            kernel, i, j, ss = t["memory"][0][1]
+            if ss is None:
+                ss_on, z, cz = False, no_ss, no_ss
+            else:
+                ss_on, (z, cz) = True, ss
+            mem = MemoryTerm(True, c(kernel if kernel.size else np.zeros((0, 1))), c(i), c(j),
+                             ss_on, c(z, complex), c(cz, complex), np.zeros_like(c(z, complex)))
         else:
             mem = MemoryTerm(False, np.zeros((0, 1)), np.zeros(0, np.int64),
-                             np.zeros(0, np.int64))
+                             np.zeros(0, np.int64), False, no_ss, no_ss, no_ss.copy())
         flows = [p for _, p in t["relative_flow"]]
         n = len(flows)
         varies = np.array([p[0].ndim == 1 for p in flows], np.bool_)

@@ -19,6 +19,7 @@ import weakref
 
 import numpy as np
 
+from ..hydro.memory_fit import FIT_REL_TOL, fit_exponentials
 from ..hydro.retardation import cutoff_time, fit_infinite_frequency_added_mass, retardation_function
 from .base import ForceModel, KernelAssembly, SetupContext, register
 from .kernels import to_earth, to_yaw_frame
@@ -30,6 +31,20 @@ CUTOFF_REL_TOL = 1e-3
 # 1e-3, not 1e-2: OC3 heave K_33 has a slow lobe of -0.6 % of its peak at 15 s; cutting there
 # turns B_33(0.2 rad/s) from +30 to -134 N s/m (negative damping, a 0.3 % growth per 400 s of
 # a free heave decay); with the 1e-3 cut-off (about 30 s) it is reconstructed as +27 N s/m.
+
+
+def state_space_memory(kernel, *, rel_tol: float = FIT_REL_TOL):
+    """Roots and residues (n_pairs, n_roots) complex, zero-padded, of the recursive history
+    sums of ``kernel`` (n_pairs, n_k) (:func:`floatmoor.hydro.memory_fit.fit_exponentials` on
+    K_1, K_2, ... to ``rel_tol``), and the relative L2 fit error of every pair (n_pairs,)."""
+    fits = [fit_exponentials(k[1:], rel_tol=rel_tol) for k in kernel]
+    n = max([1] + [f[0].size for f in fits])
+    z = np.zeros((len(fits), n), complex)
+    c = np.zeros((len(fits), n), complex)
+    for p, (zp, cp, _) in enumerate(fits):
+        z[p, :zp.size] = zp
+        c[p, :cp.size] = cp
+    return (z, c), np.array([f[2] for f in fits])
 
 
 def retardation_matrix(db, t) -> np.ndarray:
@@ -95,6 +110,11 @@ class Radiation(ForceModel):
         self.pair_i = ii.astype(np.int64)
         self.pair_j = jj.astype(np.int64)
         self.memory = (n_k - 1) * dt
+        self.state_space = None
+        self.fit_error = np.zeros(0)
+        if getattr(ctx.solver, "memory", "convolution") == "state_space":
+            self.state_space, self.fit_error = state_space_memory(
+                self.kernel, rel_tol=ctx.solver.memory_fit_tol)
         self._freeze()
 
     def force(self, t, pose, velocity, out, history=None):
@@ -115,4 +135,4 @@ class Radiation(ForceModel):
         out += to_earth(f, yaw)
 
     def contribute(self, asm: KernelAssembly):
-        asm.add_memory(self.name, self.kernel, self.pair_i, self.pair_j)
+        asm.add_memory(self.name, self.kernel, self.pair_i, self.pair_j, self.state_space)

@@ -67,12 +67,19 @@ class MatrixTerms(NamedTuple):
 
 class MemoryTerm(NamedTuple):
     """``memory`` kind: ``on``; ``kernel`` (n_pairs, n_k) retardation functions K_ij(k dt) of
-    the DOF pairs ``i``, ``j`` (n_pairs,) int64."""
+    the DOF pairs ``i``, ``j`` (n_pairs,) int64.  ``ss``: the history sum by the recursion of
+    :mod:`floatmoor.hydro.memory_fit` (scene ``solver: {memory: state_space}``) with roots
+    ``ss_z`` and residues ``ss_c`` (n_pairs, n_roots) complex (zero-padded) and its state
+    ``ss_y`` (n_pairs, n_roots) complex, instead of the convolution sum."""
 
     on: bool
     kernel: np.ndarray
     i: np.ndarray
     j: np.ndarray
+    ss: bool
+    ss_z: np.ndarray
+    ss_c: np.ndarray
+    ss_y: np.ndarray
 
 
 class FlowTerms(NamedTuple):

@@ -15,7 +15,8 @@ Required: ``site`` (with ``water_depth``).  Optional: ``name`` (default: the fil
 extension), ``description``, ``vessel``, ``environment`` (absent: calm, no wind, no current),
 ``mooring``, ``analysis`` (defaults in :mod:`floatmoor.io.analysis`), ``forces`` (options of the
 time-domain force models, :mod:`floatmoor.io.forces_section`), ``frequency_domain`` (options of
-the frequency-domain analysis, :mod:`floatmoor.io.fd_section`).  Paths are relative to the
+the frequency-domain analysis, :mod:`floatmoor.io.fd_section`), ``solver`` (opt-in faster
+approximations of the time loop, :mod:`floatmoor.io.solver_section`).  Paths are relative to the
 scene file's folder.  Unknown keys are refused everywhere.  The section formats are documented
 in :mod:`floatmoor.io.site`, :mod:`floatmoor.io.environment`, :mod:`floatmoor.io.analysis`.
 
@@ -43,6 +44,7 @@ from .checks import SCENE_CHECKS
 from .environment import describe_environment, environment_models, parse_environment
 from .forces_section import ForcesSpec, describe_forces, parse_forces
 from .site import SiteSpec, parse_site
+from .solver_section import SolverSpec, describe_solver, parse_solver
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..solvers.frequency_domain import FDOptions
@@ -108,6 +110,12 @@ def _parse_forces(node: Node, key: str, parsed: Mapping[str, Any]) -> ForcesSpec
     if key not in node:
         return None
     return parse_forces(node.child(key))
+
+
+def _parse_solver(node: Node, key: str, parsed: Mapping[str, Any]) -> SolverSpec | None:
+    if key not in node:
+        return None
+    return parse_solver(node.child(key))
 
 
 def _parse_frequency_domain(node: Node, key: str, parsed: Mapping[str, Any]) -> FDOptions | None:
@@ -178,6 +186,7 @@ SECTIONS: tuple[Section, ...] = (
     Section("forces", "forces", _parse_forces, describe=describe_forces),
     Section("frequency_domain", "frequency_domain", _parse_frequency_domain,
             describe=_describe_frequency_domain),
+    Section("solver", "solver", _parse_solver, describe=describe_solver),
 )
 """The scene's sections in parsing order (a section may use those before it)."""
 
@@ -199,7 +208,8 @@ class Scene:
     None are not modelled), ``mooring`` (path, raw mapping or None), ``analysis``
     (:class:`~floatmoor.io.analysis.AnalysisSpec`), ``forces`` (options of the time-domain force
     models, :class:`~floatmoor.io.forces_section.ForcesSpec`, or None for the defaults),
-    ``frequency_domain`` (:class:`~floatmoor.solvers.frequency_domain.FDOptions` or None).
+    ``frequency_domain`` (:class:`~floatmoor.solvers.frequency_domain.FDOptions` or None),
+    ``solver`` (:class:`~floatmoor.io.solver_section.SolverSpec` or None: the exact path).
     """
 
     name: str
@@ -212,6 +222,7 @@ class Scene:
     analysis: AnalysisSpec = field(default_factory=AnalysisSpec)
     forces: ForcesSpec | None = None
     frequency_domain: FDOptions | None = None
+    solver: SolverSpec | None = None
 
     def active_models(self) -> list[str]:
         """Names of the models this scene asks for, as ``"section:model"`` or ``"section"``

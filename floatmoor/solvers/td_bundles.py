@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..mooring.catenary import OUT_SIZE
+from ..mooring.catenary_step import WARM_SIZE
 from ..mooring.system import CatenaryArrays
 
 __all__ = ["Body", "Lines", "Outputs", "State", "new_outputs", "new_state", "no_lines"]
@@ -39,8 +40,11 @@ class Body(NamedTuple):
 
 class Lines(NamedTuple):
     """The ``mooring`` kind: quasi-static lines ``cat`` (:class:`CatenaryArrays`) when ``on``;
-    their states ``active`` (n,) bool (False once failed) and ``warm`` (n, 2) catenary warm
-    starts; ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N."""
+    their states ``active`` (n,) bool (False once failed) and ``warm`` (n, 8) catenary warm
+    starts (H, V; the predictor-corrector path also x, z, K, :mod:`floatmoor.mooring.
+    catenary_step`); ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N; ``step_tol``: 0 for
+    the exact catenary solves, else the accepted correction of the predictor-corrector solves
+    (scene ``solver: {catenary: predictor}``)."""
 
     on: bool
     cat: CatenaryArrays
@@ -48,6 +52,7 @@ class Lines(NamedTuple):
     warm: np.ndarray
     fail_time: np.ndarray
     mbs: np.ndarray
+    step_tol: float = 0.0
 
 
 class State(NamedTuple):
@@ -105,7 +110,8 @@ def no_lines() -> Lines:
     cat = CatenaryArrays(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0), np.zeros(0),
                          np.zeros(0), np.zeros(0), np.zeros(1, np.int64), np.zeros(0),
                          np.zeros(0, np.bool_))
-    return Lines(False, cat, np.zeros(0, np.bool_), np.zeros((0, 2)), np.zeros(0), np.zeros(0))
+    return Lines(False, cat, np.zeros(0, np.bool_), np.zeros((0, WARM_SIZE)), np.zeros(0),
+                 np.zeros(0), 0.0)
 
 
 def new_state(n_terms: int, n_lines: int, n_pairs: int, n_k: int, *,

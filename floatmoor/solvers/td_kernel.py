@@ -36,6 +36,11 @@ the kinds in a fixed order and over each kind's terms, writing one row of ``part
 the total force is the sum of the rows in that order.  The kernels take the bundles of
 :mod:`floatmoor.forces.terms` and :mod:`floatmoor.solvers.td_bundles`.
 
+Opt-in approximations (scene ``solver:``, :mod:`floatmoor.io.solver_section`; the default is
+the exact path above): ``lines.step_tol`` > 0 takes the predictor-corrector catenary solves of
+:mod:`floatmoor.mooring.catenary_step` (the predictor alone at stage 2), ``memory.ss`` the
+recursive history sum of :mod:`floatmoor.hydro.memory_fit` instead of the convolution sum.
+
 Structure of a step (:func:`td_steps`): line failures and the convolution sum, the first
 stage at t_n (:func:`_stage`), the record and its tension guard (:func:`_record`), the rest of
 the RK4 step (:func:`rk4_step`), the state guards (:func:`_state_status`) and the velocity
@@ -55,6 +60,7 @@ from numba import njit
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import strips_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
+from ..mooring.catenary_step import system_force_step_kernel
 from ..mooring.system import system_force_kernel
 from .td_bundles import new_state
 
@@ -84,14 +90,16 @@ def set_status(status, code, step, index):
 
 
 @njit(cache=True)
-def _rhs(j, c, dt, x, v, terms, lines, st):
+def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
     """Total force ``st.f`` (6,) and the force of every term ``st.parts`` (n_terms, 6), earth
     axes (moments about the displaced reference point), at sample j (time j dt/2), stage
     fraction c, pose ``x`` and yaw-frame velocity ``v``: the kinds in the order of
     :data:`floatmoor.forces.terms.KINDS`, each over its terms.  ``st.mcorr`` is added to the
     mooring force when ``st.has_mcorr`` (the dynamic part of coupled FE lines,
     :mod:`floatmoor.solvers.fe_coupling`).  Returns -1, or the index of a line whose catenary
-    failed."""
+    failed.  ``stage`` the RK4 stage (0-3): with the predictor-corrector catenaries
+    (``lines.step_tol`` > 0) stage 2 takes the predictor alone (its pose is within millimetres
+    of stage 1's, :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)."""
     parts = st.parts
     cy = math.cos(x[5])
     sy = math.sin(x[5])
@@ -113,13 +121,20 @@ def _rhs(j, c, dt, x, v, terms, lines, st):
     # mooring (earth axes)
     if lines.on:
         cat = lines.cat
-        # want_k typed bool like the statics' calls (a literal False would compile a second
-        # specialisation of system_force_kernel); j >= 0, so it is False
-        want_k = j < 0
-        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
-                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
-                                  lines.active, lines.warm, want_k, st.work, st.rot,
-                                  st.line_out, st.fm, st.stiff)
+        if lines.step_tol > 0.0:
+            bad = system_force_step_kernel(x, cat.anchors, cat.fairleads, cat.seg_L,
+                                           cat.seg_EA, cat.seg_w, cat.seg_P, cat.line_start,
+                                           cat.cb, cat.seabed, lines.active, lines.warm,
+                                           lines.step_tol, stage == 2, st.work, st.rot,
+                                           st.line_out, st.fm)
+        else:
+            # want_k typed bool like the statics' calls (a literal False would compile a second
+            # specialisation of system_force_kernel); j >= 0, so it is False
+            want_k = j < 0
+            bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                      cat.seg_w, cat.seg_P, cat.line_start, cat.cb,
+                                      cat.seabed, lines.active, lines.warm, want_k, st.work,
+                                      st.rot, st.line_out, st.fm, st.stiff)
         if bad >= 0:
             return bad
         for i in range(6):
@@ -242,7 +257,7 @@ def _stage(j, c, x, v, k, body, terms, lines, st):
     """Stage ``k`` of RK4 at sample j, fraction c, state (x, v): the force (``st.f``,
     ``st.parts``), the pose rate ``st.q[k]`` and the acceleration ``st.a[k]``.  Returns -1 or
     the index of a line whose catenary failed."""
-    bad = _rhs(j, c, body.dt, x, v, terms, lines, st)
+    bad = _rhs(j, c, body.dt, x, v, terms, lines, st, k)
     if bad >= 0:
         return bad
     _pose_rate(x, v, st.q[k])
@@ -294,16 +309,59 @@ def _fail_lines(t, lines):
 def _memory_sum(n, mem, st):
     """Convolution sum S_{n+1} = sum_{j=1}^{n_k-1} K_j v_{n+1-j} into ``st.s1``; the history
     is stored twice (columns p and p + n_k) so that the window is contiguous without a
-    modulo."""
+    modulo.  With ``mem.ss`` the recursion of the fitted exponentials instead (called once
+    per step n, ``st.v`` = v_n)."""
+    n_pairs = mem.i.shape[0]
+    if mem.ss:
+        # recursive history sum (floatmoor.hydro.memory_fit): y <- z (v_n + y), S = Re(c y)
+        for p in range(n_pairs):
+            vj = st.v[mem.j[p]]
+            s = 0.0
+            for r in range(mem.ss_z.shape[1]):
+                y = mem.ss_z[p, r] * (vj + mem.ss_y[p, r])
+                mem.ss_y[p, r] = y
+                s += (mem.ss_c[p, r] * y).real
+            st.s1[p] = s
+        return
     hist = st.hist
     n_k = hist.shape[1] // 2
     b = (n + 1) % n_k + n_k
-    for p in range(mem.i.shape[0]):
-        jj = mem.j[p]
+    kernel = mem.kernel
+    # four pairs at a time in four independent sums (each summed in the same order as one
+    # pair alone, so the same bits; the one-pair loop waits on its adder, 2x slower)
+    p = 0
+    while p + 4 <= n_pairs:
+        k0 = kernel[p]
+        k1 = kernel[p + 1]
+        k2 = kernel[p + 2]
+        k3 = kernel[p + 3]
+        h0 = hist[mem.j[p]]
+        h1 = hist[mem.j[p + 1]]
+        h2 = hist[mem.j[p + 2]]
+        h3 = hist[mem.j[p + 3]]
+        s0 = 0.0
+        s1 = 0.0
+        s2 = 0.0
+        s3 = 0.0
+        for m in range(1, n_k):
+            c = b - m
+            s0 += k0[m] * h0[c]
+            s1 += k1[m] * h1[c]
+            s2 += k2[m] * h2[c]
+            s3 += k3[m] * h3[c]
+        st.s1[p] = s0
+        st.s1[p + 1] = s1
+        st.s1[p + 2] = s2
+        st.s1[p + 3] = s3
+        p += 4
+    while p < n_pairs:
+        k0 = kernel[p]
+        h0 = hist[mem.j[p]]
         s = 0.0
         for m in range(1, n_k):
-            s += mem.kernel[p, m] * hist[jj, b - m]
+            s += k0[m] * h0[b - m]
         st.s1[p] = s
+        p += 1
 
 
 @njit(cache=True, inline='always')
@@ -417,6 +475,7 @@ def new_run_state(body, terms, lines, out, *, has_mcorr: bool = False):
     st = new_state(out.parts.shape[1], lines.cat.anchors.shape[0], mem.i.shape[0],
                    max(1, mem.kernel.shape[1]), has_mcorr=has_mcorr)
     start_state(body.x0, body.v0, st.x, st.v, st.hist)
+    mem.ss_y[...] = 0.0  # the state-space memory starts at rest, like the history
     return st
 
 

@@ -57,6 +57,7 @@ from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.slender import refuse_qtf_with_correction
 from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
+from ..mooring.catenary_step import WARM_SIZE
 from .statics import solve_equilibrium as equilibrium
 from .td_bundles import Body, Lines, new_outputs, no_lines
 from .td_kernel import (
@@ -93,6 +94,9 @@ class Assembly:
     wave_yaw: float = 0.0
     fe: object = None
     """The finite-element lines (:class:`floatmoor.solvers.fe_coupling.FECoupling`) or None."""
+    solver: object = None
+    """Options of the time loop (:class:`floatmoor.io.solver_section.SolverSpec`) or None (the
+    exact path)."""
 
     @property
     def wf_velocity(self):
@@ -180,7 +184,7 @@ def default_models(built, options=None) -> list[str]:
 
 def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
              options=None, models: list[str] | None = None, waves=None,
-             start_pose=None) -> Assembly:
+             start_pose=None, solver=None) -> Assembly:
     """Build the models and the kernel arrays of one run.
 
     Parameters
@@ -192,6 +196,8 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     waves : a :class:`floatmoor.forces.waves.WaveComponents` to use instead of realising the
         scene's sea state (e.g. a regular wave); needs ``models`` to include ``wave1``.
     start_pose : (6,) start pose instead of the static equilibrium (free decay).
+    solver : the scene's ``solver`` options (:class:`floatmoor.io.solver_section.SolverSpec`)
+        or None: the exact path.
     """
     if built.vessel is None:
         raise SceneError(built.scene.file, "vessel", "a vessel for a time-domain simulation")
@@ -207,7 +213,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
                                 h=0.5 * dt, water_depth=site.water_depth, gravity=site.gravity)
     ctx = SetupContext(built=built, seed=int(seed), dt=float(dt), n_steps=n_steps,
                        ramp=float(ramp), yaw0=0.0, options=options, waves=waves,
-                       inputs=built.model_inputs(options, names, yaw=0.0))
+                       inputs=built.model_inputs(options, names, yaw=0.0), solver=solver)
     active = {}
     for name in names:
         m = model_class(name, key="forces")()
@@ -287,7 +293,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
             built.mooring.warm[:] = 0.0
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
                     inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
-                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe)
+                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe, solver=solver)
 
 
 def _fibre_dynamics(built, asm, model, eq, C, mean_env):
@@ -315,6 +321,40 @@ def _guard_limits(built) -> np.ndarray:
     return np.array([trans, trans, max(depth, 50.0), 1.0, 1.0, 1e3])
 
 
+def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
+                   tension_guard: float = 10.0, built=None):
+    """The bundles ``(body, terms, lines, out)`` of :func:`floatmoor.solvers.td_kernel.td_steps`
+    for a run of ``a`` (NumericalError when ``dt`` is beyond the RK4 stability limit); the
+    catenary solves of ``a.solver`` (:func:`floatmoor.io.solver_section.catenary_tol`)."""
+    from ..io.solver_section import catenary_tol
+    asm = a.asm
+    dt = a.dt
+    n = a.n_steps
+    if a.omega_max * dt > RK4_LIMIT:
+        raise NumericalError(
+            f"time step {dt:g} s is beyond the RK4 stability limit for the stiffest mode "
+            f"(natural period {2 * math.pi / a.omega_max:.3g} s, omega dt = "
+            f"{a.omega_max * dt:.2f} > {RK4_LIMIT})", time=0.0, where="integrator",
+            remedy=f"use dt <= {RK4_LIMIT / a.omega_max * 0.9:.3g} s")
+    minv = np.linalg.inv(a.inertia)
+    moor = asm.mooring
+    if moor is not None:
+        lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
+                      np.zeros((moor.n_lines, WARM_SIZE)), as_kernel_array(asm.fail_time, float),
+                      as_kernel_array(moor.mbs, float), catenary_tol(a.solver))
+    else:
+        lines = no_lines()
+    n_lines = lines.mbs.shape[0]
+    terms = asm.force_terms()
+    out = new_outputs(n, n_lines, len(asm.part_names), record_parts=bool(record_forces))
+    x0 = as_kernel_array(a.x0, float)
+    v0 = np.zeros(6) if v0 is None else as_kernel_array(v0, float)
+    guard = _guard_limits(built) if built is not None else np.array([1e4, 1e4, 1e3, 1.0, 1.0, 1e3])
+    body = Body(int(n), float(dt), as_kernel_array(a.inertia, float), minv, x0, v0, guard,
+                float(tension_guard), bool(record_forces))
+    return body, terms, lines, out
+
+
 def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guard: float = 10.0,
               built=None) -> TimeDomainResult:
     """Run the time loop of an :class:`Assembly`.
@@ -330,32 +370,15 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     asm = a.asm
     dt = a.dt
     n = a.n_steps
-    if a.omega_max * dt > RK4_LIMIT:
-        raise NumericalError(
-            f"time step {dt:g} s is beyond the RK4 stability limit for the stiffest mode "
-            f"(natural period {2 * math.pi / a.omega_max:.3g} s, omega dt = "
-            f"{a.omega_max * dt:.2f} > {RK4_LIMIT})", time=0.0, where="integrator",
-            remedy=f"use dt <= {RK4_LIMIT / a.omega_max * 0.9:.3g} s")
-    minv = np.linalg.inv(a.inertia)
+    body, terms, lines, out = kernel_bundles(a, record_forces=record_forces, v0=v0,
+                                             tension_guard=tension_guard, built=built)
     moor = asm.mooring
-    if moor is not None:
-        lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
-                      np.zeros((moor.n_lines, 2)), as_kernel_array(asm.fail_time, float),
-                      as_kernel_array(moor.mbs, float))
-        line_names = list(moor.names)
-    else:
-        lines = no_lines()
-        line_names = []
+    line_names = list(moor.names) if moor is not None else []
     mbs = lines.mbs
     n_lines = len(line_names)
-    terms = asm.force_terms()
     part_names = asm.part_names
-    out = new_outputs(n, n_lines, len(part_names), record_parts=bool(record_forces))
-    x0 = as_kernel_array(a.x0, float)
-    v0 = np.zeros(6) if v0 is None else as_kernel_array(v0, float)
-    guard = _guard_limits(built) if built is not None else np.array([1e4, 1e4, 1e3, 1.0, 1.0, 1e3])
-    body = Body(int(n), float(dt), as_kernel_array(a.inertia, float), minv, x0, v0, guard,
-                float(tension_guard), bool(record_forces))
+    x0 = body.x0
+    guard = body.guard
     setup_time = _time.perf_counter() - t_start
     t0 = _time.perf_counter()
     fe_records = None
