@@ -15,7 +15,8 @@ headings:
 conditions:
   intact: true
   failed_lines: all                        # all single-line failures, or [[line6], [line6, line7]]
-  line_failure: {lines: [line6], time: 1500.0}   # transient ALS: break at t (s); lines: all too
+  line_failure: {lines: [line6], time: 1500.0}   # transient ALS: break at t (s), in the
+                                           # statistics window (>= transient); lines: all too
 seeds: "1-20"                              # as analysis.seeds of a scene
 analysis: {duration: 12000.0, dt: 0.1, transient: 1200.0, ramp: 100.0}   # optional overrides
 screening:
@@ -336,9 +337,12 @@ def _check_analysis(spec: CampaignSpec, scene, node: Node) -> None:
         raise node.error("analysis.duration", f"a duration longer than the transient "
                          f"({an['transient']:g} s)", an["duration"])
     for c in spec.conditions:
-        if c.kind == "transient" and not c.break_time < an["duration"]:
-            raise node.error("conditions.line_failure.time", f"a time < the duration "
-                             f"({an['duration']:g} s)", c.break_time)
+        if c.kind == "transient" and not an["transient"] <= c.break_time < an["duration"]:
+            # a break before the statistics window starts would leave the transient response
+            # after the break out of the maxima: the case would be checked as a failed line
+            raise node.error("conditions.line_failure.time", f"a time in the statistics "
+                             f"window, from the transient ({an['transient']:g} s) to before the "
+                             f"duration ({an['duration']:g} s)", c.break_time)
     for k, dt_out in spec.storage.sampling:
         if spec.storage.sampling_given and dt_out > 0 and abs(dt_out / an["dt"] - round(dt_out / an["dt"])) > 1e-9:
             raise node.error(f"storage.sampling.{k}", f"0 or a multiple of dt ({an['dt']:g} s)",

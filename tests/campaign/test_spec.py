@@ -72,6 +72,7 @@ def test_matrix_and_case_scene(tmp_path):
     ('seeds: "1-3"', 'seeds: "1-2"', "seeds"),
     ("hs: 10.0", "hs: -1.0", "sea_states.list[0].hs"),
     ("time: 200.0", "time: 900.0", "conditions.line_failure.time"),
+    ("time: 200.0", "time: 50.0", "conditions.line_failure.time"),   # before the statistics
     ("transient: 100.0}", "transient: 100.0}\nstorage: {sampling: {motion: 0.3}}",
      "storage.sampling.motion"),
     ("current_offset_deg: [0, 30]", "current_offset_deg: [0, 0]",
