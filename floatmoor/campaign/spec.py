@@ -5,6 +5,8 @@ name: floatel-uls-als
 description: free text
 base_scene: ../scenes/floatel_100yr.yaml   # vessel, mooring, site, environment components
 sea_states:                                # one of: contour (a file with sea_states:) or list
+                                           # (a scatter diagram or a probability: SceneError,
+                                           # see ULS_SEA_STATES; scatters are for fatigue)
   contour: ../metocean/heidrun_contour.yaml
   only: [1, 4]                             # optional: 1-based indices into the contour
   # list: [{name: peak, hs: 16.0, tp: 18.2, gamma: null}]
@@ -178,8 +180,20 @@ def _angles(node: Node, key: str, default=None) -> tuple[float, ...]:
     return tuple(float(v) for v in vals)
 
 
+ULS_SEA_STATES = ("the N-year extreme sea states of a ULS/ALS check (DNV (2008)): "
+                  "contour: a file of Hs-Tp contour points (sea_states: [{name, hs, tp, "
+                  "gamma}]), or list: the design sea states")
+NOT_FATIGUE = ("every sea state of a ULS/ALS campaign is checked at its own extreme and the "
+               "worst governs: probabilities weight nothing there.  A long-term scatter "
+               "diagram is the input of the fatigue limit state: floatmoor fatigue SCENE.yaml "
+               "--scatter FILE")
+
+
 def _sea_state(item: Node, default_name: str) -> SeaState:
     item.reject_unknown(("name", "hs", "tp", "gamma", "spectrum", "probability", "description"))
+    if "probability" in item:
+        raise item.error("probability", "no probability: " + ULS_SEA_STATES,
+                         item.raw("probability"), NOT_FATIGUE)
     if "spectrum" in item and item.raw("spectrum") != "jonswap":
         raise item.error("spectrum", "jonswap (the contour's sea states are JONSWAP)",
                          item.raw("spectrum"))
@@ -195,6 +209,8 @@ def _sea_states(node: Node) -> tuple[SeaState, ...]:
     if len(given) != 1:
         raise s.error("", "exactly one of contour, scatter, list", given or "none")
     key = given[0]
+    if key == "scatter":
+        raise s.error("scatter", ULS_SEA_STATES, s.raw("scatter"), NOT_FATIGUE)
     if key == "list":
         items = s.item_nodes("list", min_len=1)
         states = [_sea_state(it, f"ss{i + 1}") for i, it in enumerate(items)]
