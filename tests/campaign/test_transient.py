@@ -83,3 +83,28 @@ def test_report_checks_transient_case_as_als(transient_run):
     report = write_report(out)
     md = (Path(out) / "report" / "report.md").read_text()
     assert "break-line6-t150" in md and report["governing"]
+
+
+def test_report_consequence_class_flag_overrides_the_campaign(transient_run, capsys):
+    """``floatmoor report DIR --consequence-class 1`` on a campaign of class 2: the class 1
+    factors (Wang (2016) table 3.2: ALS 1.00, 1.10) are used and the report says it overrode
+    the campaign's; without the flag the campaign's class 2 applies and the report says so."""
+    from floatmoor.cli import main
+    out, _ = transient_run
+    a = analyse(out, consequence_class=1)
+    als = [g for g in a["governing"] if g["limit_state"] == "ALS"]
+    assert als and all((g["gamma_mean"], g["gamma_dyn"]) == (1.00, 1.10) for g in als)
+    b = analyse(out)
+    # the same stored tensions, a smaller dynamic factor: every ALS utilisation lower
+    u2 = {g["line"]: g["utilisation"] for g in b["governing"] if g["limit_state"] == "ALS"}
+    assert all(g["utilisation"] < u2[g["line"]] for g in als)
+    rd = Path(out) / "report_cc1"
+    main(["report", str(out), "--consequence-class", "1", "--out", str(rd)])
+    text = capsys.readouterr().out
+    assert "consequence class 1 instead of the campaign's 2" in text
+    assert "consequence class 1 instead of the campaign's 2" in (rd / "report.md").read_text()
+    with netCDF4.Dataset(rd / "summary.nc") as nc:
+        assert nc.getncattr("consequence_class") == 1
+    main(["report", str(out), "--out", str(Path(out) / "report_cc2")])
+    text = capsys.readouterr().out
+    assert "consequence class 2, dynamic analysis (of the campaign file)" in text
