@@ -15,6 +15,11 @@ matplotlib is installed), ``report.md``, ``governing.csv``, ``td_cases.csv`` and
 * Seed convergence of each governing case (:mod:`floatmoor.campaign.seedconv`).
 * Polar plots over the wave heading: utilisation per line (FD of every case, max over sea states
   and conditions of the limit state; TD points) and the maximum offset.
+
+Design options: the campaign file's consequence class and analysis type, unless the report is
+given others (``floatmoor report DIR --consequence-class N --analysis A``): then every
+utilisation is recomputed with those factors from the stored tensions and the report says so
+(the screening chose the TD cases with the campaign's factors).
 """
 
 from __future__ import annotations
