@@ -15,6 +15,11 @@ matplotlib is installed), ``report.md``, ``governing.csv``, ``td_cases.csv`` and
 * Seed convergence of each governing case (:mod:`floatmoor.campaign.seedconv`).
 * Polar plots over the wave heading: utilisation per line (FD of every case, max over sea states
   and conditions of the limit state; TD points) and the maximum offset.
+
+Design options: the campaign file's consequence class and analysis type, unless the report is
+given others (``floatmoor report DIR --consequence-class N --analysis A``): then every
+utilisation is recomputed with those factors from the stored tensions and the report says so
+(the screening chose the TD cases with the campaign's factors).
 """
 
 from __future__ import annotations
@@ -35,12 +40,28 @@ __all__ = ["analyse", "write_report"]
 
 
 class _D:
-    """Design options from the campaign record."""
+    """Design options of the report: the campaign record's, or those given to the report
+    (``floatmoor report DIR --consequence-class N --analysis A``), which override them;
+    :attr:`source` says which, for the report text."""
 
-    def __init__(self, d):
+    def __init__(self, d, consequence_class=None, analysis=None):
         self.consequence_class = int(d["consequence_class"])
         self.analysis = d["analysis"]
         self.standard = d.get("standard", "dnv-os-e301")
+        given = []
+        if consequence_class is not None and int(consequence_class) != self.consequence_class:
+            given.append(f"consequence class {int(consequence_class)} instead of the campaign's "
+                         f"{self.consequence_class}")
+            self.consequence_class = int(consequence_class)
+        if analysis is not None and analysis != self.analysis:
+            given.append(f"{analysis} analysis instead of the campaign's {self.analysis}")
+            self.analysis = analysis
+        self.overridden = bool(given)
+        self.source = ("given to the report (" + "; ".join(given) + "): every utilisation, FD "
+                       "and TD, is recomputed with these factors from the stored tensions, but "
+                       "the screening chose the time-domain cases with the campaign's factors "
+                       "(the screening margins below are recomputed)" if given else
+                       "of the campaign file")
 
 
 def _spearman(a, b) -> float:
@@ -51,11 +72,13 @@ def _spearman(a, b) -> float:
     return float(spearmanr(a[ok], b[ok]).statistic)
 
 
-def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE) -> dict:
-    """The campaign report's numbers (see the module docstring)."""
+def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=None,
+            analysis=None) -> dict:
+    """The campaign report's numbers (see the module docstring).  ``consequence_class`` and
+    ``analysis`` override the campaign's design options (None: the campaign's)."""
     from ..post.dnv_os_e301 import line_check
     rec = store.read_record(out_dir)
-    design = _D(rec["design"])
+    design = _D(rec["design"], consequence_class, analysis)
     cases = rec["cases"]
     ids = [c["case"] for c in cases]
     lines = rec["lines"]
@@ -148,7 +171,7 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE) -> dict:
             "u_fd": u_fd, "u_td": u_td, "t_c": t_c, "t_c_mean": t_m, "n_seeds": n_seeds,
             "sent": sent,
             "offset": offset, "fd": fd, "governing": governing, "screened": screened,
-            "tolerance": tolerance, "mbs": st["mbs"] if st else None}
+            "tolerance": tolerance, "mbs": st["mbs"] if st else None, "design": design}
 
 
 def _condition_lines(name: str) -> list[str]:
@@ -275,10 +298,12 @@ def _polar_figures(a) -> dict:
     return figs
 
 
-def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE) -> dict:
-    """Write the campaign report; returns :func:`analyse`'s dict plus the paths written."""
+def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE, *,
+                 consequence_class=None, analysis=None) -> dict:
+    """Write the campaign report; returns :func:`analyse`'s dict plus the paths written
+    (``consequence_class``, ``analysis``: see :func:`analyse`)."""
     import xarray as xr
-    a = analyse(out_dir, tolerance)
+    a = analyse(out_dir, tolerance, consequence_class=consequence_class, analysis=analysis)
     rd = Path(report_dir) if report_dir else Path(out_dir) / "report"
     rd.mkdir(parents=True, exist_ok=True)
     rec = a["record"]
@@ -303,8 +328,9 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE)
         coords={"case": a["ids"], "line": a["lines"],
                 "limit_state": ("case", list(a["states"]))})
     ds.attrs = {"campaign": rec["name"], "standard": "DNV-OS-E301 (October 2008)",
-                "consequence_class": rec["design"]["consequence_class"],
-                "analysis": rec["design"]["analysis"], "seed_interval_method": METHOD}
+                "consequence_class": a["design"].consequence_class,
+                "analysis": a["design"].analysis, "design_options": a["design"].source,
+                "seed_interval_method": METHOD}
     ds.to_netcdf(rd / "summary.nc")
     figs = _polar_figures(a)
     imgs = {}
@@ -347,8 +373,9 @@ def _summary_text(a) -> list[str]:
     rec = a["record"]
     n_td = int(np.sum(a["n_seeds"] >= 3))
     pending = int(np.sum(a["sent"])) - n_td
+    d = a["design"]
     out = [(f"DNV-OS-E301 Position Mooring, October 2008, consequence class "
-            f"{rec['design']['consequence_class']}, {rec['design']['analysis']} analysis; "
+            f"{d.consequence_class}, {d.analysis} analysis ({d.source}); "
             f"{len(a['cases'])} cases screened in the frequency domain, {n_td} run in the time "
             f"domain ({len(rec['seeds'])} seeds each; screening {rec['screening']})"
             + (f"; {pending} case(s) sent to the time domain have fewer than 3 finished "

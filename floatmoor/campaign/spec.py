@@ -5,6 +5,8 @@ name: floatel-uls-als
 description: free text
 base_scene: ../scenes/floatel_100yr.yaml   # vessel, mooring, site, environment components
 sea_states:                                # one of: contour (a file with sea_states:) or list
+                                           # (a scatter diagram or a probability: SceneError,
+                                           # see ULS_SEA_STATES; scatters are for fatigue)
   contour: ../metocean/heidrun_contour.yaml
   only: [1, 4]                             # optional: 1-based indices into the contour
   # list: [{name: peak, hs: 16.0, tp: 18.2, gamma: null}]
@@ -15,7 +17,8 @@ headings:
 conditions:
   intact: true
   failed_lines: all                        # all single-line failures, or [[line6], [line6, line7]]
-  line_failure: {lines: [line6], time: 1500.0}   # transient ALS: break at t (s); lines: all too
+  line_failure: {lines: [line6], time: 1500.0}   # transient ALS: break at t (s), in the
+                                           # statistics window (>= transient); lines: all too
 seeds: "1-20"                              # as analysis.seeds of a scene
 analysis: {duration: 12000.0, dt: 0.1, transient: 1200.0, ramp: 100.0}   # optional overrides
 screening:
@@ -180,8 +183,20 @@ def _angles(node: Node, key: str, default=None) -> tuple[float, ...]:
     return tuple(float(v) for v in vals)
 
 
+ULS_SEA_STATES = ("the N-year extreme sea states of a ULS/ALS check (DNV (2008)): "
+                  "contour: a file of Hs-Tp contour points (sea_states: [{name, hs, tp, "
+                  "gamma}]), or list: the design sea states")
+NOT_FATIGUE = ("every sea state of a ULS/ALS campaign is checked at its own extreme and the "
+               "worst governs: probabilities weight nothing there.  A long-term scatter "
+               "diagram is the input of the fatigue limit state: floatmoor fatigue SCENE.yaml "
+               "--scatter FILE")
+
+
 def _sea_state(item: Node, default_name: str) -> SeaState:
     item.reject_unknown(("name", "hs", "tp", "gamma", "spectrum", "probability", "description"))
+    if "probability" in item:
+        raise item.error("probability", "no probability: " + ULS_SEA_STATES,
+                         item.raw("probability"), NOT_FATIGUE)
     if "spectrum" in item and item.raw("spectrum") != "jonswap":
         raise item.error("spectrum", "jonswap (the contour's sea states are JONSWAP)",
                          item.raw("spectrum"))
@@ -197,6 +212,8 @@ def _sea_states(node: Node) -> tuple[SeaState, ...]:
     if len(given) != 1:
         raise s.error("", "exactly one of contour, scatter, list", given or "none")
     key = given[0]
+    if key == "scatter":
+        raise s.error("scatter", ULS_SEA_STATES, s.raw("scatter"), NOT_FATIGUE)
     if key == "list":
         items = s.item_nodes("list", min_len=1)
         states = [_sea_state(it, f"ss{i + 1}") for i, it in enumerate(items)]
@@ -356,9 +373,12 @@ def _check_analysis(spec: CampaignSpec, scene, node: Node) -> None:
         raise node.error("analysis.duration", f"a duration longer than the transient "
                          f"({an['transient']:g} s)", an["duration"])
     for c in spec.conditions:
-        if c.kind == "transient" and not c.break_time < an["duration"]:
-            raise node.error("conditions.line_failure.time", f"a time < the duration "
-                             f"({an['duration']:g} s)", c.break_time)
+        if c.kind == "transient" and not an["transient"] <= c.break_time < an["duration"]:
+            # a break before the statistics window starts would leave the transient response
+            # after the break out of the maxima: the case would be checked as a failed line
+            raise node.error("conditions.line_failure.time", f"a time in the statistics "
+                             f"window, from the transient ({an['transient']:g} s) to before the "
+                             f"duration ({an['duration']:g} s)", c.break_time)
     for k, dt_out in spec.storage.sampling:
         if spec.storage.sampling_given and dt_out > 0 and abs(dt_out / an["dt"] - round(dt_out / an["dt"])) > 1e-9:
             raise node.error(f"storage.sampling.{k}", f"0 or a multiple of dt ({an['dt']:g} s)",

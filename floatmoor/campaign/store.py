@@ -35,7 +35,7 @@ MANIFEST = "manifest.csv"
 RECORD = "campaign.json"
 COLUMNS = ("kind", "case", "seed", "status", "wall_time_s", "path", "bytes", "sha256",
            "sea_state", "hs", "tp", "wave_heading_deg", "wind_heading_deg",
-           "current_heading_deg", "condition", "limit_state", "error", "simulate_s")
+           "current_heading_deg", "condition", "limit_state", "error", "simulate_s", "solve_s")
 
 
 def is_campaign_dir(path) -> bool:
@@ -78,8 +78,9 @@ class Manifest:
         row.update({k: outcome.get(k, "") for k in ("kind", "case", "seed", "status", "bytes",
                                                     "sha256", "error")})
         row["wall_time_s"] = f"{outcome.get('wall_time_s', 0.0):.3f}"
-        if "simulate_s" in outcome:
-            row["simulate_s"] = f"{outcome['simulate_s']:.3f}"
+        for k in ("simulate_s", "solve_s"):
+            if k in outcome:
+                row[k] = f"{outcome[k]:.3f}"
         p = Path(outcome.get("path", ""))
         row["path"] = os.path.relpath(p, self.dir) if p.is_absolute() else str(p)
         with open(self.path, "a", newline="") as f:

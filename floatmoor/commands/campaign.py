@@ -87,9 +87,13 @@ def run(args: argparse.Namespace) -> int:
 
 def report_campaign(args: argparse.Namespace) -> int:
     """``floatmoor report DIR`` on a campaign folder (called by :mod:`.report`): the report
-    across the matrix; exit status 0 when every governing check passes, 1 otherwise."""
+    across the matrix; exit status 0 when every governing check passes, 1 otherwise.
+    ``--consequence-class`` and ``--analysis``, when given, override the campaign's (the report
+    says so); not given, the campaign's apply."""
     from ..campaign.report import write_report
-    a = write_report(args.results_dir, args.out)
+    a = write_report(args.results_dir, args.out,
+                     consequence_class=getattr(args, "consequence_class", None),
+                     analysis=getattr(args, "analysis", None))
     for line in a["summary_lines"]:
         print(line)
     print("governing case per line and limit state:")

@@ -57,11 +57,13 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="folder of per-seed netCDF files written by floatmoor run")
     p.add_argument("--standard", choices=STANDARDS, default="dnv-os-e301",
                    help="design standard (default dnv-os-e301: DNV-OS-E301, October 2008)")
-    p.add_argument("--consequence-class", type=int, choices=(1, 2), default=2,
-                   help="consequence class 1 or 2 (default 2)")
-    p.add_argument("--analysis", choices=("dynamic", "quasi-static"), default="dynamic",
+    p.add_argument("--consequence-class", type=int, choices=(1, 2), default=None,
+                   help="consequence class 1 or 2 (default 2; on a campaign folder the "
+                        "campaign's, which this overrides)")
+    p.add_argument("--analysis", choices=("dynamic", "quasi-static"), default=None,
                    help="analysis of the WF line tension, selects the partial factors "
-                        "(default dynamic)")
+                        "(default dynamic; on a campaign folder the campaign's, which this "
+                        "overrides)")
     p.add_argument("--als-dir", metavar="DIR", default=None,
                    help="folder of floatmoor run results with a failed line (ALS check)")
     p.add_argument("--failed-line", metavar="NAME", action="append", default=None,
@@ -282,6 +284,8 @@ def run(args: argparse.Namespace) -> int:
     if is_campaign_dir(args.results_dir):  # a floatmoor campaign folder: the matrix report
         from .campaign import report_campaign
         return report_campaign(args)
+    args.consequence_class = 2 if args.consequence_class is None else args.consequence_class
+    args.analysis = "dynamic" if args.analysis is None else args.analysis
     bound_dirs = fibre_bound_dirs(args.results_dir)
     if bound_dirs:  # floatmoor run of a scene with analysis.fibre_stiffness: both
         return report_fibre_bounds(args, bound_dirs)

@@ -72,6 +72,7 @@ def test_matrix_and_case_scene(tmp_path):
     ('seeds: "1-3"', 'seeds: "1-2"', "seeds"),
     ("hs: 10.0", "hs: -1.0", "sea_states.list[0].hs"),
     ("time: 200.0", "time: 900.0", "conditions.line_failure.time"),
+    ("time: 200.0", "time: 50.0", "conditions.line_failure.time"),   # before the statistics
     ("transient: 100.0}", "transient: 100.0}\nstorage: {sampling: {motion: 0.3}}",
      "storage.sampling.motion"),
     ("current_offset_deg: [0, 30]", "current_offset_deg: [0, 0]",
@@ -101,3 +102,22 @@ def test_cli_dry_run_and_input_error(tmp_path, capsys):
     assert main(["campaign", str(bad), "--dry-run"]) == 2
     err = capsys.readouterr().err
     assert f"{bad}: seed: expected one of the keys" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("old, new, key", [
+    ("sea_states: {list: [{name: a, hs: 10.0, tp: 12.5}, {name: b, hs: 16.0, tp: 18.2}]}",
+     "sea_states: {scatter: SCATTER}", "sea_states.scatter"),
+    ("{name: a, hs: 10.0, tp: 12.5}", "{name: a, hs: 10.0, tp: 12.5, probability: 0.01}",
+     "sea_states.list[0].probability"),
+])
+def test_scatter_and_probabilities_refused(tmp_path, old, new, key):
+    """A ULS/ALS campaign checks extreme sea states (a contour or a list); a scatter diagram or
+    a sea state probability would be silently meaningless there: refused, pointing to the
+    fatigue command that uses them."""
+    text = GOOD.replace(old, new).replace(
+        "SCATTER", (ROOT / "metocean" / "floatel_like_scatter.yaml").as_posix())
+    p = _write(tmp_path, text)
+    with pytest.raises(SceneError) as e:
+        load_campaign(p)
+    assert e.value.key == key and Path(e.value.file) == p
+    assert "contour" in str(e.value) and "floatmoor fatigue" in str(e.value)

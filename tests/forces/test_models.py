@@ -130,8 +130,9 @@ def test_kernel_forces_equal_model_forces(floatel):
                     scale = max(np.abs(out).max(), 1.0)
                     assert np.allclose(r.forces[n, q], out, rtol=1e-9, atol=1e-9 * scale), \
                         (name, n, yaw)
-            if yaw:
-                assert abs(r.motion[600, 5]) > 0.1
+            if yaw:  # the body is turned at the compared steps (step 37, t = 7.4 s; the yaw
+                #        damping of the vessel, 27 % of critical, brings it back by t = 120 s)
+                assert abs(r.motion[37, 5]) > 0.1
 
 
 def test_newman_mean_and_ramp(floatel):
