@@ -218,6 +218,8 @@ def with_newton(built, mode: str) -> None:
     """Set the FE option ``newton`` of a built scene (``finite_element: {newton: mode}``)."""
     import dataclasses
 
+    if mode == "exact":      # the default (and the only mode of older trees)
+        return
     lm = built.mooring.line_models
     object.__setattr__(lm, "options", dataclasses.replace(lm.options, newton=mode))
 

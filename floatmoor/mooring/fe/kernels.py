@@ -1231,6 +1231,8 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     res_prev = math.inf
     alpha = 1.0
     # modified Newton: keep the iteration matrix while it is the one of this step size
+    # converged on the residual of the current iterate: its forces are those of the state
+    by_res = False
     modified = par.newton > 0
     # the matrix is kept only without bending (band solver) and stiff elements (whose tension
     # estimate reads the element blocks of the current iterate)
@@ -1284,6 +1286,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
             # residual below ftol (N): converged even if a contact or slack kink keeps the
             # position corrections from settling
             conv = True
+            by_res = True
             break
         if fresh:
             bad = solve_blocks(Dg, Of, BX, bend, Rr, 1, n - 1, W, Y, T1, da)
@@ -1371,8 +1374,11 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
             r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k] + beta * a1[i, k])
             v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
     # forces of the accepted state with the law of the converged iteration (a held element
-    # keeps its damping; a bar push is below the tolerance): consistent with the residual
-    _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, True)
+    # keeps its damping; a bar push is below the tolerance): consistent with the residual.
+    # Converged on the residual, the state is the last iterate's (the same a1, so the same
+    # r1 and v1 to the bit) and f1, w.tens, w.q are already its forces: not evaluated again.
+    if not by_res:
+        _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, True)
     for j in range(n - 1):
         if act[j] > 0.0 and tens[j] < 0.0:
             tens[j] = 0.0
