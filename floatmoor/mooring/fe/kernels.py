@@ -939,14 +939,20 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
                 for b in range(3):
                     wy += W[p, a, b] * Y[p, b]
                 x[p, a] = wy  # temporary: W[p] Y[p]
+            # H into W[i] (free until its pivot is inverted below), once instead of once per
+            # row a: the same sums in the same order
+            H = W[i]
+            for c in range(3):
+                for b in range(3):
+                    h = 0.0
+                    for d in range(3):
+                        h += W[p, c, d] * Of[p, d, b]
+                    H[c, b] = h
             for a in range(3):
                 for b in range(3):
                     s = 0.0
                     for c in range(3):
-                        h = 0.0
-                        for d in range(3):
-                            h += W[p, c, d] * Of[p, d, b]
-                        s += Of[p, a, c] * h
+                        s += Of[p, a, c] * H[c, b]
                     T1[a, b] -= s
                 s2 = 0.0
                 for c in range(3):
