@@ -384,9 +384,10 @@ class FELine:
         ``newton``: ``"exact"`` (default) rebuilds the iteration matrix of the
         generalised-alpha Newton iteration at every iteration; ``"modified"`` keeps the matrix
         of a step's first iteration while the residual falls fast enough and also stops on the
-        estimated error left (same tolerance, results within the order of ``tol`` of the
-        exact iteration's: :func:`~.kernels.gen_alpha_step`; lines with bending or very stiff
-        elements keep the exact matrix).
+        estimated error left (same tolerance; 10-30 % less CPU; results not bit-identical
+        to the exact iteration's and, over a storm, single-line extremes can differ by a few
+        per cent: :func:`~.kernels.gen_alpha_step`; lines with bending or very stiff elements
+        keep the exact matrix).
 
         ``tol`` (m): Newton stops when the position correction is below it and the residual
         below 1e-2 node weights, or when the residual is below 1e-5 node weights; for very
