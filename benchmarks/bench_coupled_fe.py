@@ -8,7 +8,9 @@ the transient against the quasi-static run of the same seed (scenes/floatel_100y
 load average is printed with the timings (the machine is shared).
 
 Run: ``.venv/bin/python benchmarks/bench_coupled_fe.py [--duration 12000] [--dt 0.1 0.2]
-[--seed 1]``
+[--seed 1] [--newton exact modified] [--no-qs]``: with several ``--newton`` modes (FE option
+``finite_element: {newton: ...}``) the FE runs are interleaved and the maximum tensions compared
+with the first mode's.
 """
 
 from __future__ import annotations
@@ -36,11 +38,24 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=12000.0)
     ap.add_argument("--dt", type=float, nargs="+", default=[0.1, 0.2])
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--newton", nargs="+", default=["exact"], choices=["exact", "modified"])
+    ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--no-qs", action="store_true")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     import numba
 
     from floatmoor.analyses.simulate import simulate
+    from floatmoor.io.build import build
+    from floatmoor.io.scene import load_scene
+
+    def fe_scene(newton):
+        import dataclasses
+
+        built = build(load_scene(FE))
+        lm = built.mooring.line_models
+        object.__setattr__(lm, "options", dataclasses.replace(lm.options, newton=newton))
+        return built
 
     print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
           f"{numba.__version__}; seed {args.seed}, {args.duration:g} s simulated "
@@ -50,7 +65,7 @@ def main() -> None:
     simulate(FE, seed=args.seed, duration=20.0, dt=args.dt[0])
     print(f"first short FE run (cache load or compile): {time.perf_counter() - t0:.1f} s")
     qs = {}
-    for dt in args.dt:
+    for dt in ([] if args.no_qs else args.dt):
         w0 = time.perf_counter()
         ds = simulate(QS, seed=args.seed, duration=args.duration, dt=dt)
         sel = ds.time.values >= 1200.0
@@ -58,10 +73,13 @@ def main() -> None:
         print(f"QS  dt {dt:g}: loop {ds.attrs['run_time_s']:.1f} s, total "
               f"{time.perf_counter() - w0:.1f} s, max tension {qs[dt].max() / 1e3:.0f} kN "
               f"(line {ds.line.values[int(np.argmax(qs[dt]))]}); load {_load()}")
-    for dt in args.dt:
+    first = {}
+    runs = [(dt, nw) for dt in args.dt for _ in range(args.repeat) for nw in args.newton]
+    for dt, nw in runs:
+        built = fe_scene(nw)
         w0 = time.perf_counter()
         c0 = time.process_time()
-        ds = simulate(FE, seed=args.seed, duration=args.duration, dt=dt)
+        ds = simulate(built, seed=args.seed, duration=args.duration, dt=dt)
         wall = time.perf_counter() - w0
         cpu = time.process_time() - c0
         loop = ds.attrs["run_time_s"]
@@ -71,17 +89,25 @@ def main() -> None:
         n_steps = ds.time.size - 1
         newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
         i = int(np.argmax(tfe))
-        print(f"FE  dt {dt:g}: loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
+        print(f"FE  dt {dt:g} newton {nw}: loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
               f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
               f"per wall s; {newton:.2f} Newton iterations per line step, "
               f"{ds.attrs['fe_step_halvings']} halvings; load {_load()}")
-        print(f"    max fairlead tension FE {tfe.max() / 1e3:.0f} kN (line "
-              f"{ds.line.values[i]}) vs QS {qs[dt].max() / 1e3:.0f} kN: "
-              f"{(tfe.max() / qs[dt].max() - 1) * 100:+.1f} %; max along the line "
-              f"{tmax_line / 1e3:.0f} kN; mean surge FE "
-              f"{ds.motion.values[sel, 0].mean():.2f} m; max offset FE "
-              f"{np.hypot(*ds.motion.values[sel, :2].T).max():.2f} m")
-        print("    per line max FE/QS: " + " ".join(f"{a / b:.3f}" for a, b in zip(tfe, qs[dt])))
+        print(f"    max fairlead tension FE {tfe.max() / 1e3:.1f} kN (line "
+              f"{ds.line.values[i]}); max along the line {tmax_line / 1e3:.1f} kN; mean surge FE "
+              f"{ds.motion.values[sel, 0].mean():.3f} m; max offset FE "
+              f"{np.hypot(*ds.motion.values[sel, :2].T).max():.3f} m")
+        if dt in qs:
+            print(f"    vs QS {qs[dt].max() / 1e3:.0f} kN: "
+                  f"{(tfe.max() / qs[dt].max() - 1) * 100:+.1f} %; per line max FE/QS: "
+                  + " ".join(f"{a / b:.3f}" for a, b in zip(tfe, qs[dt])))
+        if dt in first:
+            f0 = first[dt]
+            print(f"    against newton {args.newton[0]}: max fairlead tension "
+                  f"{(tfe.max() / f0.max() - 1) * 100:+.4f} %, per line max "
+                  f"{np.abs(tfe / f0 - 1).max() * 100:.4f} % at most")
+        else:
+            first[dt] = tfe
 
 
 if __name__ == "__main__":

@@ -50,6 +50,10 @@ class LineParams(NamedTuple):
     """Newton iteration limit."""
     s_nodes: np.ndarray
     """(n,) unstretched arc length of the nodes from the anchor (m)."""
+    newton: int
+    """Generalised-alpha Newton iteration: 0 exact (the iteration matrix rebuilt at every
+    iteration, the default); 1 modified (the matrix of the first iteration of a step kept while
+    the residual falls fast enough, stop on the estimated error; ``kernels.gen_alpha_step``)."""
 
 
 class LineState(NamedTuple):
@@ -106,6 +110,8 @@ class LineWork(NamedTuple):
     """(3,) failure or convergence information (see the kernels)."""
     stats: np.ndarray
     """(2,) Newton iterations and step halvings of the last advance."""
+    el: np.ndarray
+    """(n-1, 4) element unit directions and lengths (m) of the last force evaluation."""
 
 
 class LineBundle(NamedTuple):
@@ -134,4 +140,5 @@ def new_work(n: int) -> LineWork:
                     Mb=np.zeros((n, 3, 3)), Dg=np.zeros((n, 3, 3)), Of=np.zeros((n - 1, 3, 3)),
                     BX=np.zeros((7, n, 3, 3)), R=z3(), W=np.zeros((n, 3, 3)), Y=z3(),
                     T1=np.zeros((3, 3)), dx=z3(), rtry=z3(), rf=np.zeros(3), vf=np.zeros(3),
-                    info=np.zeros(3), stats=np.zeros(2))
+                    info=np.zeros(3), stats=np.zeros(2),
+                    el=np.zeros((n - 1, 4)))

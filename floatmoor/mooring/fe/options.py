@@ -12,6 +12,7 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
         dt: 0.1                        # s, longest line step (or substeps: per body step)
         internal_damping: -0.8         # N s, or -zeta (fraction of critical per element)
         rho_inf: 0.7                   # generalised-alpha spectral radius
+        newton: exact                  # or modified: iteration matrix kept across iterations
         axial_stiffness_limit: 3.84e11 # N, optional (practically inextensible lines)
         fibre_law: two_component       # segments whose line type has a `fibre` model:
                                        #   two_component | working_curve | constant
@@ -39,7 +40,7 @@ from dataclasses import dataclass, field
 from ...core.config import Node
 from .config import FRICTION_MODELS, SEABED_MODELS, Friction, Seabed
 from .fibre_law import DEFAULT_TIME_CONSTANT
-from .line import FIBRE_LAWS
+from .line import FIBRE_LAWS, NEWTON_MODES
 
 __all__ = ["FEOptions", "parse_fe_options", "MOORING_MODELS", "INTEGRATORS", "LineModels",
            "parse_line_models"]
@@ -50,7 +51,7 @@ INTEGRATORS = ("generalized_alpha", "explicit")
 
 _KEYS = {"element_length", "n_elements", "internal_damping", "rho_inf", "substeps", "dt",
          "integrator", "axial_stiffness_limit", "seabed", "friction", "fibre_law",
-         "fibre_time_constant"}
+         "fibre_time_constant", "newton"}
 _SEABED_KEYS = {"model", "stiffness", "damping", "mud_depth", "contact_smoothing"}
 _FRICTION_KEYS = {"model", "mu_axial", "mu_lateral", "ramp_velocity", "zero_crossing_period",
                   "ramp_displacement"}
@@ -73,6 +74,7 @@ class FEOptions:
     friction: Friction | None = None
     fibre_law: str = "two_component"
     fibre_time_constant: float = DEFAULT_TIME_CONSTANT
+    newton: str = "exact"
 
     def seabed_for(self, water_depth: float) -> Seabed:
         """The :class:`Seabed` at ``water_depth`` (m) with the scene's settings."""
@@ -95,7 +97,7 @@ class FEOptions:
 
     def start_kw(self) -> dict:
         """Keywords of :meth:`~floatmoor.mooring.fe.line.FELine.start`."""
-        return {"rho_inf": self.rho_inf, "integrator": self.integrator}
+        return {"rho_inf": self.rho_inf, "integrator": self.integrator, "newton": self.newton}
 
     def substeps_for(self, body_dt: float) -> int:
         """Line steps per body step of ``body_dt`` s: ``ceil(body_dt / dt)`` when ``dt`` is
@@ -124,6 +126,8 @@ def parse_fe_options(node: Node | None) -> FEOptions:
         kw["dt"] = node.float("dt", gt=0.0, unit="s")
     if "integrator" in node:
         kw["integrator"] = node.str("integrator", choices=list(INTEGRATORS))
+    if "newton" in node:
+        kw["newton"] = node.str("newton", choices=list(NEWTON_MODES))
     if "internal_damping" in node:
         kw["internal_damping"] = node.float("internal_damping", unit="N s (or -zeta)")
     if "rho_inf" in node:
