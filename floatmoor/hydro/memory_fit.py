@@ -35,13 +35,21 @@ MAX_ORDER = 60
 """Largest ERA order tried (the roots kept, one per conjugate pair, are about half of it)."""
 
 
-def _roots(k: np.ndarray, order: int, decimate: int) -> np.ndarray:
-    """Discrete roots z (per sample) of an ERA realisation of ``k`` of the given order."""
+def _hankel_svd(k: np.ndarray, decimate: int):
+    """The Hankel matrices of ``k`` (every ``decimate``-th sample) and the SVD of the first:
+    computed once per DOF pair and shared by every order tried."""
     y = k[::decimate]
     m = (y.size - 1) // 2
     H = np.array([y[i:i + m] for i in range(m)])
     H1 = np.array([y[i + 1:i + 1 + m] for i in range(m)])
     U, s, Vt = np.linalg.svd(H)
+    return H1, U, s, Vt
+
+
+def _roots(hankel, order: int, decimate: int) -> np.ndarray:
+    """Discrete roots z (per sample) of an ERA realisation of the given order from
+    :func:`_hankel_svd`."""
+    H1, U, s, Vt = hankel
     r = min(order, int(np.sum(s > s[0] * 1e-12)))
     if r == 0:
         return np.zeros(0, complex)
@@ -81,8 +89,9 @@ def fit_exponentials(k, *, rel_tol: float = FIT_REL_TOL, max_order: int = MAX_OR
         return np.zeros(0, complex), np.zeros(0, complex), 0.0
     decimate = max(1, min(decimate, k.size // 40))
     best = (np.zeros(0, complex), np.zeros(0, complex), 1.0)
+    hankel = _hankel_svd(k, decimate)
     for order in range(2, max_order + 1, 2):
-        z, c, fit = _residues(k, _roots(k, order, decimate))
+        z, c, fit = _residues(k, _roots(hankel, order, decimate))
         err = float(np.sqrt(np.sum((fit - k) ** 2)) / norm)
         if err < best[2]:
             best = (z, c, err)
