@@ -15,6 +15,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..mooring.catenary import OUT_SIZE
+from ..mooring.fibre_system import FibreTrack, no_fibre_track
 from ..mooring.system import CatenaryArrays
 
 __all__ = ["Body", "Lines", "Outputs", "State", "new_outputs", "new_state", "no_lines"]
@@ -40,7 +41,9 @@ class Body(NamedTuple):
 class Lines(NamedTuple):
     """The ``mooring`` kind: quasi-static lines ``cat`` (:class:`CatenaryArrays`) when ``on``;
     their states ``active`` (n,) bool (False once failed) and ``warm`` (n, 2) catenary warm
-    starts; ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N."""
+    starts; ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N; ``fibre`` the fibre segments
+    linearised about their slowly varying tension (:class:`~floatmoor.mooring.fibre_system.
+    FibreTrack`; ``fibre.on`` False: none, or the fixed-mean rule)."""
 
     on: bool
     cat: CatenaryArrays
@@ -48,6 +51,7 @@ class Lines(NamedTuple):
     warm: np.ndarray
     fail_time: np.ndarray
     mbs: np.ndarray
+    fibre: FibreTrack
 
 
 class State(NamedTuple):
@@ -105,7 +109,8 @@ def no_lines() -> Lines:
     cat = CatenaryArrays(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0), np.zeros(0),
                          np.zeros(0), np.zeros(0), np.zeros(1, np.int64), np.zeros(0),
                          np.zeros(0, np.bool_))
-    return Lines(False, cat, np.zeros(0, np.bool_), np.zeros((0, 2)), np.zeros(0), np.zeros(0))
+    return Lines(False, cat, np.zeros(0, np.bool_), np.zeros((0, 2)), np.zeros(0), np.zeros(0),
+                 no_fibre_track())
 
 
 def new_state(n_terms: int, n_lines: int, n_pairs: int, n_k: int, *,

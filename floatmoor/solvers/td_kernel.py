@@ -55,6 +55,7 @@ from numba import njit
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import slender_packed_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
+from ..mooring.fibre_system import fibre_track_update
 from ..mooring.system import system_force_kernel
 from .td_bundles import new_state
 
@@ -378,6 +379,8 @@ def td_steps(n_first, n_last, body, terms, lines, st, out):
         if bad >= 0:
             set_status(status, STATUS_TENSION, n, bad)
             return
+        if lines.fibre.on:
+            fibre_track_update(lines.fibre, lines.cat, lines.active, st.line_out)
         if n == body.n_steps:
             break
         bad = rk4_step(n, body, terms, lines, st)

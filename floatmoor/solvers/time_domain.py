@@ -57,6 +57,7 @@ from ..forces.radiation import infinite_frequency_added_mass
 from ..forces.slender import refuse_qtf_with_correction
 from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
+from ..mooring.fibre_system import fibre_track, no_fibre_track
 from .statics import solve_equilibrium as equilibrium
 from .td_bundles import Body, Lines, new_outputs, no_lines
 from .td_kernel import (
@@ -93,6 +94,9 @@ class Assembly:
     wave_yaw: float = 0.0
     fe: object = None
     """The finite-element lines (:class:`floatmoor.solvers.fe_coupling.FECoupling`) or None."""
+    fibre_start: object = None
+    """Fibre ropes: ``(system, tm)`` the nonlinear mooring system and its segment mean tensions
+    at the linearisation point (the start of the slowly varying tensions), or None."""
 
     @property
     def wf_velocity(self):
@@ -246,9 +250,10 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         if held.any():
             sub = np.ix_(held, held)
             x0[held] = np.linalg.solve(C[sub], (asm.const_force + mean_env)[held])
-    fibre_lin = None
+    fibre_lin = fibre_start = None
     if "mooring" in active and built.mooring is not None and built.mooring.has_fibre:
         fibre_lin = _fibre_dynamics(built, asm, active["mooring"], eq, C, mean_env)
+        fibre_start = (built.mooring, _segment_tensions(built.mooring))
     # highest natural frequency of the linearised system (stability check)
     K_lin = C.copy()
     if fibre_lin is not None:
@@ -287,7 +292,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
             built.mooring.warm[:] = 0.0
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
                     inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
-                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe)
+                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe, fibre_start=fibre_start)
 
 
 def _fibre_dynamics(built, asm, model, eq, C, mean_env):
@@ -307,6 +312,22 @@ def _fibre_dynamics(built, asm, model, eq, C, mean_env):
     lin.warm[:] = 0.0
     asm.replace_mooring_system(lin)
     return lin
+
+
+def _segment_tensions(system):
+    """Segment mean tensions (N,) of the system's last evaluation."""
+    from ..mooring.fibre_system import _mean_tensions
+    return _mean_tensions(system)
+
+
+def _fibre_track(a: Assembly):
+    """The time loop's fibre bundle: the linearisation follows the slowly varying tensions
+    (time constant ``fibre_time_constant`` of the mooring system) with quasi-static lines only;
+    off (the fixed-mean rule) with ``inf`` or coupled FE lines."""
+    if a.fibre_start is None or a.fe is not None:
+        return no_fibre_track()
+    system, tm = a.fibre_start
+    return fibre_track(system, system.fibre_time_constant, a.dt, tm)
 
 
 def _guard_limits(built) -> np.ndarray:
@@ -341,7 +362,7 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     if moor is not None:
         lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
                       np.zeros((moor.n_lines, 2)), as_kernel_array(asm.fail_time, float),
-                      as_kernel_array(moor.mbs, float))
+                      as_kernel_array(moor.mbs, float), _fibre_track(a))
         line_names = list(moor.names)
     else:
         lines = no_lines()
