@@ -21,7 +21,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
 
 from floatmoor.core.config import Node
 from floatmoor.io.mooring_section import parse_mooring
