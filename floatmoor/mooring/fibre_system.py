@@ -25,9 +25,25 @@ bound the working curve's tangent) and an unstretched length and weight such tha
 
 This is the SIMA/Syrope rule of elongating the line so that the dynamic curve meets the working
 curve at the mean tension (SINTEF Ocean (2023); Falkenberg et al. (2017)) and MoorPy's
-``activateDynamicStiffness`` (Hall (2024)). The time domain therefore uses the dynamic stiffness
-about the mean (static-equilibrium) tension for the whole response (wave- and low-frequency),
-not about a slowly varying tension.
+``activateDynamicStiffness`` (Hall (2024)). The frequency domain uses it about the mean
+(static-equilibrium) tension.
+
+Quasi-static time domain: the same linearisation about a **slowly varying tension** ``T_s(t)``
+of every fibre segment (:func:`fibre_track`, :func:`fibre_track_update`): ``T_s`` starts at the
+mean tension of the static equilibrium and follows the segment's length-mean tension ``T``
+through an exponential low-pass filter of time constant ``tau`` (mooring key
+``fibre_time_constant``, :data:`DEFAULT_TIME_CONSTANT` = 300 s, the value and meaning of the
+finite-element lines' mean-strain filter), advanced once per time step with the exact
+exponential ``T_s += (1 - exp(-dt / tau)) (T - T_s)`` from the tension at the step's start
+(the accepted pose), after which ``L', EA', w'`` are recomputed from ``T_s``.  A stretch much
+slower than ``tau`` therefore moves along the working curve (at a fixed offset the tension
+converges to the working-curve statics: ``L'(1 + T_s / EA') = L (1 + eps_w(T_s))``), while
+wave-frequency stretches (periods << ``tau``) see ``K = EA_dyn(T_s)``.  Stretches with periods
+near ``tau`` see a stiffness between the two (the same two-component behaviour as the FE
+lines' law).  ``tau = inf`` keeps the linearisation about the static mean for the whole run
+(the rule before; the frequency domain's).  The first RK4 stage of a step uses the
+linearisation before that step's update (a lag of under one step, ``dt / tau`` ~ 3e-4 at
+dt = 0.1 s).
 """
 
 from __future__ import annotations

@@ -361,7 +361,9 @@ def td_steps(n_first, n_last, body, terms, lines, st, out):
     is carried in ``st`` and the line states in ``lines``).
 
     Step ``n``: line failures, the convolution sum, the first stage at ``t_n = n dt``, the
-    record of row ``n``, then (unless ``n == body.n_steps``) the rest of the RK4 step to
+    record of row ``n``, with fibre ropes the update of their slowly varying tensions and
+    linearised segments (:func:`~floatmoor.mooring.fibre_system.fibre_track_update`, only when
+    ``lines.fibre.on``), then (unless ``n == body.n_steps``) the rest of the RK4 step to
     ``t_{n+1}`` and the state guards.  Bundles: ``body`` :class:`~.td_bundles.Body`, ``terms``
     :class:`~floatmoor.forces.terms.ForceTerms`, ``lines`` :class:`~.td_bundles.Lines`, ``st``
     :class:`~.td_bundles.State`, ``out`` :class:`~.td_bundles.Outputs`.  On failure sets

@@ -38,6 +38,13 @@ Assumptions (documented limits)
   catenary carries the change within the step; its docstring gives the scheme and limits); the
   start pose is then the static equilibrium with the FE lines' static forces.  Without FE lines
   the quasi-static kernel runs alone, as before.
+* Fibre ropes (line types with a ``fibre:`` model): the quasi-static lines are linearised about
+  each fibre segment's slowly varying tension, the tension low-pass filtered with time
+  constant ``mooring: fibre_time_constant`` (300 s by default; ``.inf`` keeps the
+  linearisation about the static mean): slowly varying offsets follow the working curve,
+  wave-frequency stretches see the dynamic stiffness ``EA_dyn(T_s)``
+  (:mod:`floatmoor.mooring.fibre_system` states the rule).  With coupled FE lines the
+  quasi-static lines keep the fixed-mean rule.
 * Output ``velocity`` is the pose rate; ``force`` is in earth axes (moments about the
   displaced reference point).
 """
@@ -296,9 +303,10 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
 
 
 def _fibre_dynamics(built, asm, model, eq, C, mean_env):
-    """Fibre ropes in the quasi-static time domain: the kernel's lines become the constant-EA
+    """Fibre ropes in the quasi-static time domain: the kernel's lines start as the constant-EA
     linearisation about the static equilibrium under the mean loads (the working curve there),
-    every fibre segment with its dynamic stiffness at its mean tension
+    every fibre segment with its dynamic stiffness at its mean tension (then moved with the
+    slowly varying tension in the loop, :func:`_fibre_track`)
     (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`; rule and sources in
     :mod:`floatmoor.mooring.fibre_system`). With a given start pose the linearisation point is
     still that equilibrium. Returns the linearised system."""

@@ -209,7 +209,9 @@ def test_kernel_mooring_force_equals_the_model_force(built):
     r = runs[math.inf]
     r_slow = runs[300.0]
     q = r.force_models.index("mooring")
-    np.testing.assert_array_equal(r_slow.forces[0, q], r.forces[0, q])
+    # (not bit-equal: the statics' secant iteration starts from the EAs of the run before)
+    np.testing.assert_allclose(r_slow.forces[0, q], r.forces[0, q], rtol=1e-9,
+                               atol=1e-9 * np.abs(r.forces[0, q]).max())
     assert abs(r_slow.forces[600, q][0] / r.forces[600, q][0] - 1.0) > 1e-6
     q = r.force_models.index("mooring")
     m = a.models["mooring"]
