@@ -43,7 +43,10 @@ class QuasiStaticMooring(ForceModel):
     def linearise_fibre(self, pose):
         """Fibre ropes: use (in :meth:`force` and the time loop) the lines linearised about
         ``pose`` with the dynamic stiffness at the mean tensions
-        (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`); returns that system."""
+        (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`); returns that system.  The
+        time loop then moves that linearisation with the slowly varying tensions
+        (``fibre_time_constant``); this Python force keeps the start one (equal to the loop's
+        with ``fibre_time_constant: .inf``)."""
         lin = self.system.linearised_fibre(pose)
         object.__setattr__(self, "_dynamic_system", lin)
         return lin

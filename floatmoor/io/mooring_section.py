@@ -23,6 +23,10 @@ Format (SI units, angles only in keys ending ``_deg``)::
     model: quasi-static                  # optional: or finite-element (all lines); per line
                                          # lines[i].model overrides it
     finite_element: {element_length: 20.0}   # optional FE options (floatmoor.mooring.fe.options)
+    fibre_time_constant: 300.0           # s, optional: quasi-static lines' fibre segments are
+                                         # linearised about their tension low-pass filtered
+                                         # with this time constant (.inf: the static mean;
+                                         # floatmoor.mooring.fibre_system)
 
 ``clump_weight`` (submerged, N) and ``buoy_net_buoyancy`` (N) act at the upper end of the
 segment that names them (the joint towards the fairlead).  Every mistake is a
@@ -43,13 +47,15 @@ from ..core.config import Node
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import ConvergenceError, SceneError
 from ..mooring.fe.options import parse_line_models
+from ..mooring.fibre_system import DEFAULT_TIME_CONSTANT
 from ..mooring.line_types import MAX_DIAMETER, LineTypeLibrary, default_library
 from ..mooring.system import LineDef, MooringSystem, Segment
 
 __all__ = ["parse_mooring"]
 
 _TOP_KEYS = {"line_type_library", "line_types", "seabed_friction", "defaults", "lines",
-             "failed_lines", "description", "model", "finite_element"}
+             "failed_lines", "description", "model", "finite_element",
+             "fibre_time_constant"}
 _LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction", "model"}
 _SEG_KEYS = {"type", "diameter", "length", "clump_weight", "buoy_net_buoyancy"}
 
@@ -195,10 +201,19 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                          "failed: nothing would hold the floater)", failed)
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
                        gravity=gravity, source=str(node.file) if node.file else "mooring (given in Python)",
-                       failed=failed, line_models=line_models, line_types=used_types)
+                       failed=failed, line_models=line_models, line_types=used_types,
+                       fibre_time_constant=_fibre_time_constant(node))
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
     return ms
+
+
+def _fibre_time_constant(node: Node) -> float:
+    """``fibre_time_constant`` (s, > 0; ``.inf``: the fixed-mean rule)."""
+    raw = node.raw("fibre_time_constant", DEFAULT_TIME_CONSTANT)
+    if isinstance(raw, float) and math.isinf(raw) and raw > 0.0:
+        return math.inf
+    return node.float("fibre_time_constant", DEFAULT_TIME_CONSTANT, gt=0.0, unit="s")
 
 
 def _check_at_zero_pose(ms: MooringSystem, node: Node, line_nodes):

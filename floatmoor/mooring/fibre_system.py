@@ -25,25 +25,43 @@ bound the working curve's tangent) and an unstretched length and weight such tha
 
 This is the SIMA/Syrope rule of elongating the line so that the dynamic curve meets the working
 curve at the mean tension (SINTEF Ocean (2023); Falkenberg et al. (2017)) and MoorPy's
-``activateDynamicStiffness`` (Hall (2024)). The time domain therefore uses the dynamic stiffness
-about the mean (static-equilibrium) tension for the whole response (wave- and low-frequency),
-not about a slowly varying tension.
+``activateDynamicStiffness`` (Hall (2024)). The frequency domain uses it about the mean
+(static-equilibrium) tension.
+
+Quasi-static time domain: the same linearisation about a **slowly varying tension** ``T_s(t)``
+of every fibre segment (:func:`fibre_track`, :func:`fibre_track_update`): ``T_s`` starts at the
+mean tension of the static equilibrium and follows the segment's length-mean tension ``T``
+through an exponential low-pass filter of time constant ``tau`` (mooring key
+``fibre_time_constant``, :data:`DEFAULT_TIME_CONSTANT` = 300 s, the value and meaning of the
+finite-element lines' mean-strain filter), advanced once per time step with the exact
+exponential ``T_s += (1 - exp(-dt / tau)) (T - T_s)`` from the tension at the step's start
+(the accepted pose), after which ``L', EA', w'`` are recomputed from ``T_s``.  A stretch much
+slower than ``tau`` therefore moves along the working curve (at a fixed offset the tension
+converges to the working-curve statics: ``L'(1 + T_s / EA') = L (1 + eps_w(T_s))``), while
+wave-frequency stretches (periods << ``tau``) see ``K = EA_dyn(T_s)``.  Stretches with periods
+near ``tau`` see a stiffness between the two (the same two-component behaviour as the FE
+lines' law).  ``tau = inf`` keeps the linearisation about the static mean for the whole run
+(the rule before; the frequency domain's).  The first RK4 stage of a step uses the
+linearisation before that step's update (a lag of under one step, ``dt / tau`` ~ 3e-4 at
+dt = 0.1 s).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
 from ..core.errors import ConvergenceError
 from .catenary import OUT_HF, OUT_VF
-from .fibre import table_inverse_nb, table_slope_nb
+from .fibre import dynamic_ea_nb, table_inverse_nb, table_slope_nb
 
 __all__ = ["FibreSegments", "segment_mean_tensions", "iterate_secant", "linearised_segments",
-           "RULES"]
+           "RULES", "DEFAULT_TIME_CONSTANT", "FibreTrack", "fibre_track", "no_fibre_track",
+           "fibre_track_update"]
 
 RULES = ("dynamic", "tangent")
 """Linearisation rules: the fibre model's dynamic stiffness, or the working-curve tangent."""
@@ -211,3 +229,110 @@ def linearised_lines(system, rule: str = "dynamic"):
             j += 1
         lines.append(replace(line, segments=tuple(segs)))
     return lines
+
+
+# --------------------------------------------------------------------------------------------
+# The quasi-static time domain: the linearisation about a slowly varying tension
+# --------------------------------------------------------------------------------------------
+DEFAULT_TIME_CONSTANT = 300.0
+"""s, time constant of the slowly varying tension of the quasi-static time domain (the same
+name and value as the finite-element lines' mean-strain filter, ``finite_element:
+fibre_time_constant``): over 10 times the wave periods; ``inf`` keeps the linearisation about
+the static mean for the whole run."""
+
+
+class FibreTrack(NamedTuple):
+    """The fibre segments of the time loop (numba bundle, :func:`fibre_track`): ``on`` (False:
+    nothing to do, the fixed-mean rule); ``gain`` ``1 - exp(-dt / tau)``; per fibre segment k
+    (k,): ``index`` its segment, ``line_of`` its line, ``L0``, ``w0`` its (bedded-in) length and
+    weight per length, ``mbs``, ``alpha``, ``beta`` (:class:`~floatmoor.mooring.fibre.
+    FibreModel`), ``tangent`` (True: the working-curve tangent, the ``lower`` bound),
+    ``n_tab`` and ``xs``, ``ys`` (k, m) the working curve (strain, tension / MBS; padded);
+    state ``ts`` (k,) the slowly varying tensions, N; work ``t_seg`` (N,) segment tensions."""
+
+    on: bool
+    gain: float
+    index: np.ndarray
+    line_of: np.ndarray
+    L0: np.ndarray
+    w0: np.ndarray
+    mbs: np.ndarray
+    alpha: np.ndarray
+    beta: np.ndarray
+    tangent: np.ndarray
+    n_tab: np.ndarray
+    xs: np.ndarray
+    ys: np.ndarray
+    ts: np.ndarray
+    t_seg: np.ndarray
+
+
+def no_fibre_track() -> FibreTrack:
+    """A :class:`FibreTrack` without segments (``on`` False)."""
+    z = np.zeros(0)
+    return FibreTrack(False, 0.0, np.zeros(0, np.int64), np.zeros(0, np.int64), z.copy(),
+                      z.copy(), z.copy(), z.copy(), z.copy(), np.zeros(0, np.bool_),
+                      np.zeros(0, np.int64), np.zeros((0, 2)), np.zeros((0, 2)), z.copy(),
+                      np.zeros(1))
+
+
+def fibre_track(system, tau: float, dt: float, tm=None) -> FibreTrack:
+    """The :class:`FibreTrack` of ``system`` (the nonlinear fibre system) for time constant
+    ``tau`` (s; ``inf``: off) and time step ``dt`` (s); ``ts`` starts at the segment mean
+    tensions ``tm`` (N,) at the linearisation point (default: those of the system's last
+    evaluation)."""
+    fs = system.fibre_segments
+    if fs is None or not tau < math.inf:
+        return no_fibre_track()
+    if not tau > 0.0:
+        raise ValueError(f"fibre_time_constant must be > 0 s, found {tau}")
+    k = fs.index.shape[0]
+    m = max(t[0].shape[0] for t in fs.tables)
+    xs = np.zeros((k, m))
+    ys = np.zeros((k, m))
+    n_tab = np.zeros(k, np.int64)
+    for q, (x, y) in enumerate(fs.tables):
+        n_tab[q] = x.shape[0]
+        xs[q, :x.shape[0]] = x
+        ys[q, :y.shape[0]] = y
+    line_of = np.searchsorted(system.line_start, fs.index, side="right").astype(np.int64) - 1
+    tm = _mean_tensions(system) if tm is None else np.asarray(tm, float)
+    return FibreTrack(True, float(-math.expm1(-dt / tau)), fs.index.astype(np.int64).copy(),
+                      line_of, system.seg_L[fs.index].copy(), system.seg_w[fs.index].copy(),
+                      fs.mbs.copy(), np.array([mo.alpha for mo in fs.models], float),
+                      np.array([mo.beta for mo in fs.models], float),
+                      np.array([mo.bound == "lower" for mo in fs.models], np.bool_), n_tab, xs,
+                      ys, tm[fs.index].copy(), np.zeros(system.seg_L.shape[0]))
+
+
+@njit(cache=True, inline='always')
+def fibre_track_update(fib, cat, active, line_out):
+    """One step of the slowly varying tensions and the linearisation about them (no
+    allocation): the segments' length-mean tensions ``T`` from the lines' fairlead tensions in
+    ``line_out`` (at the accepted state), ``T_s += gain (T - T_s)`` (the exact exponential
+    filter of the step), then ``L' = L0 (1 + eps_w(T_s) - T_s / K)``, ``EA' = K L' / L0``,
+    ``w' = w0 L0 / L'`` with ``K = EA_dyn(T_s)`` written into the catenary arrays ``cat``
+    (:class:`~floatmoor.mooring.system.CatenaryArrays`). Segments of failed lines are left."""
+    segment_mean_tensions(line_out, cat.seg_L, cat.seg_w, cat.seg_P, cat.line_start, active,
+                          fib.t_seg)
+    for k in range(fib.index.shape[0]):
+        if not active[fib.line_of[k]]:
+            continue
+        j = fib.index[k]
+        ts = fib.ts[k] + fib.gain * (fib.t_seg[j] - fib.ts[k])
+        fib.ts[k] = ts
+        t = ts if ts > 0.0 else 0.0
+        mbs = fib.mbs[k]
+        nt = fib.n_tab[k]
+        xs = fib.xs[k, :nt]
+        ys = fib.ys[k, :nt]
+        eps = table_inverse_nb(t / mbs, xs, ys)
+        if fib.tangent[k]:
+            K = mbs * table_slope_nb(eps, xs, ys)
+        else:
+            K = dynamic_ea_nb(t, mbs, fib.alpha[k], fib.beta[k])
+        f = 1.0 + eps - t / K
+        if f > 0.0:
+            cat.seg_L[j] = fib.L0[k] * f
+            cat.seg_EA[j] = K * f
+            cat.seg_w[j] = fib.w0[k] / f

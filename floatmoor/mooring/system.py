@@ -54,7 +54,13 @@ from .catenary import (
     line_profile,
 )
 from .fibre import FibreModel
-from .fibre_system import FibreSegments, iterate_secant, linearised_lines, linearised_segments
+from .fibre_system import (
+    DEFAULT_TIME_CONSTANT,
+    FibreSegments,
+    iterate_secant,
+    linearised_lines,
+    linearised_segments,
+)
 
 __all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
@@ -299,6 +305,11 @@ class MooringSystem:
         The line types the segments name, as the mooring section resolved them (their
         hydrodynamic coefficients are used by finite-element lines); carried over like
         ``line_models``.
+    fibre_time_constant : float
+        s, time constant of the slowly varying tension about which the quasi-static time
+        domain linearises the fibre segments (:func:`floatmoor.mooring.fibre_system.
+        fibre_track`; ``inf``: about the static mean for the whole run); carried over like
+        ``line_models``.
 
     Notes
     -----
@@ -307,12 +318,14 @@ class MooringSystem:
 
     def __init__(self, lines: Sequence[LineDef], *, water_depth: float, water_density: float = 1025.0,
                  gravity: float = 9.80665, source: str = "", failed: Iterable[str] = (),
-                 line_models=None, line_types=None):
+                 line_models=None, line_types=None,
+                 fibre_time_constant: float = DEFAULT_TIME_CONSTANT):
         if not lines:
             raise ValueError("a mooring system needs at least one line")
         self.lines = tuple(lines)
         self.line_models = line_models
         self.line_types = dict(line_types or {})
+        self.fibre_time_constant = float(fibre_time_constant)
         names = [l.name for l in self.lines]
         if len(set(names)) != len(names):
             raise ValueError(f"line names must be unique: {names}")
@@ -360,7 +373,8 @@ class MooringSystem:
         return MooringSystem(self.lines, water_depth=self.water_depth,
                              water_density=self.water_density, gravity=self.gravity,
                              source=self.source, failed=tuple(self.failed) + tuple(names),
-                             line_models=self.line_models, line_types=self.line_types)
+                             line_models=self.line_models, line_types=self.line_types,
+                             fibre_time_constant=self.fibre_time_constant)
 
     remove_lines = without_lines
 
@@ -372,7 +386,8 @@ class MooringSystem:
                  for l in self.lines]
         return MooringSystem(lines, water_depth=self.water_depth, water_density=self.water_density,
                              gravity=self.gravity, source=self.source, failed=self.failed,
-                             line_models=self.line_models, line_types=self.line_types)
+                             line_models=self.line_models, line_types=self.line_types,
+                             fibre_time_constant=self.fibre_time_constant)
 
     @property
     def has_fibre(self) -> bool:
@@ -406,7 +421,8 @@ class MooringSystem:
     def _copy_with(self, lines) -> MooringSystem:
         return MooringSystem(lines, water_depth=self.water_depth, water_density=self.water_density,
                              gravity=self.gravity, source=self.source, failed=self.failed,
-                             line_models=self.line_models, line_types=self.line_types)
+                             line_models=self.line_models, line_types=self.line_types,
+                             fibre_time_constant=self.fibre_time_constant)
 
     @property
     def n_lines(self) -> int:

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..mooring.catenary import OUT_SIZE
 from ..mooring.catenary_step import WARM_SIZE
+from ..mooring.fibre_system import FibreTrack, no_fibre_track
 from ..mooring.system import CatenaryArrays
 
 __all__ = ["Body", "Lines", "Outputs", "State", "new_outputs", "new_state", "no_lines"]
@@ -42,9 +43,11 @@ class Lines(NamedTuple):
     """The ``mooring`` kind: quasi-static lines ``cat`` (:class:`CatenaryArrays`) when ``on``;
     their states ``active`` (n,) bool (False once failed) and ``warm`` (n, 8) catenary warm
     starts (H, V; the predictor-corrector path also x, z, K, :mod:`floatmoor.mooring.
-    catenary_step`); ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N; ``step_tol``: 0 for
-    the exact catenary solves, else the accepted correction of the predictor-corrector solves
-    (scene ``solver: {catenary: predictor}``)."""
+    catenary_step`); ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N; ``fibre`` the fibre
+    segments linearised about their slowly varying tension (:class:`~floatmoor.mooring.
+    fibre_system.FibreTrack`; ``fibre.on`` False: none, or the fixed-mean rule);
+    ``step_tol``: 0 for the exact catenary solves, else the accepted correction of the
+    predictor-corrector solves (scene ``solver: {catenary: predictor}``)."""
 
     on: bool
     cat: CatenaryArrays
@@ -52,6 +55,7 @@ class Lines(NamedTuple):
     warm: np.ndarray
     fail_time: np.ndarray
     mbs: np.ndarray
+    fibre: FibreTrack
     step_tol: float = 0.0
 
 
@@ -111,7 +115,7 @@ def no_lines() -> Lines:
                          np.zeros(0), np.zeros(0), np.zeros(1, np.int64), np.zeros(0),
                          np.zeros(0, np.bool_))
     return Lines(False, cat, np.zeros(0, np.bool_), np.zeros((0, WARM_SIZE)), np.zeros(0),
-                 np.zeros(0), 0.0)
+                 np.zeros(0), no_fibre_track(), 0.0)
 
 
 def new_state(n_terms: int, n_lines: int, n_pairs: int, n_k: int, *,

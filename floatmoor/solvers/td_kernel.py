@@ -61,6 +61,7 @@ from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import strips_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.catenary_step import system_force_step_kernel
+from ..mooring.fibre_system import fibre_track_update
 from ..mooring.system import system_force_kernel
 from .td_bundles import new_state
 
@@ -420,7 +421,9 @@ def td_steps(n_first, n_last, body, terms, lines, st, out):
     is carried in ``st`` and the line states in ``lines``).
 
     Step ``n``: line failures, the convolution sum, the first stage at ``t_n = n dt``, the
-    record of row ``n``, then (unless ``n == body.n_steps``) the rest of the RK4 step to
+    record of row ``n``, with fibre ropes the update of their slowly varying tensions and
+    linearised segments (:func:`~floatmoor.mooring.fibre_system.fibre_track_update`, only when
+    ``lines.fibre.on``), then (unless ``n == body.n_steps``) the rest of the RK4 step to
     ``t_{n+1}`` and the state guards.  Bundles: ``body`` :class:`~.td_bundles.Body`, ``terms``
     :class:`~floatmoor.forces.terms.ForceTerms`, ``lines`` :class:`~.td_bundles.Lines`, ``st``
     :class:`~.td_bundles.State`, ``out`` :class:`~.td_bundles.Outputs`.  On failure sets
@@ -438,6 +441,8 @@ def td_steps(n_first, n_last, body, terms, lines, st, out):
         if bad >= 0:
             set_status(status, STATUS_TENSION, n, bad)
             return
+        if lines.fibre.on:
+            fibre_track_update(lines.fibre, lines.cat, lines.active, st.line_out)
         if n == body.n_steps:
             break
         bad = rk4_step(n, body, terms, lines, st)

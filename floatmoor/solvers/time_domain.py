@@ -38,6 +38,13 @@ Assumptions (documented limits)
   catenary carries the change within the step; its docstring gives the scheme and limits); the
   start pose is then the static equilibrium with the FE lines' static forces.  Without FE lines
   the quasi-static kernel runs alone, as before.
+* Fibre ropes (line types with a ``fibre:`` model): the quasi-static lines are linearised about
+  each fibre segment's slowly varying tension, the tension low-pass filtered with time
+  constant ``mooring: fibre_time_constant`` (300 s by default; ``.inf`` keeps the
+  linearisation about the static mean): slowly varying offsets follow the working curve,
+  wave-frequency stretches see the dynamic stiffness ``EA_dyn(T_s)``
+  (:mod:`floatmoor.mooring.fibre_system` states the rule).  With coupled FE lines the
+  quasi-static lines keep the fixed-mean rule.
 * Output ``velocity`` is the pose rate; ``force`` is in earth axes (moments about the
   displaced reference point).
 """
@@ -58,6 +65,7 @@ from ..forces.slender import refuse_qtf_with_correction
 from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
 from ..mooring.catenary_step import WARM_SIZE
+from ..mooring.fibre_system import fibre_track, no_fibre_track
 from .statics import solve_equilibrium as equilibrium
 from .td_bundles import Body, Lines, new_outputs, no_lines
 from .td_kernel import (
@@ -97,6 +105,9 @@ class Assembly:
     solver: object = None
     """Options of the time loop (:class:`floatmoor.io.solver_section.SolverSpec`) or None (the
     exact path)."""
+    fibre_start: object = None
+    """Fibre ropes: ``(system, tm)`` the nonlinear mooring system and its segment mean tensions
+    at the linearisation point (the start of the slowly varying tensions), or None."""
 
     @property
     def wf_velocity(self):
@@ -252,9 +263,10 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
         if held.any():
             sub = np.ix_(held, held)
             x0[held] = np.linalg.solve(C[sub], (asm.const_force + mean_env)[held])
-    fibre_lin = None
+    fibre_lin = fibre_start = None
     if "mooring" in active and built.mooring is not None and built.mooring.has_fibre:
         fibre_lin = _fibre_dynamics(built, asm, active["mooring"], eq, C, mean_env)
+        fibre_start = (built.mooring, _segment_tensions(built.mooring))
     # highest natural frequency of the linearised system (stability check)
     K_lin = C.copy()
     if fibre_lin is not None:
@@ -293,13 +305,15 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
             built.mooring.warm[:] = 0.0
     return Assembly(models=active, asm=asm, x0=x0, dt=float(dt), n_steps=n_steps,
                     inertia=inertia, waves=waves, equilibrium=eq, omega_max=omega_max,
-                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe, solver=solver)
+                    relative_velocity=mode, wave_yaw=ctx.yaw0, fe=fe, solver=solver,
+                    fibre_start=fibre_start)
 
 
 def _fibre_dynamics(built, asm, model, eq, C, mean_env):
-    """Fibre ropes in the quasi-static time domain: the kernel's lines become the constant-EA
+    """Fibre ropes in the quasi-static time domain: the kernel's lines start as the constant-EA
     linearisation about the static equilibrium under the mean loads (the working curve there),
-    every fibre segment with its dynamic stiffness at its mean tension
+    every fibre segment with its dynamic stiffness at its mean tension (then moved with the
+    slowly varying tension in the loop, :func:`_fibre_track`)
     (:meth:`floatmoor.mooring.MooringSystem.linearised_fibre`; rule and sources in
     :mod:`floatmoor.mooring.fibre_system`). With a given start pose the linearisation point is
     still that equilibrium. Returns the linearised system."""
@@ -313,6 +327,22 @@ def _fibre_dynamics(built, asm, model, eq, C, mean_env):
     lin.warm[:] = 0.0
     asm.replace_mooring_system(lin)
     return lin
+
+
+def _segment_tensions(system):
+    """Segment mean tensions (N,) of the system's last evaluation."""
+    from ..mooring.fibre_system import _mean_tensions
+    return _mean_tensions(system)
+
+
+def _fibre_track(a: Assembly):
+    """The time loop's fibre bundle: the linearisation follows the slowly varying tensions
+    (time constant ``fibre_time_constant`` of the mooring system) with quasi-static lines only;
+    off (the fixed-mean rule) with ``inf`` or coupled FE lines."""
+    if a.fibre_start is None or a.fe is not None:
+        return no_fibre_track()
+    system, tm = a.fibre_start
+    return fibre_track(system, system.fibre_time_constant, a.dt, tm)
 
 
 def _guard_limits(built) -> np.ndarray:
@@ -341,7 +371,7 @@ def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
     if moor is not None:
         lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
                       np.zeros((moor.n_lines, WARM_SIZE)), as_kernel_array(asm.fail_time, float),
-                      as_kernel_array(moor.mbs, float), catenary_tol(a.solver))
+                      as_kernel_array(moor.mbs, float), _fibre_track(a), catenary_tol(a.solver))
     else:
         lines = no_lines()
     n_lines = lines.mbs.shape[0]
