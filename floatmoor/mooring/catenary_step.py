@@ -51,6 +51,7 @@ from .catenary import (
     _eval_line,
     line_kernel,
 )
+from .line_geometry import add_line_force, fairlead_geometry
 
 __all__ = ["STEP_TOL", "WARM_SIZE", "line_step_kernel", "system_force_step_kernel"]
 
@@ -153,19 +154,7 @@ def system_force_step_kernel(pose, anchors, fairleads, seg_L, seg_EA, seg_w, seg
             for k in range(OUT_SIZE):
                 line_out[i, k] = 0.0
             continue
-        r0 = rot[0, 0] * fairleads[i, 0] + rot[0, 1] * fairleads[i, 1] + rot[0, 2] * fairleads[i, 2]
-        r1 = rot[1, 0] * fairleads[i, 0] + rot[1, 1] * fairleads[i, 1] + rot[1, 2] * fairleads[i, 2]
-        r2 = rot[2, 0] * fairleads[i, 0] + rot[2, 1] * fairleads[i, 1] + rot[2, 2] * fairleads[i, 2]
-        dx = pose[0] + r0 - anchors[i, 0]
-        dy = pose[1] + r1 - anchors[i, 1]
-        dz = pose[2] + r2 - anchors[i, 2]
-        h = math.sqrt(dx * dx + dy * dy)
-        if h > 1e-12:
-            ux = dx / h
-            uy = dy / h
-        else:
-            ux = 1.0
-            uy = 0.0
+        r0, r1, r2, h, dz, ux, uy = fairlead_geometry(pose, rot, fairleads, anchors, i)
         if predict_only and warm[i, 0] > 0.0:
             ddx = h - warm[i, 2]
             ddz = dz - warm[i, 3]
@@ -183,13 +172,5 @@ def system_force_step_kernel(pose, anchors, fairleads, seg_L, seg_EA, seg_w, seg
                 line_out[i, k] = out[k]
             HF = out[OUT_HF]
             VF = out[OUT_VF]
-        f0 = -HF * ux
-        f1 = -HF * uy
-        f2 = -VF
-        force[0] += f0
-        force[1] += f1
-        force[2] += f2
-        force[3] += r1 * f2 - r2 * f1
-        force[4] += r2 * f0 - r0 * f2
-        force[5] += r0 * f1 - r1 * f0
+        add_line_force(force, HF, VF, ux, uy, r0, r1, r2)
     return -1

@@ -61,6 +61,7 @@ from .fibre_system import (
     linearised_lines,
     linearised_segments,
 )
+from .line_geometry import add_line_force, fairlead_geometry
 
 __all__ = ["Segment", "LineDef", "MooringSystem", "system_force_kernel", "CatenaryArrays"]
 
@@ -160,19 +161,7 @@ def system_force_kernel(pose, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, l
             for k in range(OUT_SIZE):
                 line_out[i, k] = 0.0
             continue
-        r0 = rot[0, 0] * fairleads[i, 0] + rot[0, 1] * fairleads[i, 1] + rot[0, 2] * fairleads[i, 2]
-        r1 = rot[1, 0] * fairleads[i, 0] + rot[1, 1] * fairleads[i, 1] + rot[1, 2] * fairleads[i, 2]
-        r2 = rot[2, 0] * fairleads[i, 0] + rot[2, 1] * fairleads[i, 1] + rot[2, 2] * fairleads[i, 2]
-        dx = pose[0] + r0 - anchors[i, 0]
-        dy = pose[1] + r1 - anchors[i, 1]
-        dz = pose[2] + r2 - anchors[i, 2]
-        h = math.sqrt(dx * dx + dy * dy)
-        if h > 1e-12:
-            ux = dx / h
-            uy = dy / h
-        else:
-            ux = 1.0
-            uy = 0.0
+        r0, r1, r2, h, dz, ux, uy = fairlead_geometry(pose, rot, fairleads, anchors, i)
         st = line_kernel(h, dz, seg_L, seg_EA, seg_w, seg_P, line_start[i], line_start[i + 1],
                          cb[i], seabed[i], warm[i, 0], warm[i, 1], cw, out)
         if st != 0 and warm[i, 0] > 0.0:
@@ -187,15 +176,7 @@ def system_force_kernel(pose, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, l
         VF = out[OUT_VF]
         warm[i, 0] = HF
         warm[i, 1] = VF
-        f0 = -HF * ux
-        f1 = -HF * uy
-        f2 = -VF
-        force[0] += f0
-        force[1] += f1
-        force[2] += f2
-        force[3] += r1 * f2 - r2 * f1
-        force[4] += r2 * f0 - r0 * f2
-        force[5] += r0 * f1 - r1 * f0
+        add_line_force(force, HF, VF, ux, uy, r0, r1, r2)
         if want_k:
             K11 = out[OUT_K11]
             K12 = out[OUT_K12]
@@ -220,9 +201,9 @@ def system_force_kernel(pose, anchors, fairleads, seg_L, seg_EA, seg_w, seg_P, l
             rv[0] = r0
             rv[1] = r1
             rv[2] = r2
-            fv[0] = f0
-            fv[1] = f1
-            fv[2] = f2
+            fv[0] = -HF * ux   # the line force added above (add_line_force)
+            fv[1] = -HF * uy
+            fv[2] = -VF
             for a in range(3):
                 for b in range(3):
                     kab = kf[3 * a + b]
