@@ -433,7 +433,8 @@ def td_steps(n_first, n_last, body, terms, lines, st, out):
     for n in range(n_first, n_last):
         _fail_lines(n * body.dt, lines)
         _memory_sum(n, terms.memory, st)
-        bad = _stage(2 * n, 0.0, st.x, st.v, 0, body, terms, lines, st)
+        # stage 0 as a typed int (n - n): a literal 0 would compile a second _rhs
+        bad = _stage(2 * n, 0.0, st.x, st.v, n - n, body, terms, lines, st)
         if bad >= 0:
             set_status(status, STATUS_CATENARY, n, bad)
             return
