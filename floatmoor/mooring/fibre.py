@@ -61,6 +61,21 @@ BOUNDS = ("nominal", "lower", "upper")
 
 
 @njit(cache=True)
+def _bracket(x, xs):
+    """Indices ``(lo, lo + 1)`` of the interval of increasing ``xs`` holding ``x`` (bisection;
+    ``xs[lo] <= x``), for ``xs[0] < x < xs[-1]``."""
+    lo = 0
+    hi = xs.shape[0] - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if xs[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
+
+
+@njit(cache=True)
 def table_value_nb(x, xs, ys):
     """Piecewise-linear ``y(x)`` of a table with increasing ``xs``; linear extrapolation with
     the first/last slope outside it."""
@@ -69,14 +84,7 @@ def table_value_nb(x, xs, ys):
         return ys[0] + (x - xs[0]) * (ys[1] - ys[0]) / (xs[1] - xs[0])
     if x >= xs[n - 1]:
         return ys[n - 1] + (x - xs[n - 1]) * (ys[n - 1] - ys[n - 2]) / (xs[n - 1] - xs[n - 2])
-    lo = 0
-    hi = n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if xs[mid] <= x:
-            lo = mid
-        else:
-            hi = mid
+    lo, hi = _bracket(x, xs)
     return ys[lo] + (x - xs[lo]) * (ys[hi] - ys[lo]) / (xs[hi] - xs[lo])
 
 
@@ -94,14 +102,7 @@ def table_slope_nb(x, xs, ys):
         return (ys[1] - ys[0]) / (xs[1] - xs[0])
     if x >= xs[n - 1]:
         return (ys[n - 1] - ys[n - 2]) / (xs[n - 1] - xs[n - 2])
-    lo = 0
-    hi = n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if xs[mid] <= x:
-            lo = mid
-        else:
-            hi = mid
+    lo, hi = _bracket(x, xs)
     return (ys[hi] - ys[lo]) / (xs[hi] - xs[lo])
 
 

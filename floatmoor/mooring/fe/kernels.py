@@ -163,20 +163,26 @@ def _direction_sum(r, i):
 
 
 @njit(cache=True)
+def _set_unit(q, i, qx, qy, qz):
+    """``q[i]`` the unit vector along ``(qx, qy, qz)``, or (1, 0, 0) for a zero vector."""
+    nq = math.sqrt(qx * qx + qy * qy + qz * qz)
+    if nq > 0.0:
+        q[i, 0] = qx / nq
+        q[i, 1] = qy / nq
+        q[i, 2] = qz / nq
+    else:
+        q[i, 0] = 1.0
+        q[i, 1] = 0.0
+        q[i, 2] = 0.0
+
+
+@njit(cache=True)
 def node_tangents(r, q):
     """Unit tangent at every node (average of the adjacent element directions)."""
     n = r.shape[0]
     for i in range(n):
         qx, qy, qz = _direction_sum(r, i)
-        nq = math.sqrt(qx * qx + qy * qy + qz * qz)
-        if nq > 0.0:
-            q[i, 0] = qx / nq
-            q[i, 1] = qy / nq
-            q[i, 2] = qz / nq
-        else:
-            q[i, 0] = 1.0
-            q[i, 1] = 0.0
-            q[i, 2] = 0.0
+        _set_unit(q, i, qx, qy, qz)
 
 
 @njit(cache=True)
@@ -193,15 +199,7 @@ def _tangents_from(el, q):
                 qx += el[j, 0]
                 qy += el[j, 1]
                 qz += el[j, 2]
-        nq = math.sqrt(qx * qx + qy * qy + qz * qz)
-        if nq > 0.0:
-            q[i, 0] = qx / nq
-            q[i, 1] = qy / nq
-            q[i, 2] = qz / nq
-        else:
-            q[i, 0] = 1.0
-            q[i, 1] = 0.0
-            q[i, 2] = 0.0
+        _set_unit(q, i, qx, qy, qz)
 
 
 @njit(cache=True)
