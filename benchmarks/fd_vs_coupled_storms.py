@@ -24,6 +24,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from floatmoor.io.analysis import seeds_from_text
+
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = {"fe": ROOT / "scenes" / "floatel_100yr_fe.yaml",
           "qs": ROOT / "scenes" / "floatel_100yr.yaml"}
@@ -46,18 +48,10 @@ def summary_row(ds, model: str) -> dict:
     return row
 
 
-def _seeds(text: str) -> list[int]:
-    out = []
-    for part in text.split(","):
-        a, _, b = part.partition("-")
-        out += list(range(int(a), int(b or a) + 1))
-    return out
-
-
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("model", choices=sorted(SCENES))
-    ap.add_argument("seeds", type=_seeds)
+    ap.add_argument("seeds", type=seeds_from_text)
     ap.add_argument("--duration", type=float, default=4800.0)
     ap.add_argument("--transient", type=float, default=1200.0)
     ap.add_argument("--out", type=Path, default=OUT)

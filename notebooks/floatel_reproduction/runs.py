@@ -19,6 +19,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from floatmoor.io.analysis import seeds_from_text
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 CACHE = Path(os.environ.get("FLOATMOOR_NB_CACHE",
@@ -66,13 +68,5 @@ def run_case(key: str, seeds) -> pd.DataFrame:
     return df[df["seed"].isin(list(seeds))].sort_values("seed").reset_index(drop=True)
 
 
-def _seeds(text: str) -> list[int]:
-    out = []
-    for part in text.split(","):
-        a, _, b = part.partition("-")
-        out += list(range(int(a), int(b or a) + 1))
-    return out
-
-
 if __name__ == "__main__":
-    run_case(sys.argv[1], _seeds(sys.argv[2]))
+    run_case(sys.argv[1], list(seeds_from_text(sys.argv[2])))
