@@ -163,3 +163,24 @@ def test_floatel_100yr_against_coupled_fe_storms():
     dev = r.tension_std_wf / 1e3 / std_storms - 1.0
     assert np.abs(dev0).max() > 0.06
     assert np.abs(dev).max() < 0.035
+
+
+def test_cli_flag_and_dataset(capsys, tmp_path):
+    """``floatmoor fd --line-current-drag``: the table says so and the Dataset has the line
+    drag variables with units (the increment of the static tension is the difference of the
+    two runs' static tensions)."""
+    from floatmoor.cli import main
+    out = tmp_path / "fd.nc"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert main(["fd", str(FLAGSHIP), "--line-current-drag", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "static current drag of the lines" in text
+    import xarray as xr
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["line_current_drag"] == 1
+        assert ds["tension_static_line_current"].attrs["units"] == "N"
+        assert ds["mean_force_line_current"].values[0] > 5e5     # N, downstream
+        r0 = _fd(FLAGSHIP)
+        # the static tension is the catenary's at the new mean plus the increment
+        assert not np.allclose(ds["tension_static"].values, r0.tension_static, rtol=1e-2)
