@@ -25,7 +25,8 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    get the same increment, and the linearisation (mooring stiffness and tension gradients of
    the catenary, the dynamic line model) is taken at that mean pose.  The drag's own change
    with the pose (about 6 % of the surge stiffness in the Floatel-like 100-year case) is not
-   put into the stiffness.  Floatel-like 100-year case: mean surge 13.6 m against 10.5 m
+   put into the stiffness, and fibre ropes take their dynamic stiffness at the catenary's mean
+   tension at that pose (without the drag's increment).  Floatel-like 100-year case: mean surge 13.6 m against 10.5 m
    without and 14.7 m in coupled FE storms, whose lines also oscillate in the current
    (benchmarks/RESULTS.md, "FD mean position with the current drag on the lines").
 2. **Wave frequency** (eq. 2.34, 2.40-2.43): RAOs from the database (A(w), B(w), X(w) linearly

@@ -81,7 +81,8 @@ class LineCurrentStatics:
         FE options of the lines (:meth:`~floatmoor.mooring.fe.options.FEOptions.spec_kw`:
         element length or count, seabed, friction); default 20 m elements.
     line_kw : dict, optional
-        Keywords of :class:`~floatmoor.mooring.fe.line.FELine` (fibre law).
+        Keywords of :class:`~floatmoor.mooring.fe.line.FELine` (``fibre_law``: the axial law
+        of fibre segments in statics).
     pose : (6,), optional
         Body pose at which the lines are first built (default zero).
     """
@@ -110,7 +111,10 @@ class LineCurrentStatics:
             return None
         lm = getattr(system, "line_models", None)
         spec_kw = lm.options.spec_kw(system.water_depth) if lm is not None else {}
-        line_kw = lm.options.line_kw() if lm is not None else {}
+        # the keywords that matter in statics (the fibre law); the axial stiffness limit acts
+        # in dynamics only
+        line_kw = ({k: v for k, v in lm.options.line_kw().items()
+                    if k in ("fibre_law", "fibre_time_constant")} if lm is not None else {})
         return cls(system, current=inputs["current"], line_types=inputs["line_types"],
                    spec_kw=spec_kw, line_kw=line_kw, pose=pose)
 
