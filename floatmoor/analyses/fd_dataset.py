@@ -142,6 +142,12 @@ VARIABLES: tuple[Variable, ...] = (
              "WF fairlead tension spectrum of the FE line in the frequency domain"),
     Variable("dynamic_amplification", L, "1",
              "WF tension std: dynamic (FE line) over quasi-static"),
+    # line_current_drag only
+    Variable("mean_force_line_current", D, MIXED_FORCE,
+             "static current drag of the lines: change of the mooring force at the mean position"),
+    Variable("tension_static_line_current", L, "N",
+             "static current drag of the lines: change of the static fairlead tension "
+             "(included in tension_static)"),
 )
 
 
@@ -161,6 +167,7 @@ ATTRIBUTES: tuple[tuple[str, Callable[[FDResult], object]], ...] = (
     ("options", lambda r: repr(asdict(r.options))),
     ("duration", lambda r: r.options.duration),
     ("tension_model", lambda r: r.options.tension_model),
+    ("line_current_drag", lambda r: int(r.mean_force_line_current is not None)),
     ("drift_method", lambda r: r.drift_method if r.has_waves else "none (no waves)"),
     ("viscous_drift_model", _viscous_attr),
     ("lf_added_mass_source", lambda r: r.lf_added_mass_source),
@@ -215,6 +222,11 @@ def format_table(ds: xr.Dataset) -> str:
         vals = [ds[k].values[i] * f for k in ("mean", "lf_std", "lf_max", "wf_std", "wf_sig",
                                               "wf_max", "max_total", "min_total")]
         out.append(f"  {d:6s}" + "".join(f"{x:9.2f}" for x in vals))
+    if "mean_force_line_current" in ds:
+        f = ds["mean_force_line_current"].values
+        out.append(f"  (Mean with the static current drag of the lines: {f[0] / 1e3:.1f} kN "
+                   f"surge, {f[1] / 1e3:.1f} kN sway, {f[5] / 1e3:.1f} kN m yaw; the static "
+                   "tensions include it)")
     out += ["", "* MAXIMUM LINE TENSIONS. LF AND WF MOTION *  (kN)",
             "  Line       Static  StD LF  Max LF WF Base  StD WF  Max WF Max Tot  Safety  Max Tot",
             "                                                                      factor  catenary"]

@@ -33,6 +33,10 @@ class FDResult:
 
     Mean position (eq. 2.39)
         mean (6,); mean_force_wind, mean_force_current, mean_force_drift (6,) N, N m.
+        With ``line_current_drag`` (None otherwise): mean_force_line_current (6,), the current
+        drag's change of the mooring force at the mean position, and
+        tension_static_line_current (n_lines,), its change of the static fairlead tensions
+        (included in ``tension_static``), N.
 
     Low-frequency ingredients
         lf_drift_force_spectrum, lf_wind_force_spectrum : (m, 6, 6) force cross-spectra;
@@ -133,3 +137,6 @@ class FDResult:
     tension_tz_wf_quasi_static: np.ndarray | None = None
     tension_wf_dynamic_spectrum: np.ndarray | None = None
     dynamic_amplification: np.ndarray | None = None
+    # line_current_drag (None otherwise): the lines' static current drag at the mean position
+    mean_force_line_current: np.ndarray | None = None
+    tension_static_line_current: np.ndarray | None = None

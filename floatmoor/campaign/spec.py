@@ -36,7 +36,10 @@ storage:
 Every mistake is a :class:`~floatmoor.core.errors.SceneError` naming the file, the key, what
 was expected and what was found.  Headings are the direction of travel (from +x towards +y), as
 in scenes; the environment components present in the base scene are turned, the others stay
-absent.
+absent.  The FD screening of every case uses the base scene's ``frequency_domain:`` section
+(e.g. ``tension_model: dynamic``, or ``line_current_drag: true`` for the static current drag on
+the lines in the mean position, about 0.2 s more per case for the Floatel-like lines:
+benchmarks/RESULTS.md); each FD file records ``fd_tension_model`` and ``fd_line_current_drag``.
 """
 
 from __future__ import annotations

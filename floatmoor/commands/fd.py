@@ -30,6 +30,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--tension-model", choices=("quasi_static", "dynamic"), default=None,
                    help="WF line tension: quasi-static catenary, or dynamic (FE lines in the "
                         "frequency domain; LF stays quasi-static)")
+    p.add_argument("--line-current-drag", action="store_true",
+                   help="include the static current drag on the lines in the mean position "
+                        "(each line's FE statics in the current; scene key "
+                        "frequency_domain: line_current_drag)")
 
 
 def to_netcdf(ds, path) -> Path:
@@ -66,6 +70,8 @@ def run(args: argparse.Namespace) -> int:
         overrides["lf_cutoff_period"] = args.lf_cutoff
     if args.tension_model is not None:
         overrides["tension_model"] = args.tension_model
+    if args.line_current_drag:
+        overrides["line_current_drag"] = True
     bounds = _fibre_bounds(built0)
     if bounds:
         return _run_fibre_bounds(args, overrides, bounds)

@@ -10,7 +10,15 @@ frequency_domain:
   n_lf: 1200                   # LF frequencies from 0 to the cut-off
   d_omega: 0.005               # rad/s, step of the WF frequency grid
   heading_iterations: 4        # fixed-point iterations on the mean yaw
+  line_current_drag: false     # static current drag on the lines in the mean position
 ```
+
+``line_current_drag: true`` solves every line's statics in the scene's current with its FE
+model (the ``finite_element`` options of the mooring, else 20 m elements) and adds the drag's
+change of the line forces to the catenary mooring in the mean equilibrium; the static tensions
+and the linearisation are then taken at that mean pose
+(:mod:`floatmoor.mooring.fe.current_statics`).  Without current in the scene it changes
+nothing.
 
 Every key is optional (defaults of :class:`~floatmoor.solvers.frequency_domain.FDOptions`).
 """
@@ -45,6 +53,7 @@ def parse_fd_options(node: Node) -> FDOptions:
         "n_lf": node.int("n_lf", d.n_lf, ge=50),
         "d_omega": node.float("d_omega", d.d_omega, gt=0.0, unit="rad/s"),
         "heading_iterations": node.int("heading_iterations", d.heading_iterations, ge=1),
+        "line_current_drag": node.bool("line_current_drag", d.line_current_drag),
     }
     try:
         return FDOptions(**kw)
@@ -66,4 +75,5 @@ def describe_frequency_domain(options: FDOptions | None, scene) -> list[str]:
     return [f"frequency domain: duration {options.duration:g} s, tensions "
             f"{options.tension_model}, drift {options.drift}, LF cut-off "
             f"{options.lf_cutoff_period:g} s"
-            + (", wave drift damping" if options.wave_drift_damping else "")]
+            + (", wave drift damping" if options.wave_drift_damping else "")
+            + (", current drag on the lines" if options.line_current_drag else "")]

@@ -260,6 +260,13 @@ class FDOptions:
     n_lf : number of LF frequencies from 0 to the cut-off.
     d_omega : rad/s, step of the WF grid.
     heading_iterations : fixed-point iterations on the mean yaw for the relative headings.
+    line_current_drag : include the static current drag on the mooring lines in the mean
+        position (default false: the catenary lines carry no current).  Each line's statics
+        are solved in the scene's current profile with its FE model
+        (:class:`~floatmoor.mooring.fe.current_statics.LineCurrentStatics`), and the difference
+        from still water is added to the catenary force; the mean pose, the static tensions
+        and the linearisation (mooring stiffness, tension gradients, the dynamic line model)
+        are then taken there (:mod:`floatmoor.analyses.frequency_domain`).
     """
 
     duration: float = 10800.0
@@ -270,6 +277,7 @@ class FDOptions:
     n_lf: int = 1200
     d_omega: float = 0.005
     heading_iterations: int = 4
+    line_current_drag: bool = False
 
     def __post_init__(self):
         def bad(key, expected, found):
@@ -290,6 +298,8 @@ class FDOptions:
             bad("heading_iterations", "an integer >= 1", self.heading_iterations)
         if not isinstance(self.wave_drift_damping, bool):
             bad("wave_drift_damping", "true or false", self.wave_drift_damping)
+        if not isinstance(self.line_current_drag, bool):
+            bad("line_current_drag", "true or false", self.line_current_drag)
 
 
 # -- the coupled solution -----------------------------------------------------------------------
