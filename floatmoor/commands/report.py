@@ -201,7 +201,8 @@ def _check_consistent(datasets, key):
     if "mbs" in datasets[0]:
         m0 = datasets[0]["mbs"].values
         for ds in datasets[1:]:
-            if "mbs" in ds and not np.allclose(ds["mbs"].values, m0, rtol=1e-12, atol=0.0):
+            if "mbs" in ds and not np.allclose(ds["mbs"].values, m0, rtol=1e-12, atol=0.0,
+                                                     equal_nan=True):
                 raise _scene_error(ds.attrs["source_file"], f"{key}.mbs",
                                    f"the MBS of the other seeds {list(m0)} N", list(ds["mbs"].values))
 
@@ -211,9 +212,17 @@ def mbs_of(datasets):
     in the results' ``scene_file`` attribute."""
     import numpy as np
 
+    from ..post.dnv_os_e301 import require_known_mbs
+
     ds = datasets[0]
+    lines = [str(v) for v in ds["line"].values]
     if "mbs" in ds:
-        return np.asarray(ds["mbs"].values, float), "results (mbs variable)"
+        mbs = np.asarray(ds["mbs"].values, float)
+        require_known_mbs(mbs, lines, file=ds.attrs.get("source_file"), key="mbs",
+                          detail=(ds["mbs"].attrs.get("unknown", "") + "; then run the seeds "
+                                  "again (the results store the MBS of the scene they came "
+                                  "from)").lstrip("; "))
+        return mbs, "results (mbs variable)"
     scene_file = ds.attrs.get("scene_file")
     if not scene_file or not Path(scene_file).is_file():
         raise _scene_error(ds.attrs.get("source_file"), "mbs",
@@ -229,9 +238,9 @@ def mbs_of(datasets):
     ms = parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
                        water_density=site.water_density, gravity=site.gravity)
     names = [str(n) for n in ms.names]
-    lines = [str(v) for v in ds["line"].values]
     if names != lines:
         raise _scene_error(scene_file, "mooring", f"the lines of the results {lines}", names)
+    ms.require_mbs("the DNV-OS-E301 design report")
     mbs = np.asarray(ms.mbs, float)
     return mbs, f"scene mooring ({scene_file})"
 

@@ -160,6 +160,8 @@ def undamped_lf_notes(ds) -> list[str]:
 def location_curves(mooring, locations, segments, *, design_life, corrosion):
     """T-N curves (objects), RBS (N) and segment type names per (location, line)."""
     from .tn_curves import curve_for, reference_breaking_strength
+    mooring.require_mbs("the fatigue analysis (T-N curves of the tension range over the "
+                        "reference breaking strength, RBS = MBS on the corroded area)")
     n_loc, n_l = segments.shape
     curves = np.empty((n_loc, n_l), object)
     rbs = np.full((n_loc, n_l), np.nan)
