@@ -62,6 +62,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..fibre import table_lookup_nb
+
 __all__ = ["LAW_POLY", "LAW_WORKING", "LAW_TWO_COMPONENT", "EL_LAW", "EL_FIB", "FS_EM",
            "DEFAULT_TIME_CONSTANT", "fibre_record", "fibre_tension", "fibre_commit",
            "fibre_start", "working_tension", "dynamic_stiffness"]
@@ -88,14 +90,9 @@ def fibre_record(fibre, mbs: float, tau: float) -> np.ndarray:
 @njit(cache=True)
 def _pl(S, ox, oy, n, x):
     """Piecewise-linear ``y(x)`` of the table ``S[ox:ox+n], S[oy:oy+n]`` and its slope;
-    linear extrapolation with the end slopes."""
-    k = 0
-    while k < n - 2 and x > S[ox + k + 1]:
-        k += 1
-    x0 = S[ox + k]
-    y0 = S[oy + k]
-    d = (S[oy + k + 1] - y0) / (S[ox + k + 1] - x0)
-    return y0 + d * (x - x0), d
+    linear extrapolation with the end slopes.  The lookup of the quasi-static fibre model
+    (:func:`floatmoor.mooring.fibre.table_lookup_nb`): at a node the right derivative."""
+    return table_lookup_nb(x, S[ox:ox + n], S[oy:oy + n])
 
 
 @njit(cache=True)
