@@ -105,14 +105,24 @@ lines:
     assert "imported.dat line 7" in ms.unknown_mbs() and "line_types.b.mbs" in ms.unknown_mbs()
 
 
-def test_fatigue_refuses_an_unknown_mbs(imported):
+def test_fatigue_refuses_an_unknown_mbs_where_the_curve_needs_it(imported):
+    """A T-N curve on the tension range over the RBS (= MBS on the corroded area) needs the
+    MBS; DNV's S-N curve of chain in MPa does not (nominal area of the diameter only)."""
+    from dataclasses import replace
+
     from floatmoor.post.fatigue.locations import location_curves
     ms = imported.system
+    name = ms.lines[0].segments[0].line_type
+    segs = np.zeros((1, ms.n_lines), int)
+    ms.line_types[name] = replace(ms.line_types[name], tn_curve="api_chain_studless")
     with pytest.raises(SceneError) as e:
-        location_curves(ms, ["fairlead"], np.zeros((1, ms.n_lines), int), design_life=20.0,
-                        corrosion={})
-    assert "fatigue" in str(e.value)
-    _names_source_and_remedy(str(e.value), ms.lines[0].segments[0].line_type)
+        location_curves(ms, ["fairlead"], segs, design_life=20.0, corrosion={})
+    assert "fatigue" in str(e.value) and "api_chain_studless" in str(e.value)
+    _names_source_and_remedy(str(e.value), name)
+    ms.line_types[name] = replace(ms.line_types[name], tn_curve="chain_studless")
+    curves, ref, _ = location_curves(ms, ["fairlead"], segs, design_life=20.0, corrosion={})
+    d = ms.line_types[name].diameter
+    np.testing.assert_allclose(ref, 2 * np.pi * (d * 1e3) ** 2 / 4)   # mm^2, no MBS
 
 
 def _scene_with(imported, tmp_path):
