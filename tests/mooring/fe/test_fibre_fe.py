@@ -530,3 +530,21 @@ def test_axial_stiffness_limit_caps_the_working_curve_in_dynamics_only():
         warnings.simplefilter("error")
         line2 = _taut(0.02, fibre_law="working_curve", axial_stiffness_limit=1e12)
     assert int(line2.E_static[0, EL_FIB]) == int(line2.E_dynamic[0, EL_FIB])
+
+
+def test_frequency_domain_damping_and_limit_follow_the_time_domain_rule():
+    """The linearised line uses the same fibre stiffness and -zeta damping as the time domain:
+    B = zeta 2 sqrt(k m) l with k = EA_d(0.28 MBS) = 22.8 MBS (see the damping test above), and
+    with a limit of 15 MBS the capped stiffness (working-curve law: 16 -> 15 MBS at 2 %)."""
+    from floatmoor.mooring.fe.frequency import line_statics
+    zeta, le = 0.3, 100.0 / 5
+    line = _taut_damped(0.02, zeta)
+    line.solve_static(restart=True)
+    st = line_statics(line)
+    np.testing.assert_allclose(st.B, zeta * 2.0 * math.sqrt(22.8 * MBS * MASS) * le, rtol=1e-6)
+    line.start()
+    np.testing.assert_allclose(st.B, line.E_dynamic[:, K.EL_B], rtol=1e-12)
+    with pytest.warns(Warning, match="axial stiffness limited"):
+        capped = _taut(0.02, fibre_law="working_curve", axial_stiffness_limit=15.0 * MBS)
+    capped.solve_static(restart=True)
+    np.testing.assert_allclose(line_statics(capped).kax_eps, 15.0 * MBS, rtol=1e-12)
