@@ -387,8 +387,11 @@ class MooringSystem:
         for name, lines in types.items():
             lt = self.line_types.get(name)
             src = getattr(lt, "source", "") or "unknown origin"
+            where = (str(self.source) if str(self.source).endswith((".yaml", ".yml")) else
+                     f"the floatmoor mooring file imported from {self.source} (its "
+                     f"'mbs: unknown')")
             parts.append(f"line type {name!r} (from {src}; lines {', '.join(dict.fromkeys(lines))})"
-                         f" has no MBS: set line_types.{name}.mbs (N) in {self.source}")
+                         f" has no MBS: set line_types.{name}.mbs (N) in {where}")
         return "; ".join(parts)
 
     def mbs_attrs(self) -> dict:
