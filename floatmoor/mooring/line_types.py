@@ -72,13 +72,13 @@ def mbs_known(mbs) -> bool:
     return math.isfinite(mbs) and mbs < MBS_UNKNOWN
 
 
-def _mbs(e: Node, default=None) -> float:
-    """The ``mbs`` key (N, > 0) of a line type entry; ``unknown`` (or the old placeholder
-    ``MBS_UNKNOWN``) gives nan."""
+def _mbs(e: Node) -> float:
+    """The (required) ``mbs`` key (N, > 0) of a line type entry; ``unknown`` (or the old
+    placeholder ``MBS_UNKNOWN``) gives nan."""
     if isinstance(e.raw("mbs", None), str) and e.raw("mbs").strip().lower() == "unknown":
         return math.nan
-    v = e.float("mbs", default, gt=0.0, unit="N")
-    return math.nan if v is not None and v >= MBS_UNKNOWN else v
+    v = e.float("mbs", gt=0.0, unit="N")
+    return math.nan if v >= MBS_UNKNOWN else v
 
 
 CHAIN_GRADES = {"R3": 0.0223, "R3S": 0.0249, "R4": 0.0274, "R4S": 0.0304, "R5": 0.0320}

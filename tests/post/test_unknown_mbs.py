@@ -87,6 +87,21 @@ def _with_mbs(path, imported, mbs):
     return q
 
 
+def test_a_missing_mbs_is_still_an_error(tmp_path):
+    """Only an explicit ``mbs: unknown`` is accepted: a user type without ``mbs`` stays a
+    SceneError naming the key."""
+    p = tmp_path / "m.yaml"
+    p.write_text("""
+line_types:
+  a: {diameter: 0.1, mass_per_length: 50.0, ea: 5.0e8, density: 7850.0}
+lines:
+  - {name: l1, anchor: {x: -800.0, y: 0.0, z: -200.0}, fairlead: [0.0, 0.0, 0.0],
+     segments: [{type: a, length: 900.0}]}
+""")
+    with pytest.raises(SceneError, match="mbs"):
+        parse_mooring(Node.load(p), water_depth=200.0)
+
+
 def test_weakest_segment_unknown_makes_the_line_unknown(tmp_path):
     """A line of a known and an unknown segment has an unknown MBS (the unknown one may be the
     weaker): min() of the two must not return the known one."""
