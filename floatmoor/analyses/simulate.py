@@ -237,6 +237,7 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
         data["anchor_tension"] = (("time", "line"), r.anchor_tension,
                                   {"units": "N", "long_name": "tension at the anchor"})
         data["mbs"] = (("line",), np.asarray(built.mooring.mbs, float),
+                       built.mooring.mbs_attrs() if hasattr(built.mooring, "mbs_attrs") else
                        {"units": "N", "long_name": "minimum breaking strength (weakest segment)"})
         fe_lines = list(getattr(r, "fe_lines", []) or [])
         if fe_lines:

@@ -363,7 +363,18 @@ def load_campaign(path: str | os.PathLike) -> CampaignSpec:
         seeds=tuple(seeds), analysis=_analysis(node),
         screening=screening, design=design, storage=_storage(node))
     _check_analysis(spec, scene, node)
+    _require_mbs(scene)
     return spec
+
+
+def _require_mbs(scene) -> None:
+    """The campaign screens and reports DNV-OS-E301 utilisations: refuse, before any case runs,
+    a mooring whose line types have no MBS (``mbs: unknown``, e.g. imported)."""
+    from ..io.mooring_section import parse_mooring
+    site = scene.site
+    parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
+                  water_density=site.water_density, gravity=site.gravity,
+                  check=False).require_mbs("the campaign's DNV-OS-E301 screening and report")
 
 
 def _check_analysis(spec: CampaignSpec, scene, node: Node) -> None:

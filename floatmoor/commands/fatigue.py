@@ -245,8 +245,14 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
             "utilisation": v(("location", "line"), util, "1",
                              "gamma_F d_C (d_C the damage over the design life); <= 1 passes"),
             "check_ok": v(("location", "line"), ok, "1", "DNV (2008) 1 - gamma_F d_C >= 0"),
-            "rbs": v(("location", "line"), rbs, "N",
-                     "reference breaking strength (MBS on the corroded diameter)"),
+            "rbs": v(("location", "line"), rbs, "N or mm^2",
+                     "range reference of the curve: T-N curves (tn_basis rbs) the reference "
+                     "breaking strength in N (MBS on the corroded diameter); S-N curves in MPa "
+                     "(tn_basis stress) the nominal steel area in mm^2 on the corroded "
+                     "diameter"),
+            "tn_basis": v(("location", "line"), [[getattr(c, "basis", "") for c in row]
+                                                 for row in curves], "",
+                          "rbs: tension range / RBS; stress: stress range in MPa"),
             "tn_a_d": v(("location", "line"), [[getattr(c, "a_d", np.nan) for c in row]
                                                for row in curves], "1", "T-N constant a_D"),
             "tn_m": v(("location", "line"), [[getattr(c, "m", np.nan) for c in row]

@@ -29,8 +29,10 @@ and summary.nc into ``--out`` (default RESULTS_DIR/report), and prints a short s
 Exit status (for scripts):
   0  every line passes the design equation in every limit state checked
   1  at least one line fails the design equation (the report is still written)
-  2  bad input: missing folder, no result files, results of different scenes or durations,
-     unknown line, unreadable file (message on stderr, no traceback)
+  2  bad input: missing folder, no result files, results of different scenes, durations or
+     input fingerprints (seeds run before and after an edit of the scene, mooring, vessel...),
+     a line whose MBS is unknown, unknown line, unreadable file (message on stderr, no
+     traceback)
 """
 
 from __future__ import annotations
@@ -109,7 +111,7 @@ def read_results(folder, key: str = "RESULTS_DIR"):
     ------
     SceneError
         No such folder, no result file, an unreadable file, results of different scenes,
-        durations, time steps or line sets, or a seed twice.  NetCDF files that are not
+        durations, time steps, input fingerprints or line sets, or a seed twice.  NetCDF files that are not
         floatmoor run results (e.g. a ``floatmoor fd --out`` file) are skipped with a warning.
     """
     import xarray as xr
@@ -185,6 +187,7 @@ def _check_consistent(datasets, key):
             raise _scene_error(Path(datasets[0].attrs["source_file"]).parent, key,
                                f"results of one scene run alike (one {what})", found,
                                "put each scene's (or each run's) results in its own folder")
+    _check_fingerprints(datasets, key)
     lines0 = [str(v) for v in datasets[0]["line"].values]
     for ds in datasets[1:]:
         if [str(v) for v in ds["line"].values] != lines0:
@@ -201,9 +204,41 @@ def _check_consistent(datasets, key):
     if "mbs" in datasets[0]:
         m0 = datasets[0]["mbs"].values
         for ds in datasets[1:]:
-            if "mbs" in ds and not np.allclose(ds["mbs"].values, m0, rtol=1e-12, atol=0.0):
+            if "mbs" in ds and not np.allclose(ds["mbs"].values, m0, rtol=1e-12, atol=0.0,
+                                                     equal_nan=True):
                 raise _scene_error(ds.attrs["source_file"], f"{key}.mbs",
                                    f"the MBS of the other seeds {list(m0)} N", list(ds["mbs"].values))
+
+
+def _check_fingerprints(datasets, key):
+    """Refuse seeds computed from different inputs: the ``input_fingerprint`` that ``floatmoor
+    run`` stores (:mod:`floatmoor.analyses.fingerprint`) differs, e.g. seeds run before and
+    after the mooring file was edited.  As in ``floatmoor run``, a file without a fingerprint
+    beside files with one counts as different; files that all lack it (``simulate`` called
+    from Python) are not compared."""
+    import json
+
+    from ..analyses.fingerprint import FINGERPRINT_ATTR, differing_keys, fingerprint_digest
+
+    groups = {}
+    for ds in datasets:
+        text = ds.attrs.get(FINGERPRINT_ATTR)
+        fp = json.loads(text) if text else None
+        digest = fingerprint_digest(fp) if fp is not None else "(no fingerprint)"
+        groups.setdefault(digest, (fp, []))[1].append(str(ds.attrs.get("seed", "?")))
+    if len(groups) < 2:
+        return
+    fps = [fp for fp, _ in groups.values()]
+    diff = sorted({k for a in fps for b in fps if a is not None and b is not None
+                   for k in differing_keys(a, b)})
+    found = "; ".join(f"seed(s) {', '.join(seeds)} from inputs {digest}"
+                      for digest, (_, seeds) in groups.items())
+    raise _scene_error(Path(datasets[0].attrs["source_file"]).parent, key,
+                       "seeds computed from the same inputs (one scene fingerprint)",
+                       f"{len(groups)} fingerprints",
+                       found + "; " + ("they differ in: " + ", ".join(diff) + "; " if diff else "")
+                       + "run the seeds of the older inputs again (floatmoor run --force with "
+                       "the current scene) or put each version's results in its own folder")
 
 
 def mbs_of(datasets):
@@ -211,9 +246,17 @@ def mbs_of(datasets):
     in the results' ``scene_file`` attribute."""
     import numpy as np
 
+    from ..post.dnv_os_e301 import require_known_mbs
+
     ds = datasets[0]
+    lines = [str(v) for v in ds["line"].values]
     if "mbs" in ds:
-        return np.asarray(ds["mbs"].values, float), "results (mbs variable)"
+        mbs = np.asarray(ds["mbs"].values, float)
+        require_known_mbs(mbs, lines, file=ds.attrs.get("source_file"), key="mbs",
+                          detail=(ds["mbs"].attrs.get("unknown", "") + "; then run the seeds "
+                                  "again (the results store the MBS of the scene they came "
+                                  "from)").lstrip("; "))
+        return mbs, "results (mbs variable)"
     scene_file = ds.attrs.get("scene_file")
     if not scene_file or not Path(scene_file).is_file():
         raise _scene_error(ds.attrs.get("source_file"), "mbs",
@@ -229,9 +272,9 @@ def mbs_of(datasets):
     ms = parse_mooring(scene.mooring_node(), water_depth=site.water_depth,
                        water_density=site.water_density, gravity=site.gravity)
     names = [str(n) for n in ms.names]
-    lines = [str(v) for v in ds["line"].values]
     if names != lines:
         raise _scene_error(scene_file, "mooring", f"the lines of the results {lines}", names)
+    ms.require_mbs("the DNV-OS-E301 design report")
     mbs = np.asarray(ms.mbs, float)
     return mbs, f"scene mooring ({scene_file})"
 

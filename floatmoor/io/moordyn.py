@@ -18,7 +18,8 @@ Mapping to floatmoor (a comment per conversion is written into ``mooring.yaml``)
   ``EA`` -> ``ea``; ``Cd``/``Cdn`` -> ``cdn`` (both on d); ``Ca``/``Can`` -> ``can`` and
   ``CaAx``/``Cat`` -> ``cat`` (both on the displaced volume); ``CdAx``/``Cdt`` acts on pi d in
   MoorDyn and floatmoor's ``cdt`` on d, so ``cdt = pi CdAx``.  MoorDyn has no MBS: the imported
-  type carries ``mbs: 1e30`` and the import warns (set the real MBS before any design check).
+  type carries ``mbs: unknown`` and the import warns (set the real MBS before any design check:
+  the checks that need it refuse an unknown MBS).
 * ``BA/-zeta`` -> ``finite_element.internal_damping`` (same convention: N s, or -zeta);
   ``NumSegs`` -> ``finite_element.n_elements``; ``kBot``/``cBot`` (per unit area, Pa/m, Pa s/m)
   -> ``finite_element.seabed`` stiffness and damping per unit length (x the diameter); friction

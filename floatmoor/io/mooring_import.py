@@ -17,12 +17,13 @@ from pathlib import Path
 from ..core.config import Node, parse_yaml_text
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import FloatmoorWarning, SceneError
+from ..mooring.line_types import MBS_UNKNOWN
 
 __all__ = ["MBS_UNKNOWN", "ImpLine", "ImpPoint", "ImpType", "ImportedMooring", "MooringImport",
            "build", "fmt", "to_yaml"]
 
-MBS_UNKNOWN = 1.0e30
-"""MBS written for a line type whose source file gives none (N); the import warns."""
+# MBS_UNKNOWN (re-exported): the placeholder earlier imports wrote; a line type whose source file
+# gives no MBS is now written ``mbs: unknown`` (the import warns; design checks refuse it).
 
 
 # ------------------------------------------------------------------------------------------------
@@ -228,8 +229,8 @@ def to_yaml(m: ImportedMooring, *, water_depth=None, water_density=None, gravity
               (f"    volumetric_diameter: {fmt(t.diameter)}  # displaced volume pi d^2/4 per m "
                f"(the file's buoyancy)"),
               f"    ea: {fmt(t.ea)}               # N",
-              (f"    mbs: {fmt(MBS_UNKNOWN)}  # NOT IN THE SOURCE FILE: set the real MBS "
-               f"before any design check")]
+              ("    mbs: unknown   # NOT IN THE SOURCE FILE: set the real MBS (N); design "
+               "checks refuse an unknown MBS")]
         if t.cd is not None:
             L.append(f"    cdn: {fmt(t.cd)}   # normal drag on d (MoorDyn Cd)")
         if t.ca is not None:
@@ -322,8 +323,9 @@ def build(m: ImportedMooring, *, water_depth=None, water_density=None, gravity=N
     node = Node(parse_yaml_text(text, m.file), file=m.file)
     system = parse_mooring(node, water_depth=depth, water_density=rho, gravity=g)
     unmapped = list(m.unmapped)
-    unmapped.append("MBS: not in the file; the line types carry mbs = 1e30 N (replace before "
-                    "any design check)")
+    unmapped.append("MBS: not in the file; the line types carry mbs: unknown (statics, motions "
+                    "and tensions run; set the MBS before any design check: report, campaign, "
+                    "fatigue)")
     if warn:
         warnings.warn(f"{m.file}: not mapped to floatmoor ({m.format}):\n  - "
                       + "\n  - ".join(unmapped), FloatmoorWarning, stacklevel=3)

@@ -54,7 +54,7 @@ import numpy as np
 from numba import njit
 
 __all__ = ["FibreModel", "POLYESTER_DEFAULT", "PRESETS", "table_value_nb", "table_inverse_nb",
-           "table_slope_nb", "dynamic_ea_nb", "BOUNDS"]
+           "table_slope_nb", "table_lookup_nb", "table_segment_nb", "dynamic_ea_nb", "BOUNDS"]
 
 BOUNDS = ("nominal", "lower", "upper")
 """Stiffness bounds a :class:`FibreModel` may carry."""
@@ -95,15 +95,36 @@ def table_inverse_nb(y, xs, ys):
 
 
 @njit(cache=True)
-def table_slope_nb(x, xs, ys):
-    """Slope ``dy/dx`` of the piecewise-linear table at ``x`` (right derivative at a node)."""
+def table_segment_nb(x, xs):
+    """Index ``lo`` of the segment ``[xs[lo], xs[lo + 1]]`` of a table with increasing ``xs``
+    that holds ``x``.  Convention (every fibre table lookup, quasi-static and FE): at an
+    interior node the segment to its *right* (``xs[lo] <= x < xs[lo + 1]``: the slope there is
+    the right derivative, the tangent for an increasing load); below the table the first and
+    from its last node on the last segment (linear extrapolation)."""
     n = xs.shape[0]
-    if x < xs[0]:
-        return (ys[1] - ys[0]) / (xs[1] - xs[0])
-    if x >= xs[n - 1]:
-        return (ys[n - 1] - ys[n - 2]) / (xs[n - 1] - xs[n - 2])
-    lo, hi = _bracket(x, xs)
-    return (ys[hi] - ys[lo]) / (xs[hi] - xs[lo])
+    if x < xs[1]:
+        return 0
+    if x >= xs[n - 2]:
+        return n - 2
+    return _bracket(x, xs)[0]
+
+
+@njit(cache=True)
+def table_lookup_nb(x, xs, ys):
+    """Piecewise-linear ``y(x)`` and its slope ``dy/dx`` on the segment of
+    :func:`table_segment_nb` (right derivative at a node)."""
+    lo = table_segment_nb(x, xs)
+    x0 = xs[lo]
+    y0 = ys[lo]
+    d = (ys[lo + 1] - y0) / (xs[lo + 1] - x0)
+    return y0 + d * (x - x0), d
+
+
+@njit(cache=True)
+def table_slope_nb(x, xs, ys):
+    """Slope ``dy/dx`` of the piecewise-linear table at ``x`` (right derivative at a node,
+    :func:`table_segment_nb`)."""
+    return table_lookup_nb(x, xs, ys)[1]
 
 
 @njit(cache=True)

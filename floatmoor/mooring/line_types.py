@@ -36,6 +36,14 @@ axial stiffness 15 MBS and dynamic 25 MBS (mid-range of the 10-20 and 20-35 MBS 
 DNV-OS-E303 / API RP 2SM for polyester), displaced volume = mass / 1380 kg/m^3 (fibre density).
 
 Submerged weight convention: ``w = (mass - rho_w * displaced_volume) * g`` per unit length.
+
+Unknown MBS: a user type may give ``mbs: unknown`` (the MoorDyn and MAP++ importers write it:
+those files give no breaking strength); the type then carries ``mbs = nan``.  Statics, motions
+and tensions do not need the MBS and run; every design check that does (DNV-OS-E301 ULS/ALS,
+campaign screening, fatigue on the reference breaking strength) raises a SceneError naming the
+line type, where it came from and what to set (:func:`mbs_known`,
+:meth:`floatmoor.mooring.system.MooringSystem.require_mbs`).  A value >= ``MBS_UNKNOWN``
+(1e30 N, the placeholder written by earlier imports) is read as unknown too.
 """
 
 from __future__ import annotations
@@ -52,8 +60,26 @@ from ..core.errors import SceneError
 from .fibre import PRESETS as FIBRE_PRESETS
 from .fibre import FibreModel
 
-__all__ = ["LineType", "CHAIN_GRADES", "FAMILIES", "LineTypeLibrary", "default_library",
+__all__ = ["LineType", "MBS_UNKNOWN", "mbs_known", "CHAIN_GRADES", "FAMILIES", "LineTypeLibrary", "default_library",
            "chain", "wire_rope", "polyester"]
+
+MBS_UNKNOWN = 1.0e30
+"""Placeholder MBS (N) written by earlier MoorDyn/MAP++ imports; read as an unknown MBS."""
+
+
+def mbs_known(mbs) -> bool:
+    """True when ``mbs`` (N) is a real breaking strength (finite and below ``MBS_UNKNOWN``)."""
+    return math.isfinite(mbs) and mbs < MBS_UNKNOWN
+
+
+def _mbs(e: Node) -> float:
+    """The (required) ``mbs`` key (N, > 0) of a line type entry; ``unknown`` (or the old
+    placeholder ``MBS_UNKNOWN``) gives nan."""
+    if isinstance(e.raw("mbs", None), str) and e.raw("mbs").strip().lower() == "unknown":
+        return math.nan
+    v = e.float("mbs", gt=0.0, unit="N")
+    return math.nan if v >= MBS_UNKNOWN else v
+
 
 CHAIN_GRADES = {"R3": 0.0223, "R3S": 0.0249, "R4": 0.0274, "R4S": 0.0304, "R5": 0.0320}
 """Grade factor c of the chain MBS formula (DNV-OS-E302), kN/mm^2."""
@@ -95,7 +121,7 @@ class LineType:
     ea_dynamic : float
         Dynamic axial stiffness, N (equal to ``ea`` for steel).
     mbs : float
-        Minimum breaking strength, N.
+        Minimum breaking strength, N; nan when unknown (``mbs: unknown``, imported types).
     cdn, cdt, can, cat : float
         Normal/tangential drag and added-mass coefficients on the nominal diameter.
     source : str
@@ -367,10 +393,12 @@ class LineTypeLibrary:
                 grade = e.str("grade", "R4", choices=list(CHAIN_GRADES))
             lt = FAMILIES[family](d, grade=grade, name=name)
             over = {}
-            for k in ("mbs", "ea", "ea_dynamic", "cdn", "cdt", "can", "cat"):
+            if "mbs" in e:
+                over["mbs"] = _mbs(e)
+            for k in ("ea", "ea_dynamic", "cdn", "cdt", "can", "cat"):
                 if k in e:
-                    over[k] = e.float(k, gt=0.0 if k in ("mbs", "ea", "ea_dynamic") else None,
-                                      ge=None if k in ("mbs", "ea", "ea_dynamic") else 0.0)
+                    over[k] = e.float(k, gt=0.0 if k in ("ea", "ea_dynamic") else None,
+                                      ge=None if k in ("ea", "ea_dynamic") else 0.0)
             if "ea" in over and "ea_dynamic" not in over and lt.material != "polyester":
                 over["ea_dynamic"] = over["ea"]
             if "source" in e:
@@ -391,7 +419,7 @@ class LineTypeLibrary:
         else:
             ea = e.float("ea", gt=0.0, unit="N")
         ead = e.float("ea_dynamic", ea, gt=0.0, unit="N")
-        mbs = e.float("mbs", gt=0.0, unit="N")
+        mbs = _mbs(e)
         given = [k for k in ("displaced_volume", "density", "volumetric_diameter", "submerged_weight")
                  if k in e]
         if len(given) != 1:

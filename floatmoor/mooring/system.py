@@ -35,7 +35,7 @@ import numpy as np
 import xarray as xr
 from numba import njit
 
-from ..core.errors import ConvergenceError, FloatmoorWarning
+from ..core.errors import ConvergenceError, FloatmoorWarning, SceneError
 from ..core.frames import rotation_matrix_into
 from .catenary import (
     OUT_HA,
@@ -100,7 +100,10 @@ class LineDef:
 
     @property
     def mbs(self) -> float:
-        return min(s.mbs for s in self.segments)
+        """MBS of the weakest segment (N); nan when a segment's MBS is unknown (the weakest
+        could be that one)."""
+        vals = [s.mbs for s in self.segments]
+        return math.nan if any(math.isnan(v) for v in vals) else min(vals)
 
 
 # --------------------------------------------------------------------------------------------
@@ -370,6 +373,48 @@ class MooringSystem:
                              line_models=self.line_models, line_types=self.line_types,
                              fibre_time_constant=self.fibre_time_constant)
 
+    def unknown_mbs(self) -> str:
+        """Empty when every line has a known MBS; else which line types have none, where they
+        came from and what to set (the text of the design-check errors)."""
+        types = {}
+        for ln in self.lines:
+            for sg in ln.segments:
+                if math.isnan(sg.mbs):
+                    types.setdefault(sg.line_type, []).append(ln.name)
+        if not types:
+            return ""
+        parts = []
+        for name, lines in types.items():
+            lt = self.line_types.get(name)
+            src = getattr(lt, "source", "") or "unknown origin"
+            where = (str(self.source) if str(self.source).endswith((".yaml", ".yml")) else
+                     f"the floatmoor mooring file imported from {self.source} (its "
+                     f"'mbs: unknown')")
+            parts.append(f"line type {name!r} (from {src}; lines {', '.join(dict.fromkeys(lines))})"
+                         f" has no MBS: set line_types.{name}.mbs (N) in {where}")
+        return "; ".join(parts)
+
+    def mbs_attrs(self) -> dict:
+        """netCDF attributes of an ``mbs(line)`` variable (``unknown``: the
+        :meth:`unknown_mbs` text, read back by the design checks)."""
+        out = {"units": "N", "long_name": "minimum breaking strength (weakest segment; nan: "
+               "unknown)"}
+        text = self.unknown_mbs()
+        if text:
+            out["unknown"] = text
+        return out
+
+    def require_mbs(self, purpose: str) -> None:
+        """SceneError when a line's MBS is unknown (``mbs: unknown``, e.g. an imported MoorDyn
+        or MAP++ file): ``purpose`` names the design check that needs it."""
+        text = self.unknown_mbs()
+        if text:
+            name = next(sg.line_type for ln in self.lines for sg in ln.segments
+                        if math.isnan(sg.mbs))
+            raise SceneError(self.source, f"line_types.{name}.mbs",
+                             f"the minimum breaking strength (N) of every line type, needed by "
+                             f"{purpose}", "unknown", text)
+
     @property
     def has_fibre(self) -> bool:
         """True when a segment has a fibre-rope model (load-dependent stiffness)."""
@@ -511,8 +556,7 @@ class MooringSystem:
              "vertical_anchor": var(va, "N", "vertical tension component at the anchor (up)"),
              "fairlead_angle": var(ang, "deg", "line angle at the fairlead from horizontal"),
              "grounded_length": var(o[:, OUT_LB], "m", "unstretched length on the seabed"),
-             "mbs": ("line", self.mbs, {"units": "N", "long_name": "minimum breaking strength "
-                                        "(weakest segment)"}),
+             "mbs": ("line", self.mbs, self.mbs_attrs()),
              "utilisation": var(util, "1", "fairlead tension / MBS"),
              "failed": ("line", failed, {"long_name": "line removed (failed)"})},
             coords={"line": list(self.names)},

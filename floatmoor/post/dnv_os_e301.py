@@ -50,14 +50,15 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from ..core.errors import argument_error
+from ..core.errors import SceneError, argument_error
+from ..mooring.line_types import MBS_UNKNOWN
 from .extremes import gumbel_fit
 
 __all__ = [
     "STANDARD", "EDITION", "SOURCE", "ULS_FACTORS", "ALS_FACTORS", "COMMON_FACTOR",
     "COMMON_FACTOR_RATIO", "STRENGTH_FACTOR", "SPM_FACTOR", "PartialFactors", "partial_factors",
     "characteristic_strength", "design_tension", "simple_safety_factor", "line_check",
-    "check_lines", "characteristic_tensions", "factors_table",
+    "check_lines", "characteristic_tensions", "factors_table", "require_known_mbs",
 ]
 
 STANDARD = "DNV-OS-E301"
@@ -204,6 +205,10 @@ def characteristic_strength(mbs, strength_factor: float = STRENGTH_FACTOR):
         S_C in N.
     """
     s = np.asarray(mbs, dtype=float)
+    if np.any(np.isnan(s)) or np.any(s >= MBS_UNKNOWN):
+        raise argument_error("mbs", "a known minimum breaking strength in N", "unknown",
+                             "a line type without MBS (mbs: unknown, e.g. an imported MoorDyn "
+                             "or MAP++ file): set its mbs before any design check")
     if np.any(~np.isfinite(s)) or np.any(s <= 0):
         raise argument_error("mbs", "a minimum breaking strength > 0 in N", mbs)
     if not (0 < strength_factor <= 1):
@@ -272,6 +277,22 @@ def simple_safety_factor(mbs, t_max):
         raise argument_error("mbs", "a minimum breaking strength > 0", mbs)
     out = m / t
     return float(out) if out.ndim == 0 else out
+
+
+def require_known_mbs(mbs, lines, *, file=None, key: str = "mbs", detail: str = "",
+                      purpose: str = "the DNV-OS-E301 design check") -> None:
+    """SceneError when the MBS of a line is unknown (nan, or the old import placeholder
+    ``MBS_UNKNOWN``): ``detail`` says which line types, from where and what to set (the
+    ``unknown`` attribute of an ``mbs`` result variable,
+    :meth:`floatmoor.mooring.system.MooringSystem.unknown_mbs`)."""
+    lines = [str(x) for x in lines]
+    m = np.broadcast_to(np.asarray(mbs, dtype=float), (len(lines),))
+    bad = [ln for ln, v in zip(lines, m) if np.isnan(v) or v >= MBS_UNKNOWN]
+    if bad:
+        raise SceneError(file, key, f"a known minimum breaking strength (MBS) of every line, "
+                         f"needed by {purpose}", f"unknown for line(s) {', '.join(bad)}",
+                         detail or "set the mbs (N) of their line types in the mooring file "
+                         "(types imported from MoorDyn or MAP++ files carry mbs: unknown)")
 
 
 def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_class: int = 2,
@@ -385,6 +406,7 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
     if als_mean is not None:
         cases.append(("ALS", als_mean, als_max))
     mbs_arr = np.broadcast_to(np.asarray(mbs, dtype=float), (nl,))
+    require_known_mbs(mbs_arr, lines)
     columns = {k: [] for k in _COLUMNS if k != "governing"}
     sources = []
     for ls, tm, tc in cases:

@@ -37,6 +37,17 @@ def _f(x, fmt="{:.3g}"):
     return fmt.format(x)
 
 
+def _reference(ds, j, i) -> str:
+    """The range reference of a (location, line): the RBS in kN (T-N curve) or the nominal
+    area in mm^2 (S-N curve in MPa, ``tn_basis`` stress)."""
+    if "rbs" not in ds:
+        return ""
+    x = float(ds["rbs"].values[j, i])
+    if "tn_basis" in ds and str(ds["tn_basis"].values[j, i]) == "stress":
+        return _f(x, "{:.0f}") + " mm^2"
+    return _f(x / 1e3, "{:.0f}")
+
+
 def fls_meta(ds) -> list[tuple[str, str]]:
     """Header rows of the FLS section."""
     return [("FLS scatter", (f"{ds.attrs.get('scatter', '')} ({ds.sizes['cell']} sea states; "
@@ -70,7 +81,7 @@ def fls_tables(ds) -> list:
             curve = (f"{ds['tn_curve'].values[j, i]} ({_f(ds['tn_a_d'].values[j, i], '{:g}')}, "
                      f"{_f(ds['tn_m'].values[j, i], '{:g}')})" if "tn_curve" in ds else "")
             rows.append([ln, loc, seg, curve,
-                         _f(float(ds["rbs"].values[j, i]) / 1e3, "{:.0f}") if "rbs" in ds else "",
+                         _reference(ds, j, i),
                          _f(ds["annual_damage"].values[k, j, i], "{:.3e}"),
                          _f(ds["fatigue_life"].values[j, i], "{:.4g}"),
                          _f(ds["gamma_f"].values[j], "{:.2f}"), _f(u, "{:.3f}"),
@@ -79,7 +90,8 @@ def fls_tables(ds) -> list:
     t1 = _Table("fls_lines", f"FLS fatigue life and check: fatigue damage, life and DNV-OS-E301 check per line and "
                 f"location ({method}, design life {life:g} years; check 1 - gamma_F d_C >= 0, "
                 "gamma_F from the adjacent-line damage ratio d_F)",
-                ["line", "location", "segment", "T-N curve (a_D, m)", "RBS (kN)",
+                ["line", "location", "segment", "T-N curve (a_D, m)",
+                 "RBS (kN) / area (mm^2, S-N in MPa)",
                  "annual damage", "life (years)", "gamma_F", "gamma_F d_C", "status"],
                 rows, highlight=hl, status_col=9)
     jg, ig = locs.index(gov[0]), lines.index(gov[1])

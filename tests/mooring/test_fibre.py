@@ -166,3 +166,26 @@ def test_polynomial_curve_is_sampled_into_the_table():
     assert f.static_tension(0.021, MBS) / MBS == pytest.approx(0.21 + 100 * 0.021 ** 2, abs=1.01e-4)
     with pytest.raises(SceneError, match="increasing"):
         lib.get("bad", diameter=0.185)
+
+
+def test_quasi_static_and_fe_lookups_agree_at_the_nodes():
+    """One convention for every fibre table lookup: at an interior node the slope is the right
+    derivative (the segment above the node), the value the node's own.  The FE law
+    (fibre_law._pl, on the record packed in the FE ``S`` array) used to take the left segment
+    and the quasi-static table_slope_nb the right one.  Expected slopes by hand from the
+    polyester preset's table: (y[i+1] - y[i]) / (x[i+1] - x[i]); left of a node the segment
+    below."""
+    from floatmoor.mooring.fe.fibre_law import _pl, fibre_record
+    xs, ys = POLYESTER_DEFAULT.working_arrays()
+    rec = fibre_record(POLYESTER_DEFAULT, 1.0, 300.0)     # MBS 1: the tensions are ys
+    n = xs.size
+    for i in range(n):
+        right = (ys[min(i, n - 2) + 1] - ys[min(i, n - 2)]) / (xs[min(i, n - 2) + 1] - xs[min(i, n - 2)])
+        y_fe, d_fe = _pl(rec, 4, 4 + n, n, xs[i])
+        assert d_fe == right and table_slope_nb(xs[i], xs, ys) == right
+        assert y_fe == pytest.approx(ys[i], rel=1e-15, abs=1e-15)
+        if 0 < i < n - 1:
+            left = (ys[i] - ys[i - 1]) / (xs[i] - xs[i - 1])
+            x = xs[i] - 1e-9
+            assert _pl(rec, 4, 4 + n, n, x)[1] == left == table_slope_nb(x, xs, ys)
+            assert left != right                          # the test sees the convention

@@ -97,23 +97,39 @@ def test_damage_from_history_by_hand():
 
 # -- T-N curves and the design equation ----------------------------------------------------------
 def test_tn_constants_and_design_equation_by_hand():
-    # DNV (2008) Ch.2 Sec.2 table D1
-    assert (DNV_CURVES["chain_studlink"].a_d, DNV_CURVES["chain_studlink"].m) == (1000.0, 3.0)
-    assert (DNV_CURVES["chain_studless"].a_d, DNV_CURVES["chain_studless"].m) == (316.0, 3.0)
+    # DNV (2008) Ch.2 Sec.2 S-N curves of chain, stress range in MPa: stud chain a_D = 1.2e11,
+    # studless chain a_D = 6.0e10, m = 3.0 (the published values as reproduced by DNV's qats
+    # example "DNVGL-OS-E301 curve for studless chain" and the aceengineer DNV-OS-E301 mooring
+    # fatigue calculator, docs/REFERENCES.md); nominal area of the two legs 2 pi d^2 / 4
+    assert (DNV_CURVES["chain_studlink"].a_d, DNV_CURVES["chain_studlink"].m) == (1.2e11, 3.0)
+    assert (DNV_CURVES["chain_studless"].a_d, DNV_CURVES["chain_studless"].m) == (6.0e10, 3.0)
+    assert DNV_CURVES["chain_studless"].basis == "stress"
+    # API RP 2SK (2005) T-N curves (tension range over the RBS): studlink 1000, studless 316,
+    # m = 3 -- formerly shipped under the DNV names
+    assert (DNV_CURVES["api_chain_studlink"].a_d, DNV_CURVES["api_chain_studlink"].m) == (1000.0, 3.0)
+    assert (DNV_CURVES["api_chain_studless"].a_d, DNV_CURVES["api_chain_studless"].m) == (316.0, 3.0)
     # the rope constants are the API RP 2SK curves at the mean load ratio 0.3:
     # log10 a_D = 3.20 - 2.79 * 0.3 = 2.363 -> 230.7; 3.25 - 3.43 * 0.3 = 2.221 -> 166.3
     assert DNV_CURVES["wire_six_strand"].a_d == pytest.approx(10 ** (3.20 - 2.79 * 0.3), rel=3e-3)
     assert DNV_CURVES["wire_spiral_strand"].a_d == pytest.approx(10 ** (3.25 - 3.43 * 0.3),
                                                                  rel=3e-3)
     assert DNV_CURVES["wire_six_strand"].m == 4.09 and DNV_CURVES["wire_spiral_strand"].m == 5.05
-    # studless chain, MBS 8500 kN, range 1000 kN: s = 1/8.5, n = 316 * 8.5^3 = 194,063.5
-    assert DNV_CURVES["chain_studless"].cycles_to_failure(1.0 / 8.5) == pytest.approx(194063.5)
+    # API studless chain, MBS 8500 kN, range 1000 kN: s = 1/8.5, n = 316 * 8.5^3 = 194,063.5
+    assert DNV_CURVES["api_chain_studless"].cycles_to_failure(1.0 / 8.5) == pytest.approx(194063.5)
     # corrosion: 84 mm chain, 0.3 mm/year over 20 years -> 84 - 0.5*0.3*20 = 81 mm,
     # RBS = 8500 kN * (81/84)^2 = 7903.7 kN
-    rbs = reference_breaking_strength(8.5e6, 0.084, DNV_CURVES["chain_studless"],
+    rbs = reference_breaking_strength(8.5e6, 0.084, DNV_CURVES["api_chain_studless"],
                                       rate_mm_per_year=0.3, design_life_years=20.0)
     assert rbs == pytest.approx(8.5e6 * (81.0 / 84.0) ** 2) and rbs / 1e3 == pytest.approx(
         7903.70, abs=0.01)
+    # DNV studless chain on the same 81 mm: A = 2 pi 81^2 / 4 = 10,306.0 mm^2; a range of
+    # 1000 kN is 97.031 MPa, n = 6.0e10 / 97.031^3 = 65,678 cycles (by hand); the MBS is not used
+    area = reference_breaking_strength(float("nan"), 0.084, DNV_CURVES["chain_studless"],
+                                       rate_mm_per_year=0.3, design_life_years=20.0)
+    assert area == pytest.approx(2 * math.pi * 81.0 ** 2 / 4) and area == pytest.approx(
+        10306.0, abs=0.05)
+    assert DNV_CURVES["chain_studless"].damage([1.0e6], [1.0], area) == pytest.approx(
+        1.0 / 65678.0, rel=1e-4)
     assert reference_breaking_strength(8.5e6, 0.185, DNV_CURVES["polyester"],
                                        rate_mm_per_year=0.3, design_life_years=20.0) == 8.5e6
     # fatigue safety factor: 5 up to d_F = 0.8, 8 at 0.9, 11 at 1.0

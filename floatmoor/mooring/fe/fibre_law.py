@@ -46,8 +46,22 @@ Storage (no allocation in the time loop, trial/accept/reject consistent):
   ``EL_FIB`` the offset of the element's fibre record in ``S``;
 * fibre records in ``S`` beyond its ``N_S`` line scalars (a line without fibre elements has
   exactly ``N_S``, :func:`fibre_record`): ``tau``, the working curve (strains and tensions in
-  N, piecewise linear, extrapolated with the end slopes) and the two coefficients of
-  ``EA_d = MBS alpha + 100 beta T_m`` (the Syrope form of the model);
+  N, piecewise linear, extrapolated with the end slopes), the two coefficients of
+  ``EA_d = MBS alpha + 100 beta T_m`` (the Syrope form of the model) and its cap ``kd_max``;
+
+Axial stiffness limit and internal damping (what :class:`~.line.FELine` does with them):
+
+* ``axial_stiffness_limit`` caps the axial stiffness of every element in dynamics, fibre
+  elements included (a user who limits the stiffness of the system's lines expects it of all
+  of them): the two-component law uses ``min(EA_d(T_m), limit)`` (the record's ``kd_max``),
+  the working-curve law in dynamics a curve whose slopes are capped at the limit
+  (:func:`capped_record`, a second record the dynamic elements point to).  Statics always use
+  the working curve itself.
+* internal damping given as a fraction of critical (``internal_damping: -zeta``) is, for a
+  fibre element, ``zeta`` of the critical damping of the stiffness the element has when the
+  dynamics start: ``EA_d`` at its static tension (two-component law) or the working-curve
+  tangent at its static strain (working-curve law), both with the limit; not the line type's
+  nominal ``ea_dynamic``.  A damping in N s is taken as given.
 * the mean strain of element ``j`` in column :data:`FS_EM` of row ``j`` of the node state
   ``fs`` (:class:`~.bundles.LineState`), with ``T_w`` and ``EA_d`` at it (columns
   :data:`FS_TM`, :data:`FS_KD`: constant over a step, so a force evaluation does not search
@@ -62,9 +76,12 @@ import math
 import numpy as np
 from numba import njit
 
+from ..fibre import table_lookup_nb
+
 __all__ = ["LAW_POLY", "LAW_WORKING", "LAW_TWO_COMPONENT", "EL_LAW", "EL_FIB", "FS_EM",
            "DEFAULT_TIME_CONSTANT", "fibre_record", "fibre_tension", "fibre_commit",
-           "fibre_start", "working_tension", "dynamic_stiffness"]
+           "fibre_start", "working_tension", "dynamic_stiffness", "capped_record",
+           "max_dynamic_stiffness"]
 
 LAW_POLY, LAW_WORKING, LAW_TWO_COMPONENT = 0.0, 1.0, 2.0
 EL_LAW, EL_FIB = 5, 6          # element columns (kernels.N_EL = 7)
@@ -72,30 +89,51 @@ FS_EM, FS_TM, FS_KD = 8, 9, 10  # node-state columns: mean strain, T_w and EA_d 
 DEFAULT_TIME_CONSTANT = 300.0  # s
 
 
-def fibre_record(fibre, mbs: float, tau: float) -> np.ndarray:
-    """The ``S`` record of a fibre segment: ``[tau, n_w, kd0, kd1, eps_w (n_w), T_w (n_w)]``.
+def fibre_record(fibre, mbs: float, tau: float, stiffness_limit: float = math.inf) -> np.ndarray:
+    """The ``S`` record of a fibre segment:
+    ``[tau, n_w, kd0, kd1, eps_w (n_w), T_w (n_w), kd_max]``.
 
     ``fibre`` a :class:`~floatmoor.mooring.fibre.FibreModel`, ``mbs`` (N), ``tau`` (s).  The
-    working curve in N (``T_w = MBS f_w``); the dynamic stiffness ``EA_d = kd0 + kd1 max(T_m,
-    0)`` with ``kd0 = MBS alpha``, ``kd1 = 100 beta`` (:func:`floatmoor.mooring.fibre.
-    dynamic_ea_nb`, the same arithmetic)."""
+    working curve in N (``T_w = MBS f_w``); the dynamic stiffness ``EA_d = min(kd0 + kd1
+    max(T_m, 0), kd_max)`` with ``kd0 = MBS alpha``, ``kd1 = 100 beta`` (:func:`floatmoor.
+    mooring.fibre.dynamic_ea_nb`, the same arithmetic) and ``kd_max`` the FE option
+    ``axial_stiffness_limit`` (N; inf: none)."""
     if not (tau > 0.0 and math.isfinite(tau)):
         raise ValueError(f"fibre time constant must be > 0 s, got {tau!r}")
     ew, fw = fibre.working_arrays()
-    return np.concatenate([[tau, ew.size, mbs * fibre.alpha, fibre.beta * 100.0], ew, fw * mbs])
+    return np.concatenate([[tau, ew.size, mbs * fibre.alpha, fibre.beta * 100.0], ew, fw * mbs,
+                           [stiffness_limit]])
+
+
+def capped_record(rec: np.ndarray, limit: float) -> np.ndarray:
+    """A copy of the record ``rec`` whose working curve has its slopes capped at ``limit`` (N):
+    the working-curve law in dynamics under ``axial_stiffness_limit`` (the tensions
+    re-integrated from zero strain, ``T_w'(eps) = int_0^eps min(T_w', limit)``)."""
+    n = int(rec[1])
+    ew, tw = rec[4:4 + n], rec[4 + n:4 + 2 * n]
+    slopes = np.minimum(np.diff(tw) / np.diff(ew), limit)
+    out = rec.copy()
+    out[4 + n:4 + 2 * n] = np.concatenate([[tw[0]], tw[0] + np.cumsum(slopes * np.diff(ew))])
+    out[4 + 2 * n] = min(rec[4 + 2 * n], limit)
+    return out
+
+
+def max_dynamic_stiffness(rec: np.ndarray, mbs: float, two_component: bool) -> float:
+    """The largest axial stiffness (N) the fibre law of ``rec`` reaches in dynamics up to the
+    MBS: ``EA_d(MBS)`` for the two-component law, the steepest working-curve slope for the
+    working-curve law (without ``kd_max``)."""
+    n = int(rec[1])
+    if two_component:
+        return float(rec[2] + rec[3] * mbs)
+    return float(np.max(np.diff(rec[4 + n:4 + 2 * n]) / np.diff(rec[4:4 + n])))
 
 
 @njit(cache=True)
 def _pl(S, ox, oy, n, x):
     """Piecewise-linear ``y(x)`` of the table ``S[ox:ox+n], S[oy:oy+n]`` and its slope;
-    linear extrapolation with the end slopes."""
-    k = 0
-    while k < n - 2 and x > S[ox + k + 1]:
-        k += 1
-    x0 = S[ox + k]
-    y0 = S[oy + k]
-    d = (S[oy + k + 1] - y0) / (S[ox + k + 1] - x0)
-    return y0 + d * (x - x0), d
+    linear extrapolation with the end slopes.  The lookup of the quasi-static fibre model
+    (:func:`floatmoor.mooring.fibre.table_lookup_nb`): at a node the right derivative."""
+    return table_lookup_nb(x, S[ox:ox + n], S[oy:oy + n])
 
 
 @njit(cache=True)
@@ -107,8 +145,11 @@ def working_tension(S, o, eps):
 
 @njit(cache=True)
 def dynamic_stiffness(S, o, tm):
-    """Dynamic stiffness ``EA_d(T_m) = kd0 + kd1 max(T_m, 0)`` (N) of the record at ``S[o]``."""
-    return S[o + 2] + S[o + 3] * (tm if tm > 0.0 else 0.0)
+    """Dynamic stiffness ``EA_d(T_m) = min(kd0 + kd1 max(T_m, 0), kd_max)`` (N) of the record
+    at ``S[o]`` (``kd_max`` inf without an ``axial_stiffness_limit``: the sum itself)."""
+    kd = S[o + 2] + S[o + 3] * (tm if tm > 0.0 else 0.0)
+    kmax = S[o + 4 + 2 * int(S[o + 1])]
+    return kd if kd <= kmax else kmax
 
 
 @njit(cache=True)

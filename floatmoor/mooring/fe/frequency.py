@@ -128,11 +128,13 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
             ea_d = lt.ea_dynamic if dynamic_ea else lt.ea
             if line.E_static[j, EL_LAW] != 0.0:
                 # fibre element: working curve, dynamic stiffness at the static (mean) tension
+                # (the dynamic record: with axial_stiffness_limit, capped as in the time domain)
                 o = int(line.E_static[j, EL_FIB])
-                T[j], kw_ = working_tension(line.S, o, max(eps, 0.0))
-                kax[j] = (dynamic_stiffness(line.S, o, T[j])
+                o_dy = int(line.E_dynamic[j, EL_FIB])
+                T[j], _ = working_tension(line.S, o, max(eps, 0.0))
+                kax[j] = (dynamic_stiffness(line.S, o_dy, T[j])
                           if dynamic_ea and line.E_dynamic[j, EL_LAW] == LAW_TWO_COMPONENT
-                          else kw_)
+                          else working_tension(line.S, o_dy, max(eps, 0.0))[1])
             elif seg.tension_poly:
                 c = list(seg.tension_poly) + [0.0] * (3 - len(seg.tension_poly))
                 T[j] = c[0] * eps + c[1] * eps ** 2 + c[2] * eps ** 3
@@ -140,7 +142,8 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
             else:
                 T[j] = lt.ea * eps
                 kax[j] = ea_d
-            B[j] = seg.damping_coefficient(ea_d)
+            # -zeta of a fibre element: of its dynamic stiffness at the static state, as FELine
+            B[j] = seg.damping_coefficient(kax[j] if line.E_static[j, EL_LAW] != 0.0 else ea_d)
             for i in (j, j + 1):
                 h = 0.5 * le
                 m[i] += lt.mass_per_length * h

@@ -42,10 +42,14 @@ from .fibre_law import (
     DEFAULT_TIME_CONSTANT,
     EL_FIB,
     EL_LAW,
+    FS_KD,
     LAW_TWO_COMPONENT,
     LAW_WORKING,
+    capped_record,
     fibre_record,
     fibre_start,
+    max_dynamic_stiffness,
+    working_tension,
 )
 
 __all__ = ["FELine", "StaticSolution", "gen_alpha_coefficients", "FIBRE_LAWS", "NEWTON_MODES"]
@@ -125,7 +129,10 @@ class FELine:
         EA = 3.84e14 N at dt 0.2 s (rho_inf 0.7) and 0.1 s (rho_inf 0.5); see RESULTS.md,
         "Stiff lines at full EA".  A limit such as 3.84e11 N (strain 4e-6 at 1.4 MN) gives
         the same tensions with slightly fewer Newton iterations.  A ``FloatmoorWarning`` says
-        when the limit is active.  Not applied to the fibre laws.
+        when the limit is active.  Fibre elements included: the two-component law's dynamic
+        stiffness and the working-curve slopes in dynamics are capped at it (statics never);
+        see :mod:`.fibre_law` (also for their ``-zeta`` internal damping, from the element's
+        stiffness at the start of the dynamics, not the line type's ``ea_dynamic``).
     fibre_law : str
         Axial law of the segments whose line type has a fibre model
         (``line_type.fibre``, :class:`floatmoor.mooring.fibre.FibreModel`; other segments and
@@ -169,6 +176,7 @@ class FELine:
         self.length_factors = []
         """Unstretched length of each segment over its given length (bedded-in fibre)."""
         fib_at = K.N_S
+        fib_max = 0.0        # largest dynamic stiffness of the fibre elements (N)
         j = 0
         dmax = 0.0
         for k, seg in enumerate(spec.segments):
@@ -181,11 +189,18 @@ class FELine:
             self.length_factors.append(f_len)
             w = lt.submerged_weight(rho, g)
             if fib is not None:
-                fib_rec.append(fibre_record(fib, lt.mbs, fibre_time_constant))
-                fib_off = fib_at
+                lim = math.inf if axial_stiffness_limit is None else float(axial_stiffness_limit)
+                fib_rec.append(fibre_record(fib, lt.mbs, fibre_time_constant, lim))
+                fib_off = fib_dy = fib_at
                 fib_at += fib_rec[-1].size
                 two = (fibre_law == "two_component" and dynamic_ea
                        and getattr(fib, "bound", "nominal") != "lower")
+                k_max = max_dynamic_stiffness(fib_rec[-1], lt.mbs, two)
+                fib_max = max(fib_max, k_max)
+                if not two and k_max > lim:   # working curve in dynamics: slopes capped
+                    fib_rec.append(capped_record(fib_rec[-1], lim))
+                    fib_dy = fib_at
+                    fib_at += fib_rec[-1].size
             for _ in range(seg.n_elements):
                 seg_of[j] = k
                 for E, ea in ((E_st, lt.ea), (E_dy, lt.ea_dynamic if dynamic_ea else lt.ea)):
@@ -199,7 +214,8 @@ class FELine:
                 if fib is not None:
                     E_st[j, EL_LAW] = LAW_WORKING
                     E_dy[j, EL_LAW] = LAW_TWO_COMPONENT if two else LAW_WORKING
-                    E_st[j, EL_FIB] = E_dy[j, EL_FIB] = fib_off
+                    E_st[j, EL_FIB] = fib_off
+                    E_dy[j, EL_FIB] = fib_dy
                 for i in (j, j + 1):
                     h = 0.5 * le
                     P[i, K.NP_MASS] += lt.mass_per_length * h
@@ -248,10 +264,14 @@ class FELine:
             S = np.concatenate([S] + fib_rec)
         if axial_stiffness_limit is not None:
             f = np.minimum(1.0, axial_stiffness_limit / E_dy[:, K.EL_C1])
-            if np.any(f < 1.0):
+            plain = E_dy[:, EL_LAW] == 0.0
+            if np.any(f[plain] < 1.0) or fib_max > axial_stiffness_limit:
+                ea_max = max(E_dy[plain, K.EL_C1].max(initial=0.0), fib_max)
                 warnings.warn(f"line {spec.name}: axial stiffness limited to "
                               f"{axial_stiffness_limit:.4g} N in dynamics (EA up to "
-                              f"{E_dy[:, K.EL_C1].max():.4g} N)", FloatmoorWarning, stacklevel=2)
+                              f"{ea_max:.4g} N" + (", fibre dynamic stiffness up to the MBS "
+                                                   "included" if fib_max > 0.0 else "") + ")",
+                              FloatmoorWarning, stacklevel=2)
             for c in (K.EL_C1, K.EL_C2, K.EL_C3):
                 E_dy[:, c] *= f
         self.P = P
@@ -466,12 +486,13 @@ class FELine:
         self.coef = gen_alpha_coefficients(rho_inf)
         self._tol = float(tol)
         self._maxit = int(maxit)
-        self._set_params()
         self.v[:] = 0.0
         self.a[:] = 0.0
         self.fs[:] = 0.0
         self.fs[:, 4:6] = self.r[:, 0:2]
         fibre_start(self.r, self.fs, self.P, self.E_dynamic, self.S)
+        self._fibre_damping()
+        self._set_params()
         self.time = float(t0)
         K.line_forces(self.r, self.v, self.fs, self._par, False, 0.0, 0.0, self.fn, self.work)
         self._trial = False
@@ -479,6 +500,24 @@ class FELine:
         self._started = True
         self.newton_iterations = 0
         self.substeps_taken = 0
+
+    def _fibre_damping(self):
+        """Internal damping ``-zeta`` of the fibre elements from the stiffness they have at the
+        start of the dynamics (the current, static, state): ``EA_d`` at the static tension
+        (two-component law, after :func:`fibre_start`) or the working-curve tangent at the
+        static strain (working-curve law), with the stiffness limit (:mod:`.fibre_law`)."""
+        E = self.E_dynamic
+        for j in np.nonzero(E[:, EL_LAW] != 0.0)[0]:
+            seg = self.spec.segments[self.segment_of_element[j]]
+            if float(seg.internal_damping) >= 0.0:
+                continue
+            o = int(E[j, EL_FIB])
+            if E[j, EL_LAW] == LAW_TWO_COMPONENT:
+                k = self.fs[j, FS_KD]
+            else:
+                eps = float(np.linalg.norm(self.r[j + 1] - self.r[j])) / E[j, K.EL_L0] - 1.0
+                k = working_tension(self.S, o, max(eps, 0.0))[1]
+            E[j, K.EL_B] = seg.damping_coefficient(k)
 
     def _set_params(self):
         self._par = LineParams(self.P, self.E_dynamic, self.S, self.cur_z, self.cur_u, self.wk,

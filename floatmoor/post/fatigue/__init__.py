@@ -1,6 +1,7 @@
 """Fatigue limit state (FLS) of mooring lines: T-N curves, rainflow counting, spectral damage.
 
-* :mod:`.tn_curves` -- DNV (2008) T-N curves, reference breaking strength with the corrosion
+* :mod:`.tn_curves` -- DNV (2008) S-N curves of chain, API RP 2SK (2005) T-N curves, the range
+  reference (RBS, or the nominal area of an S-N curve) with the corrosion
   allowance, the fatigue safety factor and design equation.
 * :mod:`.rainflow` -- ASTM E1049-85 rainflow counting (numba) and the damage of a history.
 * :mod:`.spectral` -- damage from a tension spectrum: narrow band, combined spectrum and dual

@@ -158,7 +158,9 @@ def undamped_lf_notes(ds) -> list[str]:
 
 
 def location_curves(mooring, locations, segments, *, design_life, corrosion):
-    """T-N curves (objects), RBS (N) and segment type names per (location, line)."""
+    """T-N curves (objects), range references (RBS in N, or the nominal area in mm^2 of an S-N
+    curve in MPa) and segment type names per (location, line)."""
+    from ...mooring.line_types import mbs_known
     from .tn_curves import curve_for, reference_breaking_strength
     n_loc, n_l = segments.shape
     curves = np.empty((n_loc, n_l), object)
@@ -177,6 +179,11 @@ def location_curves(mooring, locations, segments, *, design_life, corrosion):
                                  "a named line type (the fatigue analysis takes its T-N curve "
                                  "from the line type)", seg.line_type or "none")
             c = curve_for(lt, file=mooring.source or None)
+            if c.basis == "rbs" and not mbs_known(seg.mbs):
+                mooring.require_mbs(f"the fatigue analysis (T-N curve {c.name!r} of line type "
+                                    f"{seg.line_type!r}: tension range over the reference "
+                                    "breaking strength, RBS = MBS on the corroded area; an S-N "
+                                    "curve in MPa such as chain_studless needs no MBS)")
             curves[j, i] = c
             rbs[j, i] = reference_breaking_strength(
                 seg.mbs, lt.diameter, c, rate_mm_per_year=corrosion.get(zone, 0.0),

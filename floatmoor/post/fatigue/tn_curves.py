@@ -1,27 +1,42 @@
-"""T-N curves of mooring line components and the DNV-OS-E301 fatigue design check.
+"""T-N and S-N curves of mooring line components and the DNV-OS-E301 fatigue design check.
 
-T-N curve (DNV 2008, Ch.2 Sec.2 D, design equation and table of T-N constants)
-------------------------------------------------------------------------------
-``n_c(s) = a_D s^-m``: the number of cycles to failure at the tension range ``s`` (double
-amplitude) divided by the reference breaking strength (RBS) of the component.  The constants
-(DNV 2008 Ch.2 Sec.2 table D1; the same numbers as API RP 2SK (2005), whose rope curves
-``log10 a_D = 3.20 - 2.79 L_m`` (six strand) and ``3.25 - 3.43 L_m`` (spiral strand) DNV
-evaluates at the mean load ratio ``L_m = 0.3``):
+Fatigue curves: ``n_c(s) = a_D s^-m``, the number of cycles to failure at the range ``s``
+(double amplitude).  Two normalisations of ``s`` (:attr:`TNCurve.basis`):
 
-=========================================  ======  =======
-component                                    m       a_D
-=========================================  ======  =======
-common stud (studlink) chain                  3.0     1000
-common studless chain                         3.0      316
-connecting links (Baldt, Kenter)              3.0      178
-six/multi-strand wire rope                    4.09     231
-spiral-strand wire rope                       5.05     166
-=========================================  ======  =======
+* ``"stress"`` -- the S-N curves of DNV-OS-E301 (Ch.2 Sec.2, fatigue limit state): ``s`` the
+  nominal stress range in MPa, the tension range over the nominal steel area; for chain the two
+  legs of a link, ``A = 2 pi d^2 / 4`` (``area_factor`` 2) on the diameter reduced by the
+  corrosion allowance.  Constants: stud (studlink) chain ``a_D = 1.2e11``, studless chain
+  ``a_D = 6.0e10``, both ``m = 3.0`` (DNV (2008); constants and area checked against two
+  reproductions of the standard, see docs/REFERENCES.md "DNV-OS-E301 fatigue curves": the
+  edition's own text was not available (unverified)).
+* ``"rbs"`` -- the T-N curves of API RP 2SK (2005): ``s`` the tension range over the
+  reference breaking strength (RBS, the MBS on the corroded area).  Shipped with names of their
+  own: studlink chain ``api_chain_studlink`` (m 3.0, a_D 1000), studless chain
+  ``api_chain_studless`` (3.0, 316), Baldt/Kenter ``connecting_link`` (3.0, 178), and the
+  wire ropes, whose API curves ``log10 a_D = 3.20 - 2.79 L_m`` (six strand) and ``3.25 - 3.43
+  L_m`` (spiral strand) are taken at the mean load ratio ``L_m = 0.3``: ``wire_six_strand``
+  (4.09, 231) and ``wire_spiral_strand`` (5.05, 166).  DNV-OS-E301's own wire rope S-N curves
+  are not shipped (their constants could not be checked here).  These constants were, before,
+  labelled "DNV (2008) table D1": they are API RP 2SK's, not DNV's.
 
-DNV (2008) gives no T-N curve for fibre rope (DNV-OS-E303 defers to tests); the polyester curve
-here is the one of API RP 2SM (2014) / API RP 2SK (2005): ``m = 5.2, a_D = 25000`` (tension
-range over the rope's MBS).  Use it with care: polyester rope fatigue is rarely governing and
-the curve is a design curve from yarn and rope tests, not from DNV.
+=========================  =======  =========  ======  ==========================
+name                       basis      a_D        m      source
+=========================  =======  =========  ======  ==========================
+chain_studlink             stress   1.2e11     3.0     DNV (2008)
+chain_studless             stress   6.0e10     3.0     DNV (2008)
+api_chain_studlink         rbs      1000       3.0     API RP 2SK (2005)
+api_chain_studless         rbs      316        3.0     API RP 2SK (2005)
+connecting_link            rbs      178        3.0     API RP 2SK (2005)
+wire_six_strand            rbs      231        4.09    API RP 2SK (2005), L_m 0.3
+wire_spiral_strand         rbs      166        5.05    API RP 2SK (2005), L_m 0.3
+polyester                  rbs      25000      5.2     API RP 2SM
+=========================  =======  =========  ======  ==========================
+
+DNV (2008) gives no curve for fibre rope (DNV-OS-E303 defers to tests); the polyester curve
+here is the one of API RP 2SM / API RP 2SK (2005): ``m = 5.2, a_D = 25000`` (tension range
+over the rope's MBS).  Use it with care: polyester rope fatigue is rarely governing and the
+curve is a design curve from yarn and rope tests, not from DNV.
 
 Reference breaking strength and corrosion
 -----------------------------------------
@@ -29,7 +44,7 @@ Chain and steel wire wear and corrode: the fatigue damage is computed on the dia
 half the corrosion/wear allowance accumulated over the design life (mean diameter over the life,
 DNV 2008 Ch.2 Sec.2; the allowance rates of its table B1 for regular inspection: 0.4 mm/year in
 the splash zone, 0.3 mm/year in the catenary, 0.4 mm/year on the bottom).  The RBS is the MBS
-scaled by the area, ``RBS = MBS (d_red / d)^2``.  Fibre rope takes no corrosion allowance.
+scaled by the area, ``RBS = MBS (d_red / d)^2``; an S-N curve takes the area of ``d_red``.  Fibre rope takes no corrosion allowance.
 
 Design equation (DNV 2008 Ch.2 Sec.2 D)
 --------------------------------------
@@ -64,37 +79,57 @@ __all__ = [
 
 @dataclass(frozen=True, kw_only=True)
 class TNCurve:
-    """One T-N curve ``n = a_d s^-m`` with ``s`` the tension range over the RBS.
+    """One fatigue curve ``n = a_d s^-m``.
 
-    ``corrodes``: the component takes the corrosion/wear allowance (steel)."""
+    ``basis``: ``"rbs"``, ``s`` the tension range over the RBS (T-N curve); ``"stress"``,
+    ``s`` the nominal stress range in MPa, the tension range over ``area_factor pi d^2 / 4``
+    (mm^2, the corroded diameter; S-N curve).  In both cases the tension range is divided by
+    the curve's *range reference* (:func:`reference_breaking_strength`: the RBS in N, or the
+    area in mm^2, i.e. N per MPa).  ``corrodes``: the component takes the corrosion/wear
+    allowance (steel)."""
 
     name: str
     a_d: float
     m: float
     corrodes: bool = True
     source: str = ""
+    basis: str = "rbs"
+    area_factor: float = 1.0
+
+    def __post_init__(self):
+        if self.basis not in ("rbs", "stress"):
+            raise ValueError(f"basis must be 'rbs' or 'stress', got {self.basis!r}")
 
     def cycles_to_failure(self, s):
-        """``n_c(s) = a_D s^-m`` (``s`` tension range / RBS; array or scalar)."""
+        """``n_c(s) = a_D s^-m`` (``s`` tension range / RBS, or stress range in MPa)."""
         return self.a_d * s ** (-self.m)
 
     def damage(self, ranges, counts, rbs: float):
-        """Palmgren-Miner sum of ``counts`` cycles of tension ``ranges`` (N) with RBS (N)."""
+        """Palmgren-Miner sum of ``counts`` cycles of tension ``ranges`` (N) with the range
+        reference ``rbs`` (RBS in N, or the nominal area in mm^2 for a stress curve)."""
         import numpy as np
         s = np.asarray(ranges, float) / rbs
         return float(np.sum(np.asarray(counts, float) * s ** self.m) / self.a_d)
 
 
-_DNV = "DNV (2008) Ch.2 Sec.2 table D1"
+_DNV = ("DNV (2008) Ch.2 Sec.2, S-N curve of the fatigue limit state (stress range in MPa on "
+        "the nominal area of the two legs of a link)")
+_API = "API RP 2SK (2005) T-N curve (tension range over the RBS)"
 DNV_CURVES: dict[str, TNCurve] = {
-    "chain_studlink": TNCurve(name="chain_studlink", a_d=1000.0, m=3.0, source=_DNV),
-    "chain_studless": TNCurve(name="chain_studless", a_d=316.0, m=3.0, source=_DNV),
-    "connecting_link": TNCurve(name="connecting_link", a_d=178.0, m=3.0, source=_DNV),
-    "wire_six_strand": TNCurve(name="wire_six_strand", a_d=231.0, m=4.09, source=_DNV),
-    "wire_spiral_strand": TNCurve(name="wire_spiral_strand", a_d=166.0, m=5.05, source=_DNV),
+    "chain_studlink": TNCurve(name="chain_studlink", a_d=1.2e11, m=3.0, basis="stress",
+                              area_factor=2.0, source=_DNV),
+    "chain_studless": TNCurve(name="chain_studless", a_d=6.0e10, m=3.0, basis="stress",
+                              area_factor=2.0, source=_DNV),
+    "api_chain_studlink": TNCurve(name="api_chain_studlink", a_d=1000.0, m=3.0, source=_API),
+    "api_chain_studless": TNCurve(name="api_chain_studless", a_d=316.0, m=3.0, source=_API),
+    "connecting_link": TNCurve(name="connecting_link", a_d=178.0, m=3.0, source=_API),
+    "wire_six_strand": TNCurve(name="wire_six_strand", a_d=231.0, m=4.09,
+                               source=_API + ", mean load ratio 0.3"),
+    "wire_spiral_strand": TNCurve(name="wire_spiral_strand", a_d=166.0, m=5.05,
+                                  source=_API + ", mean load ratio 0.3"),
     "polyester": TNCurve(name="polyester", a_d=25000.0, m=5.2, corrodes=False,
-                         source="API RP 2SM (2014) polyester rope T-N curve (DNV 2008 gives "
-                         "none for fibre rope)"),
+                         source="API RP 2SM polyester rope T-N curve (DNV 2008 gives none for "
+                         "fibre rope)"),
 }
 """The shipped T-N curves by name."""
 
@@ -158,10 +193,16 @@ def reduced_diameter(diameter: float, rate_mm_per_year: float, design_life_years
 
 def reference_breaking_strength(mbs: float, diameter: float, curve: TNCurve, *,
                                 rate_mm_per_year: float, design_life_years: float) -> float:
-    """RBS (N) for the fatigue analysis: MBS scaled by the area of the corroded diameter."""
-    if not curve.corrodes or rate_mm_per_year <= 0.0:
+    """The range reference of ``curve`` (:class:`TNCurve`): for a T-N curve the RBS (N), the
+    MBS scaled by the area of the corroded diameter; for an S-N curve in MPa the nominal area
+    ``area_factor pi d^2 / 4`` in mm^2 (N per MPa) on the corroded diameter (the MBS is not
+    used and may be unknown)."""
+    corroded = curve.corrodes and rate_mm_per_year > 0.0
+    d = reduced_diameter(diameter, rate_mm_per_year, design_life_years) if corroded else diameter
+    if curve.basis == "stress":
+        return curve.area_factor * math.pi * (d * 1e3) ** 2 / 4.0
+    if not corroded:
         return float(mbs)
-    d = reduced_diameter(diameter, rate_mm_per_year, design_life_years)
     return float(mbs) * (d / diameter) ** 2
 
 

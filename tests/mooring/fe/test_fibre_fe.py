@@ -458,3 +458,93 @@ def test_bedded_in_fibre_segments_agree_with_the_catenary_statics():
     assert ln.s_nodes[-1] == pytest.approx(1000.0 * f, rel=1e-12)
     assert ln.P[:, K.NP_MASS].sum() == pytest.approx(MASS * 1000.0, rel=1e-12)
     assert t["bedded"].max() < 0.6 * t["new"].max()      # 1.22 against 2.40 MN
+
+
+def _taut_damped(strain, zeta, **kw):
+    line = _taut(strain)
+    seg = replace(line.spec.segments[0], internal_damping=-zeta)
+    return FELine(replace(line.spec, segments=(seg,)), **kw)
+
+
+def test_fraction_of_critical_damping_uses_the_fibre_dynamic_stiffness():
+    """``internal_damping: -zeta`` of a fibre element: zeta x the critical damping
+    ``2 sqrt(k m) l`` (config.FESegment.damping_coefficient) of the stiffness the element has
+    when the dynamics start: two-component law, EA_d at the static tension (2 % strain: 0.28
+    MBS, EA_d = (11.6 + 0.40 x 28) MBS = 22.8 MBS by hand), not the type's ea_dynamic (20
+    MBS); working-curve law, the working-curve tangent at 2 % (right derivative, 0.28 -> 0.36
+    MBS over 0.5 % strain: 16 MBS)."""
+    zeta, le = 0.3, 100.0 / 5
+    for law, k_hand in (("two_component", 22.8 * MBS), ("working_curve", 16.0 * MBS)):
+        line = _taut_damped(0.02, zeta, fibre_law=law)
+        line.solve_static(restart=True)
+        line.start()
+        b = line.E_dynamic[:, K.EL_B]
+        np.testing.assert_allclose(b, zeta * 2.0 * math.sqrt(k_hand * MASS) * le, rtol=1e-6)
+    assert k_hand != 20 * MBS
+
+
+def test_axial_stiffness_limit_caps_the_two_component_law():
+    """A limit below EA_d (22.8 MBS at 2 %, see above) caps the dynamic stiffness: a harmonic
+    stretch of 0.05 m at 10 s on the 100 m line gives the tension amplitude limit / L x a
+    (the formula of test_fast_small_stretch with EA_d replaced by the limit); the statics keep
+    the working curve."""
+    eps, L, a, T = 0.02, 100.0, 0.05, 10.0
+    limit = 15.0 * MBS
+    with pytest.warns(Warning, match="axial stiffness limited"):
+        line = _taut(eps, length=L, axial_stiffness_limit=limit)
+    sol = line.solve_static(restart=True)
+    assert sol.fairlead_tension == pytest.approx(_hand_working(eps), rel=1e-9)
+    line.start()
+    np.testing.assert_allclose(line.fs[:-1, 10], limit)             # FS_KD: EA_d capped
+    x0 = line.r[-1].copy()
+    F = []
+    for k in range(1, 301):
+        t = k * 0.1
+        x = x0 + np.array([a * math.sin(2 * math.pi * t / T), 0.0, 0.0])
+        v = np.array([a * 2 * math.pi / T * math.cos(2 * math.pi * t / T), 0.0, 0.0])
+        F.append(np.linalg.norm(line.step(t, 0.1, x, v)))
+    F = np.array(F[100:])
+    assert 0.5 * (F.max() - F.min()) == pytest.approx(limit / L * a, rel=3e-3)
+
+
+def test_axial_stiffness_limit_caps_the_working_curve_in_dynamics_only():
+    """Working-curve law with a limit of 15 MBS: the dynamic elements use the curve with its
+    slopes capped (the preset's slopes above 15 MBS -- 16 MBS from 2 % strain on -- become 15
+    MBS), the static elements the curve itself."""
+    from floatmoor.mooring.fe.fibre_law import EL_FIB, working_tension
+    limit = 15.0 * MBS
+    with pytest.warns(Warning, match="axial stiffness limited"):
+        line = _taut(0.02, fibre_law="working_curve", axial_stiffness_limit=limit)
+    xs, ys = np.array(PD.working_strain), np.array(PD.working_tension_mbs) * MBS
+    o_st, o_dy = int(line.E_static[0, EL_FIB]), int(line.E_dynamic[0, EL_FIB])
+    assert o_st != o_dy
+    for e in (0.003, 0.007, 0.012, 0.027, 0.045):
+        k = np.searchsorted(xs, e, side="right") - 1
+        slope = (ys[k + 1] - ys[k]) / (xs[k + 1] - xs[k])
+        assert working_tension(line.S, o_st, e)[1] == pytest.approx(slope, rel=1e-12)
+        assert working_tension(line.S, o_dy, e)[1] == pytest.approx(min(slope, limit), rel=1e-12)
+    assert working_tension(line.S, o_st, 0.025)[0] == pytest.approx(_hand_working(0.025))
+    # no limit below the fibre stiffness: no warning, one record shared by statics and dynamics
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        line2 = _taut(0.02, fibre_law="working_curve", axial_stiffness_limit=1e12)
+    assert int(line2.E_static[0, EL_FIB]) == int(line2.E_dynamic[0, EL_FIB])
+
+
+def test_frequency_domain_damping_and_limit_follow_the_time_domain_rule():
+    """The linearised line uses the same fibre stiffness and -zeta damping as the time domain:
+    B = zeta 2 sqrt(k m) l with k = EA_d(0.28 MBS) = 22.8 MBS (see the damping test above), and
+    with a limit of 15 MBS the capped stiffness (working-curve law: 16 -> 15 MBS at 2 %)."""
+    from floatmoor.mooring.fe.frequency import line_statics
+    zeta, le = 0.3, 100.0 / 5
+    line = _taut_damped(0.02, zeta)
+    line.solve_static(restart=True)
+    st = line_statics(line)
+    np.testing.assert_allclose(st.B, zeta * 2.0 * math.sqrt(22.8 * MBS * MASS) * le, rtol=1e-6)
+    line.start()
+    np.testing.assert_allclose(st.B, line.E_dynamic[:, K.EL_B], rtol=1e-12)
+    with pytest.warns(Warning, match="axial stiffness limited"):
+        capped = _taut(0.02, fibre_law="working_curve", axial_stiffness_limit=15.0 * MBS)
+    capped.solve_static(restart=True)
+    np.testing.assert_allclose(line_statics(capped).kax_eps, 15.0 * MBS, rtol=1e-12)
