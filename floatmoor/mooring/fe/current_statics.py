@@ -40,7 +40,9 @@ from .body import scene_line_inputs
 from .from_system import spec_from_linedef
 from .line import FELine
 
-__all__ = ["CurrentDragIncrement", "LineCurrentStatics"]
+__all__ = ["CurrentDragIncrement", "LineCurrentStatics", "MAX_STEP"]
+
+MAX_STEP = 5.0
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -88,7 +90,7 @@ class LineCurrentStatics:
     """
 
     def __init__(self, system, *, current: dict, line_types=None, spec_kw=None, line_kw=None,
-                 pose=None):
+                 pose=None, max_step: float = MAX_STEP):
         self.system = system
         self.index = [i for i, a in enumerate(system.active) if a]
         self.fairleads_body = np.array([system.lines[i].fairlead for i in self.index],
@@ -100,10 +102,11 @@ class LineCurrentStatics:
         self.in_current = [FELine(spec_from_linedef(system.lines[i], **kw, **current),
                                   **(line_kw or {}))
                            for i in self.index]
+        self.max_step = float(max_step)
         self._R = np.zeros((3, 3))
 
     @classmethod
-    def from_scene(cls, scene, system, *, pose=None) -> LineCurrentStatics | None:
+    def from_scene(cls, scene, system, *, pose=None, **kw) -> LineCurrentStatics | None:
         """The lines of ``system`` with the current, FE options and line types of ``scene``
         (``None`` when the scene has no current)."""
         inputs = scene_line_inputs(scene, system)
@@ -116,7 +119,7 @@ class LineCurrentStatics:
         line_kw = ({k: v for k, v in lm.options.line_kw().items()
                     if k in ("fibre_law", "fibre_time_constant")} if lm is not None else {})
         return cls(system, current=inputs["current"], line_types=inputs["line_types"],
-                   spec_kw=spec_kw, line_kw=line_kw, pose=pose)
+                   spec_kw=spec_kw, line_kw=line_kw, pose=pose, **kw)
 
     def fairleads(self, pose) -> tuple[np.ndarray, np.ndarray]:
         """Earth positions of the modelled lines' fairleads (n, 3) and their arms from the
@@ -142,7 +145,8 @@ class LineCurrentStatics:
         iters = np.zeros(n, np.int64)
         for k, i in enumerate(self.index):
             still = self.still[k].solve_static(fairlead=pos[k], friction=False)
-            cur = self.in_current[k].solve_static(fairlead=pos[k], reference=still.positions)
+            cur = self.in_current[k].solve_static(fairlead=pos[k], reference=still.positions,
+                                                  max_step=self.max_step)
             d_line[i] = cur.fairlead_force - still.fairlead_force
             d_t[i] = cur.fairlead_tension - still.fairlead_tension
             t_cur[i] = cur.fairlead_tension
