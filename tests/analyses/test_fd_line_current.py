@@ -177,8 +177,8 @@ def test_floatel_100yr_against_coupled_fe_storms():
     """Floatel-like 100-year case, dynamic WF tension, the storms' 50-element lines: the FD mean
     surge with the lines' current drag against the 12 coupled FE storms (14.70 m; without the
     option the FD gives 10.47 m), and the WF tension std of every line (storms: RMS over the
-    seeds).  Measured: 13.60 m; WF std FD / storms - 1 from +1.4 to +2.9 % (without the option
-    -1.0 to +6.4 %).  The 1.1 m left is not static: the storms' lines move in the waves, and
+    seeds).  Measured: 13.60 m; WF std FD / storms - 1 from +1.1 to +2.5 % (without the option
+    -1.0 to +6.4 %; with the option but without the drag's stiffness +1.4 to +2.9 %).  The 1.1 m left is not static: the storms' lines move in the waves, and
     the mean of a quadratic drag on a line oscillating in a current exceeds the drag of the
     current alone."""
     import pandas as pd
