@@ -27,7 +27,7 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    with the pose (central differences of the increment at the mean,
    :meth:`~floatmoor.mooring.fe.current_statics.LineCurrentStatics.linearise`) is added to the
    mooring stiffness and to the tension gradients (Floatel-like 100-year case: -6.5 % in the
-   surge and sway stiffness, +14 % in yaw; checked against the coupled FE static pose under
+   surge and sway stiffness, +13 % in yaw; checked against the coupled FE static pose under
    an extra load).  Fibre ropes take their dynamic stiffness at the catenary's mean
    tension at that pose (without the drag's increment).  Floatel-like 100-year case: mean surge 13.6 m against 10.5 m
    without and 14.7 m in coupled FE storms, whose lines also oscillate in the current
