@@ -10,6 +10,13 @@ each (numba kernels compiled); CPU time (``time.process_time``), best of ``--rep
 started at the FD mean without line drag, S seconds; its rest position and fairlead tensions
 (mean of the last 10 %) against the FD mean with the option.
 
+``first_solve``: the first FE statics of the 12 lines in current from the still-water shape at
+the default FD mean, without (``max_step`` 0) and with the trust radius of
+:data:`~floatmoor.mooring.fe.current_statics.MAX_STEP`, interleaved: Newton iterations per line,
+CPU (best of ``--repeats``) and the largest difference of the increments (N).
+
+Storms: the mean, the LF surge std and the LF and WF (dynamic) tension std per line.
+
 Run:  PYTHONPATH=. python benchmarks/bench_fd_line_current.py [--repeats 5] [--relaxation 2400]
 """
 
@@ -65,6 +72,30 @@ def cost(repeats: int) -> None:
     print(f"load after: {_load()}")
 
 
+def first_solve(repeats: int) -> None:
+    from floatmoor.io.build import build
+    from floatmoor.mooring.fe.current_statics import MAX_STEP, LineCurrentStatics
+    for label, path in SCENES.items():
+        built = build(path)
+        r, _, _ = _fd(built)
+        cpu = {0.0: [], MAX_STEP: []}
+        out = {}
+        for k in range(repeats + 1):                   # the first round: warm-up
+            for m in (0.0, MAX_STEP):
+                drag = LineCurrentStatics.from_scene(built.scene, copy.deepcopy(built.mooring),
+                                                     pose=r.mean, max_step=m)
+                c0 = time.process_time()
+                out[m] = drag(r.mean)
+                if k:
+                    cpu[m].append(time.process_time() - c0)
+        d = np.abs(out[0.0].line_force - out[MAX_STEP].line_force).max()
+        print(f"{label}: first solve of the lines in current, iterations without "
+              f"{out[0.0].iterations.tolist()}, with max_step {MAX_STEP:g} m "
+              f"{out[MAX_STEP].iterations.tolist()}; CPU best {min(cpu[0.0]):.4f} / "
+              f"{min(cpu[MAX_STEP]):.4f} s; largest line force difference {d:.3g} N",
+              flush=True)
+
+
 def against_storms() -> None:
     import pandas as pd
 
@@ -77,6 +108,17 @@ def against_storms() -> None:
     print(f"mean surge: FD {r0.mean[0]:.2f} m, FD with line drag {r1.mean[0]:.2f} m, coupled "
           f"FE storms {fe['surge_mean'].mean():.2f} m; heave {r0.mean[2]:.3f} / "
           f"{r1.mean[2]:.3f} / {fe['heave_mean'].mean():.3f} m")
+    lf = float(np.sqrt((fe["surge_lf_std"] ** 2).mean()))
+    print(f"LF surge std: FD {r0.lf_std[0]:.3f} m, with line drag {r1.lf_std[0]:.3f} m, storms "
+          f"{lf:.3f} m; surge stiffness {r0.model.stiffness[0, 0] / 1e3:.1f} / "
+          f"{r1.model.stiffness[0, 0] / 1e3:.1f} kN/m, yaw {r0.model.stiffness[5, 5] / 1e6:.1f} "
+          f"/ {r1.model.stiffness[5, 5] / 1e6:.1f} MN m/rad")
+    print("line  LF T std: FD  with  storms")
+    for i in range(6):
+        n = i + 1
+        st = float(np.sqrt((fe[f"line{n}_lf_std"] ** 2).mean()))
+        print(f"{n:4d} {r0.tension_std_lf[i] / 1e3:14.1f} {r1.tension_std_lf[i] / 1e3:5.1f} "
+              f"{st:7.1f}")
     f = r1.mean_force_line_current
     print(f"line drag at the mean: {f[0] / 1e3:.1f} kN surge, {f[2] / 1e3:.1f} kN heave, "
           f"{f[4] / 1e3:.0f} kN m pitch")
@@ -124,6 +166,7 @@ def main() -> None:
     ap.add_argument("--relaxation", type=float, default=0.0, metavar="S")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
+    first_solve(args.repeats)
     cost(args.repeats)
     against_storms()
     if args.relaxation > 0:

@@ -16,8 +16,8 @@ frequency_domain:
 ``line_current_drag: true`` solves every line's statics in the scene's current with its FE
 model (the ``finite_element`` options of the mooring, else 20 m elements) and adds the drag's
 change of the line forces to the catenary mooring in the mean equilibrium; the static tensions
-and the linearisation are then taken at that mean pose
-(:mod:`floatmoor.mooring.fe.current_statics`).  Without current in the scene it changes
+and the linearisation are then taken at that mean pose, with the drag's own change with the
+pose in the stiffness and the tension gradients (:mod:`floatmoor.mooring.fe.current_statics`).  Without current in the scene it changes
 nothing.
 
 Every key is optional (defaults of :class:`~floatmoor.solvers.frequency_domain.FDOptions`).

@@ -266,7 +266,9 @@ class FDOptions:
         (:class:`~floatmoor.mooring.fe.current_statics.LineCurrentStatics`), and the difference
         from still water is added to the catenary force; the mean pose, the static tensions
         and the linearisation (mooring stiffness, tension gradients, the dynamic line model)
-        are then taken there (:mod:`floatmoor.analyses.frequency_domain`).
+        are then taken there, and the drag's own change with the pose (central differences)
+        is added to the mooring stiffness and the tension gradients
+        (:mod:`floatmoor.analyses.frequency_domain`).
     """
 
     duration: float = 10800.0

@@ -24,9 +24,13 @@ measured from the still line's shape, i.e. the current is applied to a line laid
 water.  Lines without seabed friction (``cb`` 0) slide freely, as in the time domain.
 
 Used by the frequency domain's option ``line_current_drag``
-(:mod:`floatmoor.analyses.frequency_domain`).  Each call continues every line from its last
-solution (continuation), so successive poses of an equilibrium iteration cost a few Newton
-iterations per line.
+(:mod:`floatmoor.analyses.frequency_domain`), which also takes the increment's change with the
+pose (:meth:`LineCurrentStatics.linearise`, central differences) into its stiffness.  Each call
+continues every line from its last solution (continuation), so successive poses of an
+equilibrium iteration cost a few Newton iterations per line.  The lines in current are solved
+with a trust radius on the nodal move of a Newton step (:data:`MAX_STEP`): the first solve from
+the still-water shape moves a grounded chain tens of metres sideways along its softest modes,
+where the damped Newton alone crawls.
 """
 
 from __future__ import annotations
@@ -40,7 +44,20 @@ from .body import scene_line_inputs
 from .from_system import spec_from_linedef
 from .line import FELine
 
-__all__ = ["CurrentDragIncrement", "LineCurrentStatics"]
+__all__ = ["CurrentDragIncrement", "LineCurrentStatics", "MAX_STEP", "STIFFNESS_STEPS"]
+
+MAX_STEP = 5.0
+"""Trust radius (m) on the nodal move of a Newton step of the lines' statics
+(:func:`~floatmoor.mooring.fe.kernels.static_newton`; in still water as well, so that without
+current both solves take the same steps and the increment is exactly zero): the first solve
+from the still-water shape moves a grounded chain tens of metres sideways along modes of 15-24
+N/m, which the damped Newton alone crawls along (Floatel-like chains: 209-525 iterations; with
+it 18-45)."""
+
+STIFFNESS_STEPS = (0.5, 0.5, 0.5, 2e-3, 2e-3, 2e-3)
+"""Central-difference steps (m, rad) of :meth:`LineCurrentStatics.linearise`: large against the
+FE statics' tolerance (a few N of force over 1 m: ~1 N/m against drag stiffnesses of kN/m),
+small against the scale of the drag's change (the line's sideways shape: tens of metres)."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -88,7 +105,7 @@ class LineCurrentStatics:
     """
 
     def __init__(self, system, *, current: dict, line_types=None, spec_kw=None, line_kw=None,
-                 pose=None):
+                 pose=None, max_step: float = MAX_STEP):
         self.system = system
         self.index = [i for i, a in enumerate(system.active) if a]
         self.fairleads_body = np.array([system.lines[i].fairlead for i in self.index],
@@ -100,10 +117,11 @@ class LineCurrentStatics:
         self.in_current = [FELine(spec_from_linedef(system.lines[i], **kw, **current),
                                   **(line_kw or {}))
                            for i in self.index]
+        self.max_step = float(max_step)
         self._R = np.zeros((3, 3))
 
     @classmethod
-    def from_scene(cls, scene, system, *, pose=None) -> LineCurrentStatics | None:
+    def from_scene(cls, scene, system, *, pose=None, **kw) -> LineCurrentStatics | None:
         """The lines of ``system`` with the current, FE options and line types of ``scene``
         (``None`` when the scene has no current)."""
         inputs = scene_line_inputs(scene, system)
@@ -116,7 +134,7 @@ class LineCurrentStatics:
         line_kw = ({k: v for k, v in lm.options.line_kw().items()
                     if k in ("fibre_law", "fibre_time_constant")} if lm is not None else {})
         return cls(system, current=inputs["current"], line_types=inputs["line_types"],
-                   spec_kw=spec_kw, line_kw=line_kw, pose=pose)
+                   spec_kw=spec_kw, line_kw=line_kw, pose=pose, **kw)
 
     def fairleads(self, pose) -> tuple[np.ndarray, np.ndarray]:
         """Earth positions of the modelled lines' fairleads (n, 3) and their arms from the
@@ -141,8 +159,10 @@ class LineCurrentStatics:
         t_cur = np.full(n, np.nan)
         iters = np.zeros(n, np.int64)
         for k, i in enumerate(self.index):
-            still = self.still[k].solve_static(fairlead=pos[k], friction=False)
-            cur = self.in_current[k].solve_static(fairlead=pos[k], reference=still.positions)
+            still = self.still[k].solve_static(fairlead=pos[k], friction=False,
+                                               max_step=self.max_step)
+            cur = self.in_current[k].solve_static(fairlead=pos[k], reference=still.positions,
+                                                  max_step=self.max_step)
             d_line[i] = cur.fairlead_force - still.fairlead_force
             d_t[i] = cur.fairlead_tension - still.fairlead_tension
             t_cur[i] = cur.fairlead_tension
@@ -152,3 +172,21 @@ class LineCurrentStatics:
         force[3:] = np.cross(arm, d_line[self.index]).sum(axis=0)
         return CurrentDragIncrement(force=force, line_force=d_line, tension=d_t,
                                     tension_current=t_cur, iterations=iters)
+
+    def linearise(self, pose, steps=STIFFNESS_STEPS) -> tuple[np.ndarray, np.ndarray]:
+        """The drag increment's change with the pose by central differences about ``pose``:
+        its stiffness ``K[i, j] = -d force_i / d pose_j`` (6, 6; not symmetric: the drag is
+        not conservative) and the gradient of the fairlead tension increment
+        ``d tension / d pose`` (n_lines, 6; NaN for failed lines).  Leaves the lines at
+        ``pose``."""
+        pose = np.asarray(pose, float)
+        K = np.zeros((6, 6))
+        g = np.zeros((len(self.system.names), 6))
+        for j in range(6):
+            dp = np.zeros(6)
+            dp[j] = steps[j]
+            ip, im = self(pose + dp), self(pose - dp)
+            K[:, j] = -(ip.force - im.force) / (2.0 * steps[j])
+            g[:, j] = (ip.tension - im.tension) / (2.0 * steps[j])
+        self(pose)
+        return K, g

@@ -364,8 +364,8 @@ class FELine:
 
     # ------------------------------------------------------------------------------------------
     def solve_static(self, fairlead=None, *, friction: bool = True, reference=None,
-                     tol: float | None = None, maxit: int = 3000, restart: bool = False
-                     ) -> StaticSolution:
+                     tol: float | None = None, maxit: int = 3000, restart: bool = False,
+                     max_step: float = 0.0) -> StaticSolution:
         """Static equilibrium (damped Newton) for the fairlead at ``fairlead`` (m).
 
         Starts from the current positions (the catenary shape after construction, or the last
@@ -376,7 +376,9 @@ class FELine:
         split in halves.  Seabed
         friction in statics is the displacement ramp (Lu 2012, sec. 2.2.1) measured from
         ``reference`` node positions (default: the positions before this call) when the
-        line's friction model is not ``none`` and ``friction`` is true.
+        line's friction model is not ``none`` and ``friction`` is true.  ``max_step`` > 0 (m):
+        trust radius on the largest nodal move of a Newton step
+        (:func:`~floatmoor.mooring.fe.kernels.static_newton`; default off).
 
         Raises
         ------
@@ -393,7 +395,7 @@ class FELine:
             # 1e-6 of a node weight, but not below the round-off of the axial force
             tol = max(1e-6 * wmax, 1e-13 * eamax)
         v0 = np.zeros_like(self.r)
-        args = (code, tol, maxit, v0, wmax, eamax)
+        args = (code, tol, maxit, v0, wmax, eamax, max_step)
         if restart:
             self.r[:] = self.initial_shape(fairlead)
             st = self._solve_here(*args)
@@ -432,9 +434,9 @@ class FELine:
                 st = self._move_and_solve(F, depth + 1, args)
         return st
 
-    def _solve_here(self, code, tol, maxit, v0, wmax, eamax):
+    def _solve_here(self, code, tol, maxit, v0, wmax, eamax, max_step=0.0):
         r_start = self.r.copy()
-        st = self._newton(self.E_static, code, tol, maxit, v0)
+        st = self._newton(self.E_static, code, tol, maxit, v0, max_step)
         if st != 0:
             # continuation in the axial stiffness: very stiff lines (EA / weight ~ 1e6 and more:
             # the catenary start is off by the chord-arc difference, ~ l^2 kappa^2 / 24 in
@@ -445,16 +447,19 @@ class FELine:
             while True:
                 Ec[:, K.EL_C1:K.EL_C3 + 1] = self.E_static[:, K.EL_C1:K.EL_C3 + 1] * f
                 st = self._newton(Ec, code, max(tol * f, 1e-6 * wmax) if f < 1 else tol, maxit,
-                                  v0)
+                                  v0, max_step)
                 if st != 0 or f >= 1.0:
                     break
                 f = min(1.0, 4.0 * f)
         return st
 
-    def _newton(self, E, code, tol, maxit, v0):
+    def _newton(self, E, code, tol, maxit, v0, max_step=0.0):
         # statics: no waves (zero kinematics)
         par = LineParams(self.P, E, self.S, self.cur_z, self.cur_u, self._wk0, int(code),
                          _NO_COEF, float(tol), int(maxit), self.s_nodes, 0)
+        if max_step > 0.0:
+            return K.static_newton(self.r, v0, self.fs, par, self._step_state.f, self.work,
+                                   float(max_step))
         return K.static_newton(self.r, v0, self.fs, par, self._step_state.f, self.work)
 
     # ------------------------------------------------------------------------------------------

@@ -127,8 +127,15 @@ def test_generalised_force_as_the_coupled_fe_lines():
     system = _system(lines)
     pose = np.array([1.0, -0.5, 0.2, 0.01, -0.02, 0.05])
     cur = _current(1.2, 0.7)
+    # max_step 0: the same Newton iteration as FEMooring (no trust radius), hence the same
+    # answer to round-off
     inc = LineCurrentStatics(system, current=cur, line_types=system.line_types,
-                             spec_kw={"n_elements": 40})(pose)
+                             spec_kw={"n_elements": 40}, max_step=0.0)(pose)
+    # the default trust radius takes other steps to the same equilibrium: equal to the Newton
+    # tolerance (nodal residual < 1e-6 node weight; here 2e-6 of the pitch moment)
+    inc_tr = LineCurrentStatics(system, current=cur, line_types=system.line_types,
+                                spec_kw={"n_elements": 40})(pose)
+    np.testing.assert_allclose(inc_tr.force, inc.force, rtol=0, atol=1e-5 * np.abs(inc.force).max())
     specs = [spec_from_linedef(ld, water_depth=DEPTH, line_types=system.line_types,
                                n_elements=40, water_density=RHO, gravity=G) for ld in lines]
     specs_c = [spec_from_linedef(ld, water_depth=DEPTH, line_types=system.line_types,
@@ -138,3 +145,51 @@ def test_generalised_force_as_the_coupled_fe_lines():
     q = FEMooring(specs_c, fb).solve_static(pose) - FEMooring(specs, fb).solve_static(pose)
     np.testing.assert_allclose(inc.force, q, rtol=0, atol=1e-6 * np.abs(q).max())
     assert np.abs(inc.force[3:]).max() > 1e3   # the moments are not trivially zero
+
+
+
+def test_trust_radius_on_a_grounded_chain_in_current():
+    """The Floatel-like chains (50 elements) in the 100-year current, first solve from the
+    still-water shape: the frictionless grounded chain slides tens of metres sideways, held by
+    its tension alone (softest modes 15-24 N/m against the damping floor of the node weight over
+    the element length, ~1e3 N/m), so the damped Newton of the statics crawls (hundreds of
+    iterations).  The trust radius on the nodal move (``max_step``, the default of
+    LineCurrentStatics) reaches the same equilibrium (each within the Newton tolerance of 1e-6
+    node weight: compared with a 1000x tighter solve) in a fraction of the iterations;
+    ``max_step`` 0 is the default iteration of FELine.solve_static, bit for bit."""
+    import copy
+    from pathlib import Path
+
+    from floatmoor.io.build import build
+    from floatmoor.mooring.fe import kernels as K
+    built = build(Path(__file__).resolve().parents[3] / "scenes" / "floatel_100yr_fe.yaml")
+    pose = np.array([10.47, 0.0, -0.75, 0.0, -0.0042, 0.0])   # about the FD mean
+    lines = {}
+    for m in (None, 0.0, 5.0):
+        kw = {} if m is None else {"max_step": m}
+        drag = LineCurrentStatics.from_scene(built.scene, copy.deepcopy(built.mooring),
+                                             pose=pose, **kw)
+        lines[m] = drag
+    assert lines[None].max_step == 5.0      # the default of LineCurrentStatics
+    pos, _ = lines[0.0].fairleads(pose)
+    for k in (0, 5):                                   # line 1 (upstream) and line 6
+        still = lines[0.0].still[k].solve_static(fairlead=pos[k], friction=False)
+        sol = {m: lines[m].in_current[k].solve_static(fairlead=pos[k],
+                                                      reference=still.positions, max_step=m)
+               for m in (0.0, 5.0)}
+        # FELine.solve_static without max_step: the default iteration, bit for bit
+        plain = lines[None].in_current[k].solve_static(fairlead=pos[k], reference=still.positions)
+        assert np.array_equal(plain.positions, sol[0.0].positions)
+        assert plain.iterations == sol[0.0].iterations
+        ln = copy.deepcopy(lines[5.0].in_current[k])
+        ln.r[:] = sol[5.0].positions
+        w_node = float(np.max(np.abs(ln.P[:, K.NP_W])))
+        tight = ln.solve_static(fairlead=pos[k], reference=still.positions,
+                                tol=1e-9 * w_node, max_step=5.0)
+        assert sol[0.0].iterations > 60                   # the crawl (measured 76-286)
+        assert sol[5.0].iterations < sol[0.0].iterations / 2
+        assert abs(sol[5.0].positions[:, 1] - still.positions[:, 1]).max() > 10.0  # it slid
+        for s_ in sol.values():
+            # 1e-6 node weight per node over ~50 nodes: a few N at the fairlead
+            np.testing.assert_allclose(s_.fairlead_force, tight.fairlead_force, rtol=0,
+                                       atol=50 * 1e-6 * w_node)
