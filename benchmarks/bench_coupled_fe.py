@@ -15,7 +15,8 @@ with the first mode's.
 A mode may carry perturbations for a sensitivity study, ``mode:key=value[:key=value]``:
 ``tol=1e-8`` (Newton tolerance in m, default 1e-6), ``x0=1e-6`` (every free node of every
 line moved by a pseudo-random +-x0 m per coordinate from its static position before the
-start), e.g. ``--newton exact exact:tol=1e-8 exact:x0=1e-6 modified``; ``--per-line`` prints
+start), ``code=2`` (a raw ``kernels.NW_*`` code of the iteration, here the predictor alone),
+e.g. ``--newton exact exact:tol=1e-8 exact:x0=1e-6 exact:code=2 modified``; ``--per-line`` prints
 every line's maximum and its time.
 """
 
@@ -67,7 +68,12 @@ def main() -> None:
         if perturb.get("x0", 0.0) > 0.0:
             rng = np.random.default_rng(len(self.r))
             self.r[1:-1] += perturb["x0"] * rng.choice([-1.0, 1.0], size=self.r[1:-1].shape)
-        return plain_start(self, **kw)
+        out = plain_start(self, **kw)
+        if "code" in perturb:
+            # a raw kernels.NW_* code of the Newton iteration (e.g. 2: the predictor alone)
+            self._newton_mode = int(perturb["code"])
+            self._set_params()
+        return out
 
     FELine.start = start
 
