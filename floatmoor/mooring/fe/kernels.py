@@ -1159,8 +1159,11 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     ``rho / (1 - rho) |d_k|`` (Hairer & Wanner 1996, sec. IV.8), is below ``tol`` (besides the
     tests of the exact iteration).  Each accepted state is within about ``tol`` of the
     converged one by that estimate, but over a run the differences from the exact iteration
-    can grow past it (one line's maximum by 4 % in the 12-line flagship storm:
-    benchmarks/RESULTS.md), hence opt-in.
+    can grow past it: the re-tensioning of a nearly slack line amplifies a tension difference
+    of ~1 N about 1e5 times, so in the 12-line flagship storm one lightly loaded line's
+    maximum (a snap after its main peak) moves by 4-9 %, while a perturbation made once, e.g.
+    of the start positions by tol, moves none by more than 0.0003 % (benchmarks/RESULTS.md);
+    hence opt-in.
 
     Fast exact Newton (``par.newton`` :data:`NW_PREDICT` | :data:`NW_QSTOP`, opt-in): the exact
     iteration from a predictor whose fairlead deviation is taken from the fairlead's
