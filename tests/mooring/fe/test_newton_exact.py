@@ -14,9 +14,11 @@ changed by 1e-9 (relative), whichever is larger, with at least 10 % fewer iterat
 import numpy as np
 import pytest
 
+from floatmoor.core.config import Node
 from floatmoor.mooring.fe import FELine
 from floatmoor.mooring.fe import kernels as K
 from floatmoor.mooring.fe.line import NEWTON_MODES
+from floatmoor.mooring.fe.options import parse_fe_options
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed
 
 from .conftest import oc3_spec
@@ -76,5 +78,9 @@ def test_default_iteration_matches_the_plain_one(amplitude, period):
     assert it1 < 0.9 * it0, (it1, it0)
 
 
-def test_modes():
+def test_fast_option_is_read_from_a_scene():
     assert NEWTON_MODES == ("exact", "modified", "fast")
+    o = parse_fe_options(Node({"newton": "fast"}, "scene.yaml", "mooring.finite_element"))
+    assert o.start_kw()["newton"] == "fast"
+    line = _started("fast", n=5)
+    assert line.bundle.par.newton == K.NW_PREDICT | K.NW_QSTOP
