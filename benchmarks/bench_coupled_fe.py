@@ -11,6 +11,13 @@ Run: ``.venv/bin/python benchmarks/bench_coupled_fe.py [--duration 12000] [--dt 
 [--seed 1] [--newton exact modified] [--no-qs]``: with several ``--newton`` modes (FE option
 ``finite_element: {newton: ...}``) the FE runs are interleaved and the maximum tensions compared
 with the first mode's.
+
+A mode may carry perturbations for a sensitivity study, ``mode:key=value[:key=value]``:
+``tol=1e-8`` (Newton tolerance in m, default 1e-6), ``x0=1e-6`` (every free node of every
+line moved by a pseudo-random +-x0 m per coordinate from its static position before the
+start), ``code=2`` (a raw ``kernels.NW_*`` code of the iteration, here the predictor alone),
+e.g. ``--newton exact exact:tol=1e-8 exact:x0=1e-6 exact:code=2 modified``; ``--per-line`` prints
+every line's maximum and its time.
 """
 
 from __future__ import annotations
@@ -38,7 +45,8 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=12000.0)
     ap.add_argument("--dt", type=float, nargs="+", default=[0.1, 0.2])
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--newton", nargs="+", default=["exact"], choices=["exact", "modified"])
+    ap.add_argument("--newton", nargs="+", default=["exact"])
+    ap.add_argument("--per-line", action="store_true")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-qs", action="store_true")
     args = ap.parse_args()
@@ -48,10 +56,35 @@ def main() -> None:
     from floatmoor.analyses.simulate import simulate
     from floatmoor.io.build import build
     from floatmoor.io.scene import load_scene
+    from floatmoor.mooring.fe.line import FELine
 
-    def fe_scene(newton):
+    plain_start = FELine.start
+    perturb = {}
+
+    def start(self, **kw):
+        # sensitivity study: Newton tolerance and initial node positions (see the docstring)
+        if "tol" in perturb:
+            kw["tol"] = perturb["tol"]
+        if perturb.get("x0", 0.0) > 0.0:
+            rng = np.random.default_rng(len(self.r))
+            self.r[1:-1] += perturb["x0"] * rng.choice([-1.0, 1.0], size=self.r[1:-1].shape)
+        out = plain_start(self, **kw)
+        if "code" in perturb:
+            # a raw kernels.NW_* code of the Newton iteration (e.g. 2: the predictor alone)
+            self._newton_mode = int(perturb["code"])
+            self._set_params()
+        return out
+
+    FELine.start = start
+
+    def fe_scene(mode):
         import dataclasses
 
+        newton, *extra = mode.split(":")
+        perturb.clear()
+        for item in extra:
+            key, value = item.split("=")
+            perturb[key] = float(value)
         built = build(load_scene(FE))
         lm = built.mooring.line_models
         object.__setattr__(lm, "options", dataclasses.replace(lm.options, newton=newton))
@@ -101,11 +134,17 @@ def main() -> None:
             print(f"    vs QS {qs[dt].max() / 1e3:.0f} kN: "
                   f"{(tfe.max() / qs[dt].max() - 1) * 100:+.1f} %; per line max FE/QS: "
                   + " ".join(f"{a / b:.3f}" for a, b in zip(tfe, qs[dt])))
+        if args.per_line:
+            tt = ds.time.values[sel]
+            print("    per line max (kN) at (s): " + ", ".join(
+                f"{m / 1e3:.2f}@{tt[k]:.1f}" for m, k in
+                zip(tfe, ds.line_tension.values[sel].argmax(axis=0))))
         if dt in first:
             f0 = first[dt]
             print(f"    against newton {args.newton[0]}: max fairlead tension "
                   f"{(tfe.max() / f0.max() - 1) * 100:+.4f} %, per line max "
-                  f"{np.abs(tfe / f0 - 1).max() * 100:.4f} % at most")
+                  f"{np.abs(tfe / f0 - 1).max() * 100:.4f} % at most (line "
+                  f"{ds.line.values[int(np.argmax(np.abs(tfe / f0 - 1)))]})")
         else:
             first[dt] = tfe
 

@@ -24,7 +24,8 @@ Timing: CPU time of the time stepping only (``time.process_time``; MoorDyn's ini
 solve and floatmoor's statics excluded and printed apart), the best of ``--repeat`` runs
 interleaved MoorDyn / floatmoor.
 
-Run: ``python benchmarks/bench_fe_moordyn.py [--scan] [--dtm 0.006] [--repeat 3]``.
+Run: ``python benchmarks/bench_fe_moordyn.py [--scan] [--dtm 0.006] [--repeat 3]
+[--newton exact modified fast]`` (the Newton modes of the floatmoor grid).
 """
 
 from __future__ import annotations
@@ -202,8 +203,10 @@ def scan(case, nseg=40):
               f"{'(stable, within 0.1 %)' if ok else '(NOT within 0.1 % or unstable)'}")
 
 
-FM_GRID = [(n, nsub, nw, rho) for n in (20, 30, 40, 60, 80) for nsub in (1, 2, 4)
-           for nw in ("exact", "modified") for rho in (0.7, 1.0)]
+def fm_grid(newton=("exact", "modified", "fast")):
+    """floatmoor settings tried: elements, sub-steps per coupling step, Newton mode, rho_inf."""
+    return [(n, nsub, nw, rho) for n in (20, 30, 40, 60, 80) for nsub in (1, 2, 4)
+            for nw in newton for rho in (0.7, 1.0)]
 
 
 def main():
@@ -214,6 +217,7 @@ def main():
     ap.add_argument("--dtm-ref", type=float, default=2.5e-4)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cases", nargs="+", default=list(CASES))
+    ap.add_argument("--newton", nargs="+", default=["exact", "modified", "fast"])
     args = ap.parse_args()
     import moordyn  # noqa: F401
     import numba
@@ -245,7 +249,7 @@ def main():
         t_m, T_m = md_runs[0][:2]
         md_err = errors(t_m, T_m, t_mr, T_mr, t_eval)
         rows = []
-        for n, nsub, nw, rho in FM_GRID:
+        for n, nsub, nw, rho in fm_grid(args.newton):
             try:
                 t_f, T_f, c, cs, its = run_floatmoor(n, motion, t_end, nsub=nsub, newton=nw,
                                                      rho=rho)

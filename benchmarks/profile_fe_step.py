@@ -12,7 +12,7 @@ lines x 50 elements, generalised-alpha, one line step per body step of 0.1 s).
    state, the whole ``gen_alpha_step``; the share of each in the line step follows from the
    iteration count.
 
-Run: ``python benchmarks/profile_fe_step.py [--duration 1500] [--newton exact|modified]``.
+Run: ``python benchmarks/profile_fe_step.py [--duration 1500] [--newton exact|modified|fast]``.
 CPU times (``time.process_time``): the machine is shared.
 """
 
@@ -120,7 +120,7 @@ def main() -> None:
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--reps", type=int, default=2000)
-    ap.add_argument("--newton", choices=("exact", "modified"), default="exact")
+    ap.add_argument("--newton", choices=("exact", "modified", "fast"), default="exact")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     import numba

@@ -52,8 +52,10 @@ class LineParams(NamedTuple):
     """(n,) unstretched arc length of the nodes from the anchor (m)."""
     newton: int
     """Generalised-alpha Newton iteration: 0 exact (the iteration matrix rebuilt at every
-    iteration, the default); 1 modified (the matrix of the first iteration of a step kept while
-    the residual falls fast enough, stop on the estimated error; ``kernels.gen_alpha_step``)."""
+    iteration, the default); bits ``kernels.NW_KEEP`` (1, modified: the matrix of the first
+    iteration of a step kept while the residual falls fast enough, stop on the estimated
+    error), ``NW_PREDICT`` (2, predictor with the fairlead's acceleration) and ``NW_QSTOP`` (4,
+    stop on the quadratic-convergence estimate); ``kernels.gen_alpha_step``."""
 
 
 class LineState(NamedTuple):

@@ -67,6 +67,12 @@ E0_STIFF = 1e-6
 # Modified Newton (``LineParams.newton`` 1, see gen_alpha_step): the kept iteration matrix is
 # rebuilt when an iteration with it lowers the residual norm by less than this factor.
 NEWTON_THETA = 0.25
+# bits of the ``newton`` code of LineParams (gen_alpha_step): the kept iteration matrix of the
+# modified iteration, the predictor with the fairlead's extrapolated acceleration, and the stop
+# on the quadratic-convergence estimate of the next correction
+NW_KEEP = 1
+NW_PREDICT = 2
+NW_QSTOP = 4
 
 
 @njit(cache=True)
@@ -1192,8 +1198,20 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     ``rho / (1 - rho) |d_k|`` (Hairer & Wanner 1996, sec. IV.8), is below ``tol`` (besides the
     tests of the exact iteration).  Each accepted state is within about ``tol`` of the
     converged one by that estimate, but over a run the differences from the exact iteration
-    can grow past it (one line's maximum by 4 % in the 12-line flagship storm:
-    benchmarks/RESULTS.md), hence opt-in.
+    can grow past it: the re-tensioning of a nearly slack line amplifies a tension difference
+    of ~1 N about 1e5 times, so in the 12-line flagship storm one lightly loaded line's
+    maximum (a snap after its main peak) moves by 4-9 %, while a perturbation made once, e.g.
+    of the start positions by tol, moves none by more than 0.0003 % (benchmarks/RESULTS.md);
+    hence opt-in.
+
+    Fast exact Newton (``par.newton`` :data:`NW_PREDICT` | :data:`NW_QSTOP`, opt-in): the exact
+    iteration from a predictor whose fairlead deviation is taken from the fairlead's
+    constant-acceleration prediction (its acceleration that of node ``n - 2``) instead of its
+    constant-velocity one, stopped also when the quadratic-convergence estimate of the next
+    correction, ``(|d_k| / |d_k-1|)^2 |d_k|``, is below ``tol``.  About one iteration less per
+    step; each accepted state is within ``tol`` of the converged one (test_newton_exact), but
+    like the modified iteration it leaves a tolerance-level error at every step, which a
+    snap load can amplify (benchmarks/RESULTS.md).
 
     Returns the number of Newton iterations (> 0), or -1 (no convergence: ``info[1]`` = node
     with the largest correction), -2 (singular iteration matrix at node ``info[1]``), -3 (NaN).
@@ -1260,8 +1278,14 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     for i in range(n):
         for k in range(3):
             a1[i, k] = a[i, k] if 0 < i < n - 1 else 0.0
+    mode = par.newton
     for k in range(3):
         dev = rf1[k] - (r[n - 1, k] + dt * v[n - 1, k])
+        if mode & NW_PREDICT:
+            # deviation from the fairlead's constant-acceleration prediction, its acceleration
+            # taken as that of the neighbouring node (a rigid translation is then predicted
+            # exactly; without it the fairlead's whole acceleration is spread a second time)
+            dev -= 0.5 * dt * dt * a[n - 2, k]
         for i in range(1, n - 1):
             a1[i, k] += dev * (i / (n - 1.0)) / (beta * dt * dt)
     for k in range(3):
@@ -1285,7 +1309,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     # modified Newton: keep the iteration matrix while it is the one of this step size
     # converged on the residual of the current iterate: its forces are those of the state
     by_res = False
-    modified = par.newton > 0
+    modified = (mode & NW_KEEP) > 0
     # the matrix is kept only without bending (band solver) and stiff elements (whose tension
     # estimate reads the element blocks of the current iterate)
     reuse = modified and nstiff == 0 and not bend
@@ -1411,6 +1435,14 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
         if dmax * beta * dt * dt <= tol and math.sqrt(res) <= fcap and fbar <= fcap:
             conv = True
             break
+        if (mode & NW_QSTOP) and not modified and 0.0 < dmax < dprev:
+            # quadratic convergence, |d_k+1| ~ C |d_k|^2 with C from the last two corrections:
+            # the next correction (the error left) is about rho^2 |d_k|
+            rho = dmax / dprev
+            if (rho * rho * dmax * beta * dt * dt <= tol and math.sqrt(res) <= fcap
+                    and fbar <= fcap):
+                conv = True
+                break
         if modified and 0.0 < dmax < dprev:
             # error left after this correction, estimated from the contraction of the last two
             rho = dmax / dprev
