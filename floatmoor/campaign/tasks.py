@@ -96,6 +96,23 @@ COMPRESS_MIN_SIZE = 1024
 uncompressed: zlib saves nothing on them and its chunked layout costs time per variable."""
 
 
+def _local_write_lock():
+    """A context in which xarray writes a netCDF file under a process-local lock.
+
+    Inside a Dask worker xarray finds the worker's client and takes a ``distributed.Lock`` for
+    the file: two messages through the scheduler for every variable and attribute written
+    (about 100 per storm file), 0.2-0.5 s per task measured in a LocalCluster worker against
+    0.03 s for the same write in one process.  Each task writes its own file, so no lock across
+    processes is needed; with the ``synchronous`` scheduler configured xarray takes its
+    threading lock.  The bytes written are the same."""
+    try:
+        import dask
+    except ImportError:
+        import contextlib
+        return contextlib.nullcontext()
+    return dask.config.set(scheduler="synchronous")
+
+
 def write_netcdf(ds, path: Path, *, compression: int = 4) -> dict:
     """Write ``ds`` atomically (temp file + rename), zlib/shuffle on the variables of
     :data:`COMPRESS_MIN_SIZE` elements or more; returns size and digest."""
@@ -106,7 +123,8 @@ def write_netcdf(ds, path: Path, *, compression: int = 4) -> dict:
         if v.dtype.kind in "fiu" and compression > 0 and v.size >= COMPRESS_MIN_SIZE:
             enc[k] = {"zlib": True, "complevel": int(compression), "shuffle": True}
     tmp = path.with_name(path.name + ".tmp")
-    ds.to_netcdf(tmp, engine="netcdf4", encoding=enc)
+    with _local_write_lock():
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=enc)
     digest = file_digest(tmp)
     size = tmp.stat().st_size
     os.replace(tmp, path)
