@@ -30,7 +30,7 @@ from . import store
 from .matrix import build_matrix
 from .screening import select_cases, td_case_check, utilisation
 from .spec import CampaignSpec, load_campaign
-from .tasks import run_fd_cases, run_storm
+from .tasks import run_fd_cases, run_storm, warm_worker
 
 __all__ = ["CampaignOutcome", "campaign_analysis", "make_executor", "run_campaign"]
 
@@ -45,6 +45,7 @@ class CampaignOutcome:
     failed: list = field(default_factory=list)     # (kind, case, seed, error)
     wall_time: float = 0.0
     task_time: float = 0.0                          # sum of the tasks' own wall times
+    warmup: list = field(default_factory=list)      # warm_worker outcome of each Dask worker
 
 
 def campaign_analysis(spec: CampaignSpec, overrides: dict | None = None) -> dict:
@@ -127,6 +128,13 @@ class SerialExecutor:
             self.pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
         return self.pool
 
+    def warm(self, fn, *args):
+        """Nothing: the one process warms up in its first task (and serial runs stay the
+        reference that the warmed Dask workers must reproduce bit for bit)."""
+
+    def warm_results(self) -> list:
+        return []
+
     def map(self, fn, arg_list):
         from concurrent.futures.process import BrokenProcessPool
         for args in arg_list:
@@ -167,6 +175,24 @@ class DaskExecutor:
         info = self.client.scheduler_info()
         self.workers = max(1, sum(w.get("nthreads", 1) for w in info["workers"].values()))
 
+    def warm(self, fn, *args):
+        """``fn(*args)`` once on each worker present now, before any task submitted later (a
+        worker that joins later, or replaces a dead one, warms up in its first task)."""
+        workers = list(self.client.scheduler_info()["workers"])
+        self._warm = [self.client.submit(fn, *args, workers=[w], allow_other_workers=False,
+                                         pure=False, priority=10) for w in workers]
+
+    def warm_results(self) -> list:
+        """The outcomes of the warm-ups that finished (the others are cancelled)."""
+        out = []
+        for fut in getattr(self, "_warm", []):
+            if fut.done() and fut.status == "finished":
+                out.append(fut.result())
+            else:
+                fut.cancel()
+        self._warm = []
+        return out
+
     def map(self, fn, arg_list):
         from dask.distributed import as_completed
         futs = {}
@@ -182,6 +208,8 @@ class DaskExecutor:
             yield args, res
 
     def close(self):
+        for fut in getattr(self, "_warm", []):
+            fut.cancel()
         if self._own:
             self.client.close()
             if self.cluster is not None:
@@ -311,20 +339,24 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
     analysis = campaign_analysis(spec, analysis_overrides)
     _check_same_campaign(spec, analysis, out_dir)
     _record(spec, cases, seeds, analysis, out_dir)
-    import warnings
-
-    from ._api import load_scene
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        base = load_scene(spec.base_scene)
-    rec = store.read_record(out_dir)
-    rec["lines"] = [str(n.raw("name")) for n in base.mooring_node().item_nodes("lines")]
-    store.write_record(out_dir, rec)
-    manifest = store.Manifest(out_dir)
     result = CampaignOutcome(out_dir=out_dir, n_cases=len(cases))
     base_path = os.fspath(Path(spec.base_scene).resolve())
     executor = make_executor(scheduler, workers, client)
     try:
+        # each worker loads the base scene and the compiled kernels now, while the client
+        # reads the base scene itself and the manifest, not inside its first task
+        executor.warm(warm_worker, base_path, analysis)
+        import warnings
+
+        from ._api import load_scene
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            base = load_scene(spec.base_scene)
+        rec = store.read_record(out_dir)
+        rec["lines"] = [str(n.raw("name")) for n in base.mooring_node().item_nodes("lines")]
+        store.write_record(out_dir, rec)
+        manifest = store.Manifest(out_dir)
+
         def consume(label, fn, arg_list, n_of, kind):
             total = sum(n_of(a) for a in arg_list)
             result.skipped[kind] = result.skipped.get(kind, 0)
@@ -390,6 +422,7 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
             if echo:
                 echo(f"statistics mode: full series of {len(gov)} governing case(s)")
             consume("series", run_storm, series, lambda a: 1, "series")
+        result.warmup = executor.warm_results()
     finally:
         executor.close()
     result.wall_time = time.perf_counter() - t_start
