@@ -141,7 +141,10 @@ def _local_write_lock():
     (about 100 per storm file), 0.2-0.5 s per task measured in a LocalCluster worker against
     0.03 s for the same write in one process.  Each task writes its own file, so no lock across
     processes is needed; with the ``synchronous`` scheduler configured xarray takes its
-    threading lock.  The bytes written are the same."""
+    threading lock.  The bytes written are the same.  (In a worker of several threads two
+    writes may interleave their config changes: a write may then take the distributed lock again,
+    slower and otherwise the same, or the setting may stay, which only a Dask computation inside
+    a task would see; the campaign's tasks do none.)"""
     try:
         import dask
     except ImportError:
