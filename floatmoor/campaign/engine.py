@@ -246,10 +246,12 @@ def _record(spec, cases, seeds, analysis, out_dir):
         "cases": [c.row() for c in cases]})
 
 
-def screen(spec, cases, out_dir) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """FD utilisation (cases x lines), kept mask, reasons; writes ``screening.csv``."""
+def screen(spec, cases, out_dir, known: dict | None = None
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """FD utilisation (cases x lines), kept mask, reasons; writes ``screening.csv``.  ``known``:
+    the FD tables of this run's tasks by case id (the other cases' files are read)."""
     ids = [c.id for c in cases]
-    fd = store.load_fd_table(out_dir, ids)
+    fd = store.load_fd_table(out_dir, ids, known)
     if not fd:
         n = len(cases)
         return np.full((n, 0), np.nan), np.ones(n, bool), np.zeros((n, 0), int)
@@ -275,10 +277,11 @@ def screen(spec, cases, out_dir) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return u, keep, reason
 
 
-def governing_cases(spec, cases, seeds, out_dir) -> list:
-    """The TD cases governing some line in some limit state (largest TD utilisation)."""
+def governing_cases(spec, cases, seeds, out_dir, known: dict | None = None) -> list:
+    """The TD cases governing some line in some limit state (largest TD utilisation).
+    ``known``: the storm tables of this run's tasks by (case id, seed)."""
     ids = [c.id for c in cases]
-    st = store.load_td_statistics(out_dir, ids, seeds)
+    st = store.load_td_statistics(out_dir, ids, seeds, known=known)
     if not st:
         return []
     n, nl = len(cases), st["mbs"].size
@@ -357,6 +360,9 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
         store.write_record(out_dir, rec)
         manifest = store.Manifest(out_dir)
 
+        # what the tasks of this run return for the screening (files of earlier runs are read)
+        tables = {"fd": {}, "td": {}, "series": {}}
+
         def consume(label, fn, arg_list, n_of, kind):
             total = sum(n_of(a) for a in arg_list)
             result.skipped[kind] = result.skipped.get(kind, 0)
@@ -369,6 +375,9 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
                               "status": "failed", "wall_time_s": 0.0, "path": args[5],
                               "error": f"{type(res).__name__}: {res}"}])
                 for o in outs:
+                    table = o.pop("table", None)
+                    if table is not None and o["status"] == "done":
+                        tables[kind][o["case"] if kind == "fd" else (o["case"], o["seed"])] = table
                     manifest.append(o, by_id[o["case"]].row())
                     result.ran[kind] = result.ran.get(kind, 0) + 1
                     result.task_time += float(o.get("wall_time_s", 0.0))
@@ -404,7 +413,7 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
             consume("FD", run_fd_cases, batches, lambda a: len(a[1]), "fd")
         # (2) screening
         preload.join()
-        u, keep, _ = screen(spec, cases, out_dir)
+        u, keep, _ = screen(spec, cases, out_dir, tables["fd"])
         td_cases = [cases[i] for i in _most_critical_first(u, cases, keep)]
         result.n_td_cases = len(td_cases)
         if echo:
@@ -416,7 +425,7 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
         consume("TD", run_storm, storms, lambda a: 1, "td")
         # (4) statistics mode: the series of the governing cases
         if spec.storage.mode == "statistics" and td_cases:
-            gov = governing_cases(spec, td_cases, seeds, out_dir)
+            gov = governing_cases(spec, td_cases, seeds, out_dir, tables["td"])
             series = _storm_args(gov, seeds, base_path, analysis, spec.storage, out_dir,
                                  manifest, verify, result, "series")
             if echo:

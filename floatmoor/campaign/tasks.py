@@ -12,8 +12,9 @@ file on any worker.  The times go to the outcome (and the manifest): ``wall_time
 whole task, ``simulate_s`` (storms: the wall time of the ``simulate`` call, the storm's own run
 time) and ``solve_s`` (FD: the ``frequency_domain`` call); the rest of a task (case scene,
 statistics, writing) is campaign overhead.  The outcome also carries the process CPU times
-(``cpu_s``, ``simulate_cpu_s``, ``solve_cpu_s``) and the worker's ``pid`` (benchmarks; not in
-the manifest).  :func:`warm_worker` loads a worker's caches before its first task.
+(``cpu_s``, ``simulate_cpu_s``, ``solve_cpu_s``), the worker's ``pid`` (benchmarks; not in
+the manifest) and ``table``: the values the client's screening reads (FD maxima, storm
+statistics), as written, so that it does not read every file back.  :func:`warm_worker` loads a worker's caches before its first task.
 
 Storage of a storm (``storage:`` of the campaign file):
 
@@ -39,6 +40,8 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+
+from .store import FD_TABLE_VARS, TD_TABLE_VARS
 
 __all__ = ["file_digest", "run_fd_cases", "run_storm", "storm_dataset", "warm_worker",
            "write_netcdf"]
@@ -181,6 +184,12 @@ def _outcome(kind, case, seed, path, status, t0, error="", extra=None, c0=None):
     return out
 
 
+def _table(ds, names) -> dict:
+    """The variables ``names`` of a written dataset, as written (the client screens with them
+    without reading the file back)."""
+    return {k: np.asarray(ds[k].values) for k in names if k in ds.variables}
+
+
 def _error_text(exc) -> str:
     return f"{type(exc).__name__}: {exc}".replace("\n", " ")
 
@@ -218,8 +227,9 @@ def run_fd_cases(base_path: str, cases, analysis: dict, out_dir: str, compressio
                 warnings.simplefilter("ignore")
                 fd = _api.frequency_domain(built)
             t_solve, c_solve = time.perf_counter() - t_solve, time.process_time() - c_solve
-            info = write_netcdf(_fd_dataset(fd, case), path, compression=compression)
-            info.update(solve_s=t_solve, solve_cpu_s=c_solve)
+            ds = _fd_dataset(fd, case)
+            info = write_netcdf(ds, path, compression=compression)
+            info.update(solve_s=t_solve, solve_cpu_s=c_solve, table=_table(ds, FD_TABLE_VARS))
             results.append(_outcome("fd", case, -1, path, "done", t0, extra=info, c0=c0))
         except Exception as exc:  # noqa: BLE001 - recorded; the campaign goes on
             results.append(_outcome("fd", case, -1, path, "failed", t0, _error_text(exc),
@@ -319,7 +329,8 @@ def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path
         if failed:
             out.attrs["failed_lines"] = list(failed)
         info = write_netcdf(out, Path(out_path), compression=storage.compression)
-        info.update(simulate_s=sim_time, simulate_cpu_s=sim_cpu)
+        info.update(simulate_s=sim_time, simulate_cpu_s=sim_cpu,
+                    table=_table(out, TD_TABLE_VARS))
         info["warnings"] = " | ".join(dict.fromkeys(str(w.message) for w in caught))
         return _outcome("td" if keep_series is None else "series", case, int(seed), out_path,
                         "done", t0, extra=info, c0=c0)

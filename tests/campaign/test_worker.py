@@ -94,3 +94,34 @@ def test_warmed_worker_gives_the_file_of_a_fresh_process(tmp_path, monkeypatch):
                             str(out), warm).result()
             files.append(out.read_bytes())
         assert files[0] == files[1], case.id
+
+
+def test_tables_returned_by_the_tasks_are_the_files(tmp_path):
+    """The client screens with the values the FD and storm tasks return (``table``) instead of
+    reading every file back: they are the files' values, bit for bit, and the loaders give the
+    same arrays from either."""
+    from floatmoor.campaign import store
+    from floatmoor.campaign.tasks import run_fd_cases
+    spec = load_campaign(HERE / "mini.yaml")
+    case = build_matrix(spec)[0]
+    base = str(Path(spec.base_scene).resolve())
+    analysis = dict(spec.analysis)
+    fd = run_fd_cases(base, [case], analysis, str(tmp_path))[0]
+    path = store.storm_path(tmp_path, case.id, 1)
+    td = run_storm(base, case, 1, analysis, spec.storage, str(path))
+    assert fd["status"] == td["status"] == "done"
+    for o, names, p in ((fd, store.FD_TABLE_VARS, store.fd_path(tmp_path, case.id)),
+                        (td, store.TD_TABLE_VARS, path)):
+        on_disk = store._read_vars(p, names)
+        assert sorted(o["table"]) == sorted(on_disk) == sorted(names)
+        for k in names:
+            assert o["table"][k].tobytes() == on_disk[k].tobytes(), k
+    a = store.load_fd_table(tmp_path, [case.id])
+    b = store.load_fd_table(tmp_path / "elsewhere", [case.id], {case.id: fd["table"]})
+    a2 = store.load_td_statistics(tmp_path, [case.id], [1])
+    b2 = store.load_td_statistics(tmp_path / "elsewhere", [case.id], [1],
+                                  known={(case.id, 1): td["table"]})
+    for x, y in ((a, b), (a2, b2)):
+        assert sorted(x) == sorted(y)
+        for k in x:
+            np.testing.assert_array_equal(x[k], y[k])
