@@ -6,9 +6,12 @@ cases, one task per (case, seed), (4) in ``storage: {mode: statistics}`` the ful
 governing case of each line and limit state, rerun from their seeds.
 
 Executors: ``serial`` (in this process) or Dask (:mod:`dask.distributed`): a ``LocalCluster``
-of ``workers`` single-threaded processes, or an existing scheduler at ``tcp://HOST:8786``.  The
-tasks (:mod:`floatmoor.campaign.tasks`) are pure and write their own files; the client only
-appends outcomes to the manifest.  A worker that dies has its tasks rerun on another worker by
+of ``workers`` single-threaded processes (:func:`local_cluster`, Dask's background sampling
+turned down), or an existing scheduler at ``tcp://HOST:8786``.  Every Dask worker runs
+:func:`~floatmoor.campaign.tasks.warm_worker` before its first task.  The tasks
+(:mod:`floatmoor.campaign.tasks`) are pure and write their own files; the client only appends
+outcomes to the manifest and screens with the values the tasks return (files of an earlier run
+are read).  A worker that dies has its tasks rerun on another worker by
 the Dask scheduler (up to ``distributed.scheduler.allowed-failures`` times, then the task is
 recorded as failed); a task that raises inside floatmoor (e.g. NumericalError) is recorded as
 failed with its message and the others go on.  Rerunning the same command resumes: a task whose
