@@ -117,15 +117,25 @@ def _read_vars(path, names):
         return {k: np.asarray(nc.variables[k][...]) for k in names if k in nc.variables}
 
 
-def load_fd_table(out_dir, case_ids) -> dict:
-    """FD per-line arrays (cases x lines) of the cases that have an FD file (NaN otherwise)."""
+FD_TABLE_VARS = ("tension_static", "tension_max_total", "mbs", "max_total", "min_total")
+"""The variables of an FD file that the screening reads."""
+TD_TABLE_VARS = ("line_tension_max", "line_tension_mean", "offset_max", "mbs")
+"""The variables of a storm file that the choice of the governing cases reads."""
+
+
+def load_fd_table(out_dir, case_ids, known: dict | None = None) -> dict:
+    """FD per-line arrays (cases x lines) of the cases that have an FD file (NaN otherwise).
+
+    ``known`` maps a case id to its :data:`FD_TABLE_VARS` as written (the values a task of this
+    run returned with its outcome): those files are not read again."""
     out = None
     for i, cid in enumerate(case_ids):
-        p = fd_path(out_dir, cid)
-        if not p.is_file():
-            continue
-        v = _read_vars(p, ("tension_static", "tension_max_total", "mbs", "max_total",
-                           "min_total"))
+        v = (known or {}).get(cid)
+        if v is None:
+            p = fd_path(out_dir, cid)
+            if not p.is_file():
+                continue
+            v = _read_vars(p, FD_TABLE_VARS)
         if out is None:
             nl = v["mbs"].size
             out = {k: np.full((len(case_ids),) + np.shape(v[k]), np.nan) for k in v}
@@ -135,19 +145,24 @@ def load_fd_table(out_dir, case_ids) -> dict:
     return out or {}
 
 
-def load_td_statistics(out_dir, case_ids, seeds, kind: str = "td") -> dict:
-    """Per-storm statistics (cases x seeds x lines), NaN where a storm is missing."""
-    keys = ("line_tension_max", "line_tension_mean", "offset_max", "mbs")
+def load_td_statistics(out_dir, case_ids, seeds, kind: str = "td",
+                       known: dict | None = None) -> dict:
+    """Per-storm statistics (cases x seeds x lines), NaN where a storm is missing.
+
+    ``known`` maps (case id, seed) to the storm's :data:`TD_TABLE_VARS` as written: those files
+    are not read again."""
     out = None
     for i, cid in enumerate(case_ids):
         for s, seed in enumerate(seeds):
-            p = storm_path(out_dir, cid, seed, kind)
-            if not p.is_file():
-                continue
-            try:
-                v = _read_vars(p, keys)
-            except OSError:
-                continue
+            v = (known or {}).get((cid, int(seed)))
+            if v is None:
+                p = storm_path(out_dir, cid, seed, kind)
+                if not p.is_file():
+                    continue
+                try:
+                    v = _read_vars(p, TD_TABLE_VARS)
+                except OSError:
+                    continue
             if out is None:
                 nl = v["mbs"].size
                 out = {"line_tension_max": np.full((len(case_ids), len(seeds), nl), np.nan),

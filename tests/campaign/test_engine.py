@@ -39,6 +39,10 @@ def test_serial_and_two_workers_bit_identical(tiny_runs):
     a, b, ra, rb = tiny_runs
     assert not ra.failed and not rb.failed
     assert ra.ran == rb.ran == {"fd": 12, "td": 36}
+    # the Dask workers warmed up before their first task (the serial process does not): the
+    # files below are identical all the same
+    assert ra.warmup == [] and len(rb.warmup) == 2
+    assert not any(w["error"] for w in rb.warmup)
     fa, fb = _files(a), _files(b)
     assert fa == fb and len(fa) == 12 + 36
     for f in fa:
