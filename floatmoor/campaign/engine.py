@@ -367,7 +367,7 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
     by_id = {c.id: c for c in cases}
     seeds = tuple(int(s) for s in (seeds or spec.seeds))
     analysis = campaign_analysis(spec, analysis_overrides)
-    _check_same_campaign(spec, analysis, out_dir)
+    old_inputs = _check_same_campaign(spec, analysis, out_dir)
     _record(spec, cases, seeds, analysis, out_dir)
     result = CampaignOutcome(out_dir=out_dir, n_cases=len(cases))
     base_path = os.fspath(Path(spec.base_scene).resolve())
@@ -382,8 +382,10 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             base = load_scene(spec.base_scene)
+        inputs = _check_same_inputs(spec, base, old_inputs, out_dir)
         rec = store.read_record(out_dir)
         rec["lines"] = [str(n.raw("name")) for n in base.mooring_node().item_nodes("lines")]
+        rec["base_inputs"] = inputs
         store.write_record(out_dir, rec)
         manifest = store.Manifest(out_dir)
 
@@ -499,12 +501,14 @@ def _most_critical_first(u, cases, keep) -> list[int]:
     return [int(i) for i in idx[np.argsort(-score, kind="stable")]]
 
 
-def _check_same_campaign(spec, analysis, out_dir) -> None:
+def _check_same_campaign(spec, analysis, out_dir) -> dict | None:
     """Refuse to resume into a folder of results made with other storm parameters (their files
-    would be taken as done)."""
+    would be taken as done).  Returns the base scene's input fingerprint recorded by the
+    earlier run (None for a new folder or a record written before fingerprints were kept),
+    for :func:`_check_same_inputs` once the base scene is loaded."""
     from ..core.errors import SceneError
     if not (Path(out_dir) / store.RECORD).is_file():
-        return
+        return None
     old = store.read_record(out_dir)
     new = {"analysis": analysis, "storage": {"mode": spec.storage.mode,
                                              "precision": spec.storage.precision,
@@ -516,6 +520,26 @@ def _check_same_campaign(spec, analysis, out_dir) -> None:
             raise SceneError(spec.file, key, f"the {key} of the results already in {out_dir} "
                              f"({old.get(key)})", value, "use another --out folder, or the "
                              "same settings to resume")
+    return old.get("base_inputs")
+
+
+def _check_same_inputs(spec, base, old_inputs, out_dir) -> dict:
+    """The input fingerprint of the base scene (:func:`~floatmoor.analyses.fingerprint.
+    scene_fingerprint`: site, environment, analysis, forces, vessel and its hydrodynamic
+    database, mooring, by content); refuse to resume when it differs from the one recorded
+    with the results already in ``out_dir`` (an edited mooring or vessel file behind the same
+    base-scene path would otherwise mix old and new results in one report)."""
+    from ..analyses.fingerprint import differing_keys, scene_fingerprint
+    from ..core.errors import SceneError
+    inputs = scene_fingerprint(base)
+    if old_inputs is not None and dict(old_inputs) != inputs:
+        raise SceneError(spec.file, "base_scene",
+                         "the inputs of the results already in the output folder",
+                         "changed: " + ", ".join(differing_keys(dict(old_inputs), inputs)),
+                         f"{spec.base_scene} or a file it reads was edited since the results "
+                         f"in {out_dir} were run; use another --out folder for the edited "
+                         "scene, or restore it to resume")
+    return inputs
 
 
 def _storm_args(cases, seeds, base_path, analysis, storage, out_dir, manifest, verify, result,

@@ -199,3 +199,47 @@ def test_statistics_mode_keeps_series_of_governing_case(tmp_path):
             T = se["line_tension"][:][t >= 50.0].max(axis=0)
             np.testing.assert_allclose(T, st["line_tension_max"][:], rtol=6e-8)
         assert store.storm_path(tmp_path, case, seed).stat().st_size < 60_000
+
+
+def test_resume_refuses_an_edited_base_scene(tmp_path):
+    """The campaign record keeps the base scene's input fingerprint (site, environment,
+    analysis, forces, vessel, mooring by content): after the mooring file behind the same
+    base-scene path is edited, a resume into the same folder is refused (the finished storms
+    would otherwise be mixed with storms of the edited mooring in one report); the unedited
+    scene resumes."""
+    from floatmoor.core.errors import SceneError
+    root = HERE.parents[1]
+    work = tmp_path / "inputs"
+    work.mkdir()
+    mooring = work / "mooring.yaml"
+    mooring.write_text((root / "vessels/floatel_like/mooring.yaml").read_text())
+    scene = (root / "scenes/floatel_100yr.yaml").read_text()
+    scene = scene.replace("../vessels/floatel_like/vessel.yaml",
+                          str(root / "vessels/floatel_like/vessel.yaml"))
+    scene = scene.replace("../metocean/heidrun_100yr.yaml",
+                          str(root / "metocean/heidrun_100yr.yaml"))
+    scene = scene.replace("../vessels/floatel_like/mooring.yaml", "mooring.yaml")
+    (work / "base.yaml").write_text(scene)
+    camp = (HERE / "mini.yaml").read_text()
+    camp = camp.replace("../../scenes/floatel_100yr.yaml", "base.yaml")
+    camp = camp.replace("seeds: \"1-4\"", "seeds: \"1-3\"").replace("duration: 300.0", "duration: 100.0")
+    (work / "mini.yaml").write_text(camp)
+    out = tmp_path / "out"
+    r = run_campaign(work / "mini.yaml", out, scheduler="serial", echo=None)
+    assert r.ran == {"fd": 1, "td": 3}
+    assert store.read_record(out)["base_inputs"]["mooring"]
+    r = run_campaign(work / "mini.yaml", out, scheduler="serial", echo=None)
+    assert r.ran == {}
+    # the first segment of the first line 1 m longer: another mooring behind the same path
+    mooring.write_text(_lengthen_first_segment(mooring.read_text()))
+    with pytest.raises(SceneError) as e:
+        run_campaign(work / "mini.yaml", out, scheduler="serial", echo=None)
+    msg = str(e.value)
+    assert "base_scene" in msg and "mooring" in msg and "another --out" in msg
+
+
+def _lengthen_first_segment(text):
+    import re
+    m = re.search(r"(\{type: \w+, length:\s*)([0-9.]+)", text)
+    assert m, "the mooring file has a segment length"
+    return text[:m.start(2)] + f"{float(m.group(2)) + 1.0}" + text[m.end(2):]
