@@ -37,8 +37,10 @@ the total force is the sum of the rows in that order.  The kernels take the bund
 :mod:`floatmoor.forces.terms` and :mod:`floatmoor.solvers.td_bundles`.
 
 Opt-in approximations (scene ``solver:``, :mod:`floatmoor.io.solver_section`; the default is
-the exact path above): ``lines.step_tol`` > 0 takes the predictor-corrector catenary solves of
-:mod:`floatmoor.mooring.catenary_step` (the predictor alone at stage 2), ``memory.ss`` the
+the exact path above): a :class:`~.td_bundles.PredictorLines` bundle (``lines.step_tol`` > 0)
+takes the predictor-corrector catenary solves of :mod:`floatmoor.mooring.catenary_step` (the
+predictor alone at stage 2; :func:`line_forces` chooses on the bundle's type, so the kernel of
+an exact run has no predictor-corrector code), ``memory.ss`` the
 recursive history sum of :mod:`floatmoor.hydro.memory_fit` instead of the convolution sum.
 
 Structure of a step (:func:`td_steps`): line failures and the convolution sum, the first
@@ -100,7 +102,7 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
     mooring force when ``st.has_mcorr`` (the dynamic part of coupled FE lines,
     :mod:`floatmoor.solvers.fe_coupling`).  Returns -1, or the index of a line whose catenary
     failed.  ``stage`` the RK4 stage (0-3): with the predictor-corrector catenaries
-    (``lines.step_tol`` > 0) stage 2 takes the predictor alone (its pose is within millimetres
+    (:class:`~.td_bundles.PredictorLines`) stage 2 takes the predictor alone (its pose is within millimetres
     of stage 1's, :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)."""
     parts = st.parts
     cy = math.cos(x[5])
