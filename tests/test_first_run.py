@@ -64,10 +64,62 @@ print(json.dumps(compiled))
     assert not [n for n in names if n.rsplit(".", 1)[-1].startswith("slender_")], names
 
 
+def test_fibre_step_without_tracking_compiles_no_fibre_code(tmp_path):
+    """A kernel given the fibre bundle of a run without fibre tracking (NoFibre) compiles the
+    empty choice of fibre_step, not the fibre update and its table look-ups."""
+    compiled = _run("""
+import numpy as np
+from numba import njit
+from floatmoor.mooring.fibre_system import fibre_step, no_fibre_track
+
+@njit
+def f(fib, line_out):
+    fibre_step(fib, None, np.ones(1, np.bool_), line_out)
+    return fib.on
+
+out = np.zeros((1, 10))
+assert f(no_fibre_track(), out) is False and not out.any()
+print(json.dumps(compiled))
+""", tmp_path)
+    names = [c[0] for c in compiled]
+    assert any(n.endswith("_fibre_step_typed.<locals>.nothing") for n in names), names
+    assert not [n for n in names if n.startswith("floatmoor.mooring.fibre")
+                and "_fibre_step_typed" not in n], names
+
+
+def test_line_forces_choose_on_the_bundle_type():
+    """The exact and the predictor-corrector catenary solves of the time loop are chosen on the
+    type of the lines bundle (Lines, PredictorLines): an exact run's kernel has no
+    predictor-corrector code, and lines_bundle makes the predictor bundle only for a tolerance
+    > 0.  (Typing only, nothing is compiled.)"""
+    import numpy as np
+    from numba import typeof
+
+    from floatmoor.mooring.fibre_system import FibreTrack, NoFibre, _fibre_step_typed
+    from floatmoor.solvers.td_bundles import Lines, PredictorLines, lines_bundle, no_lines
+    from floatmoor.solvers.td_kernel import _line_forces_typed
+
+    base = no_lines()
+    exact = lines_bundle(*base[:7], 0.0)
+    pred = lines_bundle(*base[:7], 1e-4)
+    assert type(exact) is Lines and type(pred) is PredictorLines and pred.step_tol == 1e-4
+    assert typeof(exact) != typeof(pred)
+    assert _line_forces_typed(None, None, typeof(exact), None, None).__name__ == "exact"
+    assert _line_forces_typed(None, None, typeof(pred), None, None).__name__ == "predictor"
+    assert isinstance(base.fibre, NoFibre)
+    assert _fibre_step_typed(typeof(base.fibre), None, None, None).__name__ == "nothing"
+    z = np.zeros(0)
+    track = FibreTrack(True, 0.1, np.zeros(0, np.int64), np.zeros(0, np.int64), z, z, z, z, z,
+                       np.zeros(0, np.bool_), np.zeros(0, np.int64), np.zeros((0, 2)),
+                       np.zeros((0, 2)), z, np.zeros(1))
+    assert _fibre_step_typed(typeof(track), None, None, None).__name__ == "update"
+
+
 @pytest.mark.slow
 def test_flagship_compiles_each_kernel_once_and_no_strip_code(tmp_path):
-    """The flagship scene (no slender elements), 300 s of storm from an empty cache: every
-    numba function is compiled for one signature only, and no slender-element kernel."""
+    """The flagship scene (no slender elements, exact catenary solves, no fibre rope), 300 s of
+    storm from an empty cache: every numba function is compiled for one signature only, and no
+    slender-element, predictor-corrector or fibre kernel."""
     compiled = _run("""
 from floatmoor.analyses.simulate import simulate
 from floatmoor.io.scene import load_scene
@@ -80,3 +132,6 @@ print(json.dumps(compiled))
     twice = sorted({n for n in names if names.count(n) > 1 and n.startswith("floatmoor.")})
     assert not twice, [c for c in compiled if c[0] in twice]
     assert not [n for n in names if n.rsplit(".", 1)[-1].startswith("slender_")], names
+    assert "floatmoor.mooring.catenary_step.system_force_step_kernel" not in names, names
+    assert not [n for n in names if n.startswith("floatmoor.mooring.fibre")
+                and not n.endswith("_fibre_step_typed.<locals>.nothing")], names

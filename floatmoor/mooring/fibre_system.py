@@ -54,14 +54,15 @@ from typing import NamedTuple
 
 import numpy as np
 from numba import njit
+from numba.extending import overload
 
 from ..core.errors import ConvergenceError
 from .catenary import OUT_HF, OUT_VF
 from .fibre import dynamic_ea_nb, table_inverse_nb, table_slope_nb
 
 __all__ = ["FibreSegments", "segment_mean_tensions", "iterate_secant", "linearised_segments",
-           "RULES", "DEFAULT_TIME_CONSTANT", "FibreTrack", "fibre_track", "no_fibre_track",
-           "fibre_track_update"]
+           "RULES", "DEFAULT_TIME_CONSTANT", "FibreTrack", "NoFibre", "fibre_track",
+           "no_fibre_track", "fibre_track_update", "fibre_step"]
 
 RULES = ("dynamic", "tangent")
 """Linearisation rules: the fibre model's dynamic stiffness, or the working-curve tangent."""
@@ -267,13 +268,18 @@ class FibreTrack(NamedTuple):
     t_seg: np.ndarray
 
 
-def no_fibre_track() -> FibreTrack:
-    """A :class:`FibreTrack` without segments (``on`` False)."""
-    z = np.zeros(0)
-    return FibreTrack(False, 0.0, np.zeros(0, np.int64), np.zeros(0, np.int64), z.copy(),
-                      z.copy(), z.copy(), z.copy(), z.copy(), np.zeros(0, np.bool_),
-                      np.zeros(0, np.int64), np.zeros((0, 2)), np.zeros((0, 2)), z.copy(),
-                      np.zeros(1))
+class NoFibre(NamedTuple):
+    """The fibre bundle of a run whose linearisation does not move (no fibre segment, the
+    fixed-mean rule, or coupled FE lines; ``on`` False).  A type of its own: the time loop
+    compiled for it leaves the fibre update out (:func:`fibre_step` chooses on the bundle's
+    type), so such a run does not compile it."""
+
+    on: bool
+
+
+def no_fibre_track() -> NoFibre:
+    """The fibre bundle of a run without a moving linearisation (:class:`NoFibre`)."""
+    return NoFibre(False)
 
 
 def fibre_track(system, tau: float, dt: float, tm=None) -> FibreTrack:
@@ -336,3 +342,25 @@ def fibre_track_update(fib, cat, active, line_out):
             cat.seg_L[j] = fib.L0[k] * f
             cat.seg_EA[j] = K * f
             cat.seg_w[j] = fib.w0[k] / f
+
+
+def fibre_step(fib, cat, active, line_out):
+    """:func:`fibre_track_update` for a :class:`FibreTrack` bundle that is ``on``; nothing for
+    a :class:`NoFibre` one.  Compiled, the choice is made on the bundle's type
+    (:func:`_fibre_step_typed`): a time loop compiled for a run without fibre tracking neither
+    contains nor compiles the fibre code."""
+    if fib.on:
+        fibre_track_update(fib, cat, active, line_out)
+
+
+@overload(fibre_step)
+def _fibre_step_typed(fib, cat, active, line_out):
+    if getattr(fib, "instance_class", None) is NoFibre:
+        def nothing(fib, cat, active, line_out):
+            return None
+        return nothing
+
+    def update(fib, cat, active, line_out):
+        if fib.on:
+            fibre_track_update(fib, cat, active, line_out)
+    return update

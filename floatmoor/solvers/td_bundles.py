@@ -16,10 +16,11 @@ import numpy as np
 
 from ..mooring.catenary import OUT_SIZE
 from ..mooring.catenary_step import WARM_SIZE
-from ..mooring.fibre_system import FibreTrack, no_fibre_track
+from ..mooring.fibre_system import FibreTrack, NoFibre, no_fibre_track
 from ..mooring.system import CatenaryArrays
 
-__all__ = ["Body", "Lines", "Outputs", "State", "new_outputs", "new_state", "no_lines"]
+__all__ = ["Body", "Lines", "PredictorLines", "Outputs", "State", "lines_bundle", "new_outputs",
+           "new_state", "no_lines"]
 
 
 class Body(NamedTuple):
@@ -45,9 +46,9 @@ class Lines(NamedTuple):
     starts (H, V; the predictor-corrector path also x, z, K, :mod:`floatmoor.mooring.
     catenary_step`); ``fail_time`` (n,) s (inf: intact); ``mbs`` (n,) N; ``fibre`` the fibre
     segments linearised about their slowly varying tension (:class:`~floatmoor.mooring.
-    fibre_system.FibreTrack`; ``fibre.on`` False: none, or the fixed-mean rule);
-    ``step_tol``: 0 for the exact catenary solves, else the accepted correction of the
-    predictor-corrector solves (scene ``solver: {catenary: predictor}``)."""
+    fibre_system.FibreTrack`, or :class:`~floatmoor.mooring.fibre_system.NoFibre`: none, or
+    the fixed-mean rule); the exact catenary solves (``step_tol`` 0; the predictor-corrector
+    solves are the bundle :class:`PredictorLines`)."""
 
     on: bool
     cat: CatenaryArrays
@@ -55,8 +56,24 @@ class Lines(NamedTuple):
     warm: np.ndarray
     fail_time: np.ndarray
     mbs: np.ndarray
-    fibre: FibreTrack
+    fibre: FibreTrack | NoFibre
     step_tol: float = 0.0
+
+
+class PredictorLines(Lines):
+    """:class:`Lines` with the predictor-corrector catenary solves (scene ``solver: {catenary:
+    predictor}``, :mod:`floatmoor.mooring.catenary_step`), ``step_tol`` > 0 the accepted
+    correction.  A type of its own: the time loop compiled for :class:`Lines` leaves the
+    predictor-corrector code out (:func:`floatmoor.solvers.td_kernel.line_forces` chooses on
+    the bundle's type), so an exact run does not compile it."""
+
+    __slots__ = ()
+
+
+def lines_bundle(on, cat, active, warm, fail_time, mbs, fibre, step_tol=0.0) -> Lines:
+    """The :class:`Lines` bundle, :class:`PredictorLines` when ``step_tol`` > 0."""
+    cls = PredictorLines if step_tol > 0.0 else Lines
+    return cls(on, cat, active, warm, fail_time, mbs, fibre, float(step_tol))
 
 
 class State(NamedTuple):

@@ -37,8 +37,10 @@ the total force is the sum of the rows in that order.  The kernels take the bund
 :mod:`floatmoor.forces.terms` and :mod:`floatmoor.solvers.td_bundles`.
 
 Opt-in approximations (scene ``solver:``, :mod:`floatmoor.io.solver_section`; the default is
-the exact path above): ``lines.step_tol`` > 0 takes the predictor-corrector catenary solves of
-:mod:`floatmoor.mooring.catenary_step` (the predictor alone at stage 2), ``memory.ss`` the
+the exact path above): a :class:`~.td_bundles.PredictorLines` bundle (``lines.step_tol`` > 0)
+takes the predictor-corrector catenary solves of :mod:`floatmoor.mooring.catenary_step` (the
+predictor alone at stage 2; :func:`line_forces` chooses on the bundle's type, so the kernel of
+an exact run has no predictor-corrector code), ``memory.ss`` the
 recursive history sum of :mod:`floatmoor.hydro.memory_fit` instead of the convolution sum.
 
 Structure of a step (:func:`td_steps`): line failures and the convolution sum, the first
@@ -56,14 +58,15 @@ from __future__ import annotations
 import math
 
 from numba import njit
+from numba.extending import overload
 
 from ..forces.kernels import relative_flow_force_into, turn_horizontal
 from ..forces.slender_kernels import strips_into
 from ..mooring.catenary import OUT_HA, OUT_HF, OUT_VA, OUT_VF
 from ..mooring.catenary_step import system_force_step_kernel
-from ..mooring.fibre_system import fibre_track_update
+from ..mooring.fibre_system import fibre_step
 from ..mooring.system import system_force_kernel
-from .td_bundles import new_state
+from .td_bundles import PredictorLines, new_state
 
 __all__ = ["td_kernel", "td_steps", "rk4_step", "start_state", "STATUS_OK", "STATUS_NAN",
            "STATUS_GUARD", "STATUS_TENSION", "STATUS_CATENARY", "STATUS_NAMES"]
@@ -99,7 +102,7 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
     mooring force when ``st.has_mcorr`` (the dynamic part of coupled FE lines,
     :mod:`floatmoor.solvers.fe_coupling`).  Returns -1, or the index of a line whose catenary
     failed.  ``stage`` the RK4 stage (0-3): with the predictor-corrector catenaries
-    (``lines.step_tol`` > 0) stage 2 takes the predictor alone (its pose is within millimetres
+    (:class:`~.td_bundles.PredictorLines`) stage 2 takes the predictor alone (its pose is within millimetres
     of stage 1's, :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)."""
     parts = st.parts
     cy = math.cos(x[5])
@@ -121,21 +124,7 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
         r += 1
     # mooring (earth axes)
     if lines.on:
-        cat = lines.cat
-        if lines.step_tol > 0.0:
-            bad = system_force_step_kernel(x, cat.anchors, cat.fairleads, cat.seg_L,
-                                           cat.seg_EA, cat.seg_w, cat.seg_P, cat.line_start,
-                                           cat.cb, cat.seabed, lines.active, lines.warm,
-                                           lines.step_tol, stage == 2, st.work, st.rot,
-                                           st.line_out, st.fm)
-        else:
-            # want_k typed bool like the statics' calls (a literal False would compile a second
-            # specialisation of system_force_kernel); j >= 0, so it is False
-            want_k = j < 0
-            bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
-                                      cat.seg_w, cat.seg_P, cat.line_start, cat.cb,
-                                      cat.seabed, lines.active, lines.warm, want_k, st.work,
-                                      st.rot, st.line_out, st.fm, st.stiff)
+        bad = line_forces(j, x, lines, st, stage)
         if bad >= 0:
             return bad
         for i in range(6):
@@ -209,6 +198,55 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
             s += parts[p, i]
         f[i] = s
     return -1
+
+
+@njit(cache=True, inline='always')
+def _exact_line_forces(j, x, lines, st):
+    """The exact catenary solves of :func:`line_forces`."""
+    cat = lines.cat
+    # want_k typed bool like the statics' calls (a literal False would compile a second
+    # specialisation of system_force_kernel); j >= 0, so it is False
+    want_k = j < 0
+    return system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                               cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                               lines.active, lines.warm, want_k, st.work, st.rot, st.line_out,
+                               st.fm, st.stiff)
+
+
+@njit(cache=True, inline='always')
+def _predictor_line_forces(x, lines, st, stage):
+    """The predictor-corrector catenary solves of :func:`line_forces`."""
+    cat = lines.cat
+    return system_force_step_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                    cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                                    lines.active, lines.warm, lines.step_tol, stage == 2,
+                                    st.work, st.rot, st.line_out, st.fm)
+
+
+def line_forces(j, x, lines, st, stage):
+    """Mooring force ``st.fm`` (and ``st.line_out``) of the quasi-static lines at pose ``x``:
+    the exact catenary solves for a :class:`~.td_bundles.Lines` bundle, the predictor-corrector
+    solves for a :class:`~.td_bundles.PredictorLines` one (stage 2 the predictor alone).
+    Returns -1 or the index of a line whose catenary failed.  Compiled, the choice is made on
+    the bundle's type (:func:`_line_forces_typed`): the time loop of an exact run neither
+    contains nor compiles the predictor-corrector code."""
+    if isinstance(lines, PredictorLines):
+        return _predictor_line_forces(x, lines, st, stage)
+    return _exact_line_forces(j, x, lines, st)
+
+
+@overload(line_forces)
+def _line_forces_typed(j, x, lines, st, stage):
+    cls = getattr(lines, "instance_class", None)
+    if cls is not None and issubclass(cls, PredictorLines):
+        def predictor(j, x, lines, st, stage):
+            return _predictor_line_forces(x, lines, st, stage)
+        return predictor
+
+    def exact(j, x, lines, st, stage):
+        return _exact_line_forces(j, x, lines, st)
+    return exact
+
 
 
 @njit(cache=True)
@@ -442,8 +480,7 @@ def td_steps(n_first, n_last, body, terms, lines, st, out):
         if bad >= 0:
             set_status(status, STATUS_TENSION, n, bad)
             return
-        if lines.fibre.on:
-            fibre_track_update(lines.fibre, lines.cat, lines.active, st.line_out)
+        fibre_step(lines.fibre, lines.cat, lines.active, st.line_out)
         if n == body.n_steps:
             break
         bad = rk4_step(n, body, terms, lines, st)

@@ -67,7 +67,7 @@ from ..forces.waves import wave_components
 from ..mooring.catenary_step import WARM_SIZE
 from ..mooring.fibre_system import fibre_track, no_fibre_track
 from .statics import solve_equilibrium as equilibrium
-from .td_bundles import Body, Lines, new_outputs, no_lines
+from .td_bundles import Body, lines_bundle, new_outputs, no_lines
 from .td_kernel import (
     STATUS_CATENARY,
     STATUS_GUARD,
@@ -369,9 +369,11 @@ def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
     minv = np.linalg.inv(a.inertia)
     moor = asm.mooring
     if moor is not None:
-        lines = Lines(True, moor.catenary_arrays(), moor.active.copy(),
-                      np.zeros((moor.n_lines, WARM_SIZE)), as_kernel_array(asm.fail_time, float),
-                      as_kernel_array(moor.mbs, float), _fibre_track(a), catenary_tol(a.solver))
+        lines = lines_bundle(True, moor.catenary_arrays(), moor.active.copy(),
+                             np.zeros((moor.n_lines, WARM_SIZE)),
+                             as_kernel_array(asm.fail_time, float),
+                             as_kernel_array(moor.mbs, float), _fibre_track(a),
+                             catenary_tol(a.solver))
     else:
         lines = no_lines()
     n_lines = lines.mbs.shape[0]
