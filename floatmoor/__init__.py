@@ -13,11 +13,16 @@ They live in :mod:`floatmoor.analyses` (one module per analysis) and are importe
 use, so ``import floatmoor`` stays light.
 """
 
-from importlib import import_module as _import_module
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _version
+from .core.numba_cache import configure as _configure_numba_cache
 
-from .core.errors import (
+# numba's cache folder, keyed by the kernel sources (before any kernel is decorated)
+_NUMBA_CACHE = _configure_numba_cache()
+
+from importlib import import_module as _import_module  # noqa: E402
+from importlib.metadata import PackageNotFoundError  # noqa: E402
+from importlib.metadata import version as _version  # noqa: E402
+
+from .core.errors import (  # noqa: E402
     ConvergenceError,
     FloatmoorError,
     FloatmoorWarning,
