@@ -93,8 +93,13 @@ def _check_run(args: argparse.Namespace) -> int:
         if scene.vessel is not None:
             from .io.build import build
             from .io.plausibility import check_built
-            check_built(build(scene))
+            built = build(scene)
+            check_built(built)
             print("plausibility: depth, mass and displacement, stability, model inputs: OK")
+            unknown = built.mooring.unknown_mbs() if built.mooring is not None else ""
+            if unknown:
+                print(f"design checks (report, DNV-OS-E301, campaign, fatigue) refused until "
+                      f"the MBS is set: {unknown}")
     print(f"{args.scene}: OK")
     return EXIT_OK
 

@@ -80,6 +80,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"net buoyancy at zero pose: {built.static_force[2] / 1e3:.1f} kN"
           + (f"; external force {args.force}" if args.force else ""))
     print(res.summary())
+    unknown = built.mooring.unknown_mbs() if built.mooring is not None else ""
+    if unknown:
+        print(f"utilisation nan: {unknown}")
     curves = None
     if args.curve:
         offsets = np.linspace(0.0, args.max_offset, 9)

@@ -198,3 +198,29 @@ def test_run_works_and_report_refuses(imported, tmp_path, capsys):
     code = main(["report", str(out), "--out", str(tmp_path / "r")])
     err = capsys.readouterr().err
     assert code == 2 and "known minimum breaking strength" in err
+
+
+def test_cli_statics_says_why_the_utilisation_is_nan(imported, tmp_path, capsys):
+    """`floatmoor statics` runs on the imported mooring (exit 0) and, below the table whose
+    utilisation column is nan, says which line type has no MBS, from which file, what to set."""
+    scene = _scene_with(imported, tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        code = main(["statics", str(scene)])
+    out = capsys.readouterr().out
+    assert code == 0
+    line = next(ln for ln in out.splitlines() if ln.startswith("utilisation nan:"))
+    _names_source_and_remedy(line, imported.system.lines[0].segments[0].line_type)
+
+
+def test_cli_check_warns_that_design_checks_need_the_mbs(imported, tmp_path, capsys):
+    """`floatmoor check` passes the scene (exit 0: it is a valid scene) and says that the
+    design checks will be refused until the MBS is set, naming type, file and key."""
+    scene = _scene_with(imported, tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        code = main(["check", str(scene)])
+    out = capsys.readouterr().out
+    assert code == 0
+    line = next(ln for ln in out.splitlines() if ln.startswith("design checks"))
+    _names_source_and_remedy(line, imported.system.lines[0].segments[0].line_type)
