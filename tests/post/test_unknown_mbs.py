@@ -200,27 +200,27 @@ def test_run_works_and_report_refuses(imported, tmp_path, capsys):
     assert code == 2 and "known minimum breaking strength" in err
 
 
-def test_cli_statics_says_why_the_utilisation_is_nan(imported, tmp_path, capsys):
-    """`floatmoor statics` runs on the imported mooring (exit 0) and, below the table whose
-    utilisation column is nan, says which line type has no MBS, from which file, what to set."""
+
+def _cli_message(imported, tmp_path, capsys, command, prefix):
+    """Exit status 0 of ``floatmoor COMMAND scene`` on the imported mooring, and its output
+    line starting with ``prefix``, which must name the type, the file and the key to set."""
     scene = _scene_with(imported, tmp_path)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        code = main(["statics", str(scene)])
+        code = main([command, str(scene)])
     out = capsys.readouterr().out
     assert code == 0
-    line = next(ln for ln in out.splitlines() if ln.startswith("utilisation nan:"))
+    line = next(ln for ln in out.splitlines() if ln.startswith(prefix))
     _names_source_and_remedy(line, imported.system.lines[0].segments[0].line_type)
+
+
+def test_cli_statics_says_why_the_utilisation_is_nan(imported, tmp_path, capsys):
+    """`floatmoor statics` runs on the imported mooring and, below the table whose utilisation
+    column is nan, says which line type has no MBS, from which file, what to set."""
+    _cli_message(imported, tmp_path, capsys, "statics", "utilisation nan:")
 
 
 def test_cli_check_warns_that_design_checks_need_the_mbs(imported, tmp_path, capsys):
-    """`floatmoor check` passes the scene (exit 0: it is a valid scene) and says that the
-    design checks will be refused until the MBS is set, naming type, file and key."""
-    scene = _scene_with(imported, tmp_path)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        code = main(["check", str(scene)])
-    out = capsys.readouterr().out
-    assert code == 0
-    line = next(ln for ln in out.splitlines() if ln.startswith("design checks"))
-    _names_source_and_remedy(line, imported.system.lines[0].segments[0].line_type)
+    """`floatmoor check` passes the scene (it is a valid scene) and says that the design
+    checks will be refused until the MBS is set."""
+    _cli_message(imported, tmp_path, capsys, "check", "design checks")
