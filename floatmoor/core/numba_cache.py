@@ -15,6 +15,10 @@ The folder is ``<root>/floatmoor-<hash>``, ``<root>`` being, in this order: the 
 ``$XDG_CACHE_HOME/floatmoor`` (``~/.cache/floatmoor``).  When a new folder is made, all but the
 two most recent older ``floatmoor-*`` folders of the root are removed.
 
+The setting is numba's process-wide one (``NUMBA_CACHE_DIR``, inherited by child processes
+such as Dask workers), so numba functions of other packages used in the same process cache
+under the same folder; numba keeps their files apart by source path.
+
 It must run before numba reads its configuration or any floatmoor kernel is decorated, i.e.
 from ``floatmoor/__init__.py``; it does not import numba (``import floatmoor`` stays light)
 unless numba was already imported, in which case its configuration is updated directly.
