@@ -113,6 +113,7 @@ from ..solvers.frequency_domain import (
 )
 from ..solvers.statics import solve_equilibrium
 from .fd_dataset import to_dataset
+from .fd_line_damping import damping_ratio, iterate_line_damping
 from .fd_line_dynamics import dynamic_line_columns
 from .fd_loads import interp0, qtf_function, relative_flow_damping, rot6
 from .fd_maxima import combine_maxima, rayleigh_maxima, tension_columns
@@ -186,6 +187,9 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
                      total_stiffness=eq.total_stiffness + drag_lin[0])
     model, lf_parts = _linear_model(built, opt, grid, loads, eq, C_drift, viscous, notes)
     sol = solve_frequency_domain(model)
+    damping_parts = {}
+    if opt.line_damping == "fe":
+        model, sol, damping_parts = _line_damping(built, mean_parts["mean"], model, sol, notes)
     lf_periods = _lf_natural_periods(model.stiffness, sol.lf_mass, opt, notes)
     mean = mean_parts["mean"]
     motions = _motion_statistics(mean, sol, model, opt.duration)
@@ -203,7 +207,7 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
         wave_heading=grid.beta, wind_speed_at_coefficient_height=loads.U_w,
         wind_coefficient_height=float(loads.z_wind) if loads.z_wind is not None else float("nan"),
         current_speed_surface=loads.U_c, wave_spectrum_fraction_covered=grid.covered,
-        linearisation_iterations=sol.iterations, notes=tuple(notes),
+        linearisation_iterations=sol.iterations, **damping_parts, notes=tuple(notes),
         run_time_s=time.perf_counter() - t_start)
 
 
@@ -519,6 +523,23 @@ def _linear_model(built: BuiltScene, opt: FDOptions, grid: _WaveGrid, loads: _Me
                    "lf_damping_wind": B_wind, "lf_damping_current": B_cur,
                    "lf_damping_wave_drift": B_drift, "drift_method": drift_method,
                    "lf_added_mass_source": a0_source}
+
+
+def _line_damping(built: BuiltScene, mean, model, sol, notes: _Notes):
+    """``line_damping: fe``: the mooring lines' LF impedance from their FE models, iterated
+    with the response (:func:`~floatmoor.analyses.fd_line_damping.iterate_line_damping`).
+    Returns the model and solution with it, and the FDResult fields."""
+    model, sol, res = iterate_line_damping(built, mean, model, sol)
+    zeta = damping_ratio(res.damping, model.stiffness, sol.lf_mass, 0)
+    notes.append(f"line_damping: fe: mooring-line LF damping {res.damping[0, 0] / 1e3:.0f} kN s/m "
+                 f"in surge ({zeta:.1%} of critical) and dynamic stiffness "
+                 f"{res.stiffness[0, 0] / 1e3:+.1f} kN/m at the LF surge natural frequency "
+                 f"{res.omega:.4f} rad/s; {res.iterations} iterations with the response")
+    return model, sol, {"lf_damping_mooring": res.damping,
+                        "lf_stiffness_mooring_dynamic": res.stiffness,
+                        "lf_mooring_frequency": res.omega,
+                        "fairlead_damping": res.fairlead_damping,
+                        "line_damping_iterations": res.iterations}
 
 
 def _lf_natural_periods(K, lf_mass, opt: FDOptions, notes: _Notes) -> np.ndarray:

@@ -1,0 +1,197 @@
+"""LF mooring-line damping of the frequency-domain analysis (``line_damping: fe``).
+
+The catenary mooring of the FD is quasi-static: it gives stiffness and no damping, while in a
+coupled FE storm the drag on the moving lines damps the slow (LF) motion, to a large part
+because of the lines' own WF motion (Huse (1986); Huse & Matsumoto (1988); Webster (1995)).
+With the option each active line becomes a FE line at the FD mean pose (as for the dynamic WF
+tension, :mod:`~floatmoor.analyses.fd_line_dynamics`: the scene's FE options, line types and
+current), driven at its fairlead by the FD's WF and LF fairlead motion (two uncorrelated
+bands: ``h = X_t + X_r x arm`` of the RAOs with the wave spectrum, and ``J S_LF J^H`` of the LF
+cross-spectrum with ``J = [I, -[arm]x]``); the line's drag is linearised with the node
+velocities of both bands (:func:`~floatmoor.mooring.fe.frequency_damping.fairlead_impedance`)
+and the damping ``Im Z(w) / w`` of its fairlead impedance at the LF natural frequency of the
+floater becomes the body matrix ``B = sum J^T B_f J`` (6 x 6), added to the LF damping.  The
+LF motion depends on that damping and the drag linearisation on the motion: the two are
+iterated (:func:`iterate_line_damping`) until the mooring damping changes by less than
+``LINE_DAMPING_TOL``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..core.errors import ConvergenceError
+from ..core.frames import rotation_matrix_into
+from ..mooring.fe.body import scene_line_inputs
+from ..mooring.fe.frequency_damping import fairlead_impedance
+from ..mooring.fe.from_system import spec_from_linedef
+from ..mooring.fe.line import FELine
+from ..solvers.frequency_domain import HORIZONTAL_DOFS, solve_frequency_domain
+from .fd_line_dynamics import N_LINE_FREQUENCIES, coarse_grid
+
+__all__ = ["LINE_DAMPING_MODELS", "LineDampingResult", "MooringLineDamping",
+           "damping_ratio", "iterate_line_damping", "lf_impedance_on",
+           "lf_mode_frequency"]
+
+LINE_DAMPING_MODELS = ("none", "fe")
+LINE_DAMPING_TOL = 0.01
+"""Relative change (Frobenius norm of the horizontal block) at which the iteration stops."""
+LINE_DAMPING_MAX_ITER = 20
+
+
+def _skew(a):
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def lf_mode_frequency(stiffness, lf_mass, dof: int) -> float:
+    """Undamped LF natural frequency (rad/s) of the mode dominated by ``dof`` (0 surge, 1 sway,
+    5 yaw): eigenvalues of ``M^-1 K_c`` over surge, sway and yaw, heave-roll-pitch condensed
+    out of ``K``; the mode with the largest mass-weighted share of ``dof``."""
+    hz, vt = [0, 1, 5], [2, 3, 4]
+    K = np.asarray(stiffness, float)
+    Kc = K[np.ix_(hz, hz)] - K[np.ix_(hz, vt)] @ np.linalg.solve(K[np.ix_(vt, vt)],
+                                                                K[np.ix_(vt, hz)])
+    M = np.asarray(lf_mass, float)[np.ix_(hz, hz)]
+    lam, V = np.linalg.eig(np.linalg.solve(M, Kc))
+    share = np.abs(V.real) ** 2 * np.diag(M)[:, None]
+    k = int(np.argmax(share[hz.index(dof)] / share.sum(axis=0)))
+    return float(np.sqrt(abs(lam[k].real)))
+
+
+@dataclass(frozen=True, kw_only=True)
+class LineDampingResult:
+    """The mooring lines' LF impedance beyond the quasi-static catenary.
+
+    mu : (k,) rad/s, the frequencies where the lines were evaluated (0 first);
+    impedance : (k, 6, 6) complex body impedance increment ``sum J^T (Z(mu) - Re Z(mu_0)) J``
+    (surge, sway, yaw block; zero elsewhere), ``mu_0`` = ``MU_STATIC``: the FE lines' static
+    stiffness, which the catenary already carries;
+    omega : rad/s, the undamped LF natural frequency of surge (:func:`lf_mode_frequency`);
+    damping, stiffness : (6, 6) ``Im Z_x / omega`` and ``Re Z_x`` there (N s/m .. N m s/rad,
+    N/m .. N m/rad); per line at ``omega``: ``fairlead_damping``, ``fairlead_stiffness``
+    (n_lines, 3, 3), earth axes (the stiffness the whole ``Re Z``; NaN for failed lines), and
+    ``fairlead_velocity_std`` (n_lines, 3) m/s (WF and LF); ``iterations`` with the FD response.
+    """
+
+    mu: np.ndarray
+    impedance: np.ndarray
+    omega: float
+    damping: np.ndarray
+    stiffness: np.ndarray
+    fairlead_damping: np.ndarray
+    fairlead_stiffness: np.ndarray
+    fairlead_velocity_std: np.ndarray
+    iterations: int
+
+
+MU_STATIC = 1e-5
+"""rad/s: the frequency taken for the lines' static stiffness (Re Z there)."""
+N_MU = 32
+"""Frequencies of the line impedance over the LF band (geometric from 1 % of the cut-off to the
+cut-off, plus 0 and the natural frequency); linear interpolation onto the LF grid."""
+
+
+class MooringLineDamping:
+    """The FE lines of a built scene at the FD mean pose ``mean``, solved statically once;
+    :meth:`__call__` gives their LF impedance for an FD solution."""
+
+    def __init__(self, built, mean):
+        system = built.mooring
+        lm = getattr(system, "line_models", None)
+        spec_kw = lm.options.spec_kw(system.water_depth) if lm is not None else {}
+        inputs = scene_line_inputs(built.scene, system)
+        R = np.zeros((3, 3))
+        rotation_matrix_into(mean[3], mean[4], mean[5], R)
+        self.lines = []
+        for ld, active in zip(system.lines, system.active):
+            if not active:
+                self.lines.append(None)
+                continue
+            spec = spec_from_linedef(ld, water_depth=system.water_depth, pose=mean,
+                                     water_density=system.water_density,
+                                     gravity=system.gravity, line_types=inputs["line_types"],
+                                     **spec_kw, **(inputs["current"] or {}))
+            line = FELine(spec)
+            line.solve_static()
+            arm = R @ np.asarray(ld.fairlead, float)
+            J = np.hstack([np.eye(3), -_skew(arm)])       # fairlead motion per body motion
+            self.lines.append((line, J))
+
+    def __call__(self, sol, model, omega: float, iterations: int = 0) -> LineDampingResult:
+        w, S, mu = model.omega, model.wave_spectrum, model.mu
+        grid = np.unique(np.concatenate([[0.0], np.geomspace(mu[-1] / 100.0, mu[-1], N_MU),
+                                         [omega]]))
+        k_om = int(np.searchsorted(grid, omega))
+        ev = np.concatenate([[MU_STATIC], grid[1:]])
+        n = len(self.lines)
+        Z6 = np.zeros((grid.size, 6, 6), complex)
+        Bf = np.full((n, 3, 3), np.nan)
+        Kf = np.full((n, 3, 3), np.nan)
+        vf = np.full((n, 3), np.nan)
+        for i, item in enumerate(self.lines):
+            if item is None:
+                continue
+            line, J = item
+            h = sol.rao @ J.T                                # (n_w, 3) per unit amplitude
+            Sx_wf = h[:, :, None] * h[:, None, :].conj() * S[:, None, None]
+            Sx_lf = np.einsum("ai,nij,bj->nab", J, sol.lf_cross_spectrum, J)
+            bands = [coarse_grid(w, Sx_wf, N_LINE_FREQUENCIES),
+                     coarse_grid(mu, Sx_lf, N_LINE_FREQUENCIES)]
+            imp = fairlead_impedance(line, bands, ev)
+            Zx = imp.impedance - imp.stiffness[0][None]      # beyond the static stiffness
+            Zx[0] = 0.0
+            Z6 += np.einsum("ai,kab,bj->kij", J, Zx, J)
+            Bf[i], Kf[i] = imp.damping[k_om], imp.stiffness[k_om]
+            vf[i] = imp.fairlead_velocity_std
+        keep = np.zeros((6, 6), bool)
+        keep[np.ix_(HORIZONTAL_DOFS, HORIZONTAL_DOFS)] = True
+        Z6 *= keep
+        return LineDampingResult(mu=grid, impedance=Z6, omega=omega,
+                                 damping=Z6[k_om].imag / omega, stiffness=Z6[k_om].real,
+                                 fairlead_damping=Bf, fairlead_stiffness=Kf,
+                                 fairlead_velocity_std=vf, iterations=iterations)
+
+
+def lf_impedance_on(res: LineDampingResult, mu) -> np.ndarray:
+    """The impedance increment of ``res`` linearly interpolated onto the LF grid ``mu``
+    (real and imaginary parts; zero at ``mu = 0``), (m, 6, 6) complex."""
+    Z = res.impedance.reshape(res.mu.size, 36)
+    out = np.empty((np.asarray(mu).size, 36), complex)
+    for c in range(36):
+        out[:, c] = (np.interp(mu, res.mu, Z[:, c].real)
+                     + 1j * np.interp(mu, res.mu, Z[:, c].imag))
+    return out.reshape(-1, 6, 6)
+
+
+def iterate_line_damping(built, mean, model, sol):
+    """Solve the FD with the mooring lines' LF impedance, iterated with the response.
+
+    Starts from ``sol`` (the FD solution without it), evaluates the lines
+    (:class:`MooringLineDamping`), puts their impedance increment on the LF grid
+    (``model.lf_impedance``) and solves again until the increment changes by less than
+    ``LINE_DAMPING_TOL`` (relative, Frobenius norm over the evaluation frequencies).  Returns
+    the model as solved, the solution and the :class:`LineDampingResult`.
+    """
+    lines = MooringLineDamping(built, mean)
+    omega = lf_mode_frequency(model.stiffness, sol.lf_mass, 0)
+    prev = None
+    for it in range(1, LINE_DAMPING_MAX_ITER + 1):
+        res = lines(sol, model, omega, it)
+        model = replace(model, lf_impedance=lf_impedance_on(res, model.mu))
+        sol = solve_frequency_domain(model)
+        if prev is not None and np.linalg.norm(res.impedance - prev) <= LINE_DAMPING_TOL * max(
+                np.linalg.norm(res.impedance), 1e-300):
+            return model, sol, res
+        prev = res.impedance
+    raise ConvergenceError(
+        f"the mooring-line damping did not settle in {LINE_DAMPING_MAX_ITER} iterations "
+        "with the LF response", where="frequency domain, line_damping: fe",
+        remedy="check the lines' FE options; line_damping: none leaves it out")
+
+
+def damping_ratio(B, stiffness, lf_mass, dof: int = 0) -> float:
+    """``B[dof, dof]`` as a fraction of the critical damping ``2 M w_n`` of ``dof``."""
+    w = lf_mode_frequency(stiffness, lf_mass, dof)
+    return float(B[dof, dof] / (2.0 * np.asarray(lf_mass)[dof, dof] * w))
