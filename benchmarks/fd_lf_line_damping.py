@@ -36,14 +36,6 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenes" / "floatel_100yr_fe.yaml"
 
 
-def harmonic_band(omega: float, amplitude: float, rel: float = 1e-3):
-    """A narrow band holding the variance a^2 / 2 of a harmonic along x (trapezoidal rule)."""
-    w = omega * np.array([1.0 - rel, 1.0, 1.0 + rel])
-    S = np.zeros((3, 3, 3))
-    S[1, 0, 0] = 0.5 * amplitude ** 2 / (rel * omega)
-    return w, S
-
-
 def forced_oscillation(line, wf_motion, omega, amplitude, cycles, settle, dt):
     """TD dynamic stiffness and damping (x, N/m and N s/m) of the line under ``wf_motion``
     plus ``amplitude sin(omega t)`` along x."""
@@ -98,7 +90,7 @@ def main() -> None:
     from floatmoor.analyses.frequency_domain import frequency_domain_result
     from floatmoor.io.build import build
     from floatmoor.mooring.fe.fd_td_compare import periodic_realisation_from_transfer
-    from floatmoor.mooring.fe.frequency_damping import fairlead_impedance
+    from floatmoor.mooring.fe.frequency_damping import fairlead_impedance, harmonic_band
 
     print(f"load {' / '.join(f'{v:.1f}' for v in os.getloadavg())}")
     built = build(SCENE)

@@ -20,8 +20,9 @@ is the line's dynamic stiffness (the quasi-static catenary stiffness in the limi
 ``Im Z / w`` the line's damping matrix at the fairlead (N s/m).
 
 Seabed: by default every node free with vertical springs on the nodes in static contact
-(``"fe"`` of :func:`~floatmoor.mooring.fe.frequency.frequency_response`: no cut parameter and
-the whole line's drag); seabed friction is left out as in the frequency response.
+(``"fe"``: no cut parameter and the whole line's drag), each spring the slope of the FE line's
+own smoothed contact law at the node's static penetration, so that the static limit is the FE
+line's tangent stiffness; seabed friction is left out as in the frequency response.
 """
 
 from __future__ import annotations
@@ -44,7 +45,7 @@ from .frequency import (
 )
 from .frequency_kernels import spectral_moments
 
-__all__ = ["FairleadImpedance", "fairlead_impedance"]
+__all__ = ["FairleadImpedance", "fairlead_impedance", "harmonic_band"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -65,6 +66,16 @@ class FairleadImpedance:
     fairlead_velocity_std: np.ndarray
     iterations: int
     converged: bool
+
+
+def harmonic_band(omega: float, amplitude: float, axis: int = 0, rel: float = 1e-3):
+    """A band ``(w, S)`` for :func:`fairlead_impedance` holding the variance ``a^2 / 2`` of a
+    harmonic fairlead motion ``a sin(omega t)`` along earth ``axis``: three frequencies
+    ``omega (1 -+ rel)``, ``omega`` with the spectrum at the middle one (trapezoidal rule)."""
+    w = float(omega) * np.array([1.0 - rel, 1.0, 1.0 + rel])
+    S = np.zeros((3, 3, 3))
+    S[1, axis, axis] = 0.5 * amplitude ** 2 / (rel * omega)
+    return w, S
 
 
 def _as_cross(omega, psd):
@@ -105,7 +116,7 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
     if we.size == 0 or np.any(we <= 0):
         raise ValueError("omega_eval must hold frequencies > 0")
     st = line_statics(line)
-    model, info, e, q = _assemble(st, seabed, 0.05)
+    model, info, e, q = _assemble(st, seabed, 0.05, contact_tangent=True)
     if seabed == "least_squares" and "cut_node" in info:
         raise ValueError("seabed 'least_squares' is not supported here (its springs depend on "
                          "the motion of one band); use 'fe', 'spring' or 'pinned'")
