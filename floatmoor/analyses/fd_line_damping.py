@@ -2,7 +2,7 @@
 
 The catenary mooring of the FD is quasi-static: it gives stiffness and no damping, while in a
 coupled FE storm the drag on the moving lines damps the slow (LF) motion, to a large part
-because of the lines' own WF motion (Huse (1986); Huse & Matsumoto (1988); Webster (1995)).
+because of the lines' own WF motion (Lie, Gao & Moan (2007); Yang, Chen & Huang (2016)).
 With the option each active line becomes a FE line at the FD mean pose (as for the dynamic WF
 tension, :mod:`~floatmoor.analyses.fd_line_dynamics`: the scene's FE options, line types and
 current), driven at its fairlead by the FD's WF and LF fairlead motion (two uncorrelated

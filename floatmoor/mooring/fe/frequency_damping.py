@@ -3,7 +3,7 @@
 The slow (LF) horizontal motion of a moored floater is damped to a large part by the drag on
 the mooring lines: the line is dragged sideways through the water as the fairlead moves, and
 the wave-frequency (WF) motion of the line, superposed on the slow one, raises the drag's
-linearised damping (Huse (1986); Huse & Matsumoto (1988); Webster (1995)).  Here the lumped-mass
+linearised damping (Lie, Gao & Moan (2007); Yang, Chen & Huang (2016)).  Here the lumped-mass
 FE line of :mod:`~floatmoor.mooring.fe.frequency` (ANSYS (2013) eq. 9-75: structural and added
 mass, axial and geometric stiffness about the static shape, internal damping, drag linearised
 stochastically about the current) is driven at its fairlead by several uncorrelated *bands* of
