@@ -156,6 +156,9 @@ VARIABLES: tuple[Variable, ...] = (
     Variable("lf_stiffness_mooring_dynamic", DD, STIFFNESS_UNITS,
              "LF dynamic stiffness of the mooring lines beyond their static stiffness, at the "
              "LF surge natural frequency"),
+    Variable("tension_std_lf_quasi_static", L, "N",
+             "LF tension std, quasi-static (catenary gradient; tension_std_lf has the FE lines' "
+             "dynamics)"),
     Variable("fairlead_damping", ("line", "axis", "axis2"), "N s/m",
              "LF damping of each line at its fairlead (earth axes), at the LF surge natural "
              "frequency"),

@@ -33,7 +33,7 @@ from .fd_line_dynamics import N_LINE_FREQUENCIES, coarse_grid
 
 __all__ = ["LINE_DAMPING_MODELS", "LineDampingResult", "MooringLineDamping",
            "damping_ratio", "iterate_line_damping", "lf_impedance_on",
-           "lf_mode_frequency"]
+           "lf_mode_frequency", "lf_tension_spectra"]
 
 LINE_DAMPING_MODELS = ("none", "fe")
 LINE_DAMPING_TOL = 0.01
@@ -72,11 +72,15 @@ class LineDampingResult:
     damping, stiffness : (6, 6) ``Im Z_x / omega`` and ``Re Z_x`` there (N s/m .. N m s/rad,
     N/m .. N m/rad); per line at ``omega``: ``fairlead_damping``, ``fairlead_stiffness``
     (n_lines, 3, 3), earth axes (the stiffness the whole ``Re Z``; NaN for failed lines), and
-    ``fairlead_velocity_std`` (n_lines, 3) m/s (WF and LF); ``iterations`` with the FD response.
+    ``fairlead_velocity_std`` (n_lines, 3) m/s (WF and LF); ``iterations`` with the FD response;
+    tension : (k, n_lines, 6) complex, the fairlead tension per unit body motion beyond its
+    static value, ``t(mu) J - Re t(mu_0) J`` (``t`` the FE line's tension transfer; zero for
+    failed lines), N/m .. N/rad.
     """
 
     mu: np.ndarray
     impedance: np.ndarray
+    tension: np.ndarray
     omega: float
     damping: np.ndarray
     stiffness: np.ndarray
@@ -127,6 +131,7 @@ class MooringLineDamping:
         ev = np.concatenate([[MU_STATIC], grid[1:]])
         n = len(self.lines)
         Z6 = np.zeros((grid.size, 6, 6), complex)
+        T6 = np.zeros((grid.size, n, 6), complex)
         Bf = np.full((n, 3, 3), np.nan)
         Kf = np.full((n, 3, 3), np.nan)
         vf = np.full((n, 3), np.nan)
@@ -143,26 +148,41 @@ class MooringLineDamping:
             Zx = imp.impedance - imp.stiffness[0][None]      # beyond the static stiffness
             Zx[0] = 0.0
             Z6 += np.einsum("ai,kab,bj->kij", J, Zx, J)
+            tx = imp.tension_transfer - imp.tension_transfer[0].real[None]
+            tx[0] = 0.0
+            T6[:, i] = tx @ J
             Bf[i], Kf[i] = imp.damping[k_om], imp.stiffness[k_om]
             vf[i] = imp.fairlead_velocity_std
         keep = np.zeros((6, 6), bool)
         keep[np.ix_(HORIZONTAL_DOFS, HORIZONTAL_DOFS)] = True
         Z6 *= keep
-        return LineDampingResult(mu=grid, impedance=Z6, omega=omega,
+        return LineDampingResult(mu=grid, impedance=Z6, tension=T6, omega=omega,
                                  damping=Z6[k_om].imag / omega, stiffness=Z6[k_om].real,
                                  fairlead_damping=Bf, fairlead_stiffness=Kf,
                                  fairlead_velocity_std=vf, iterations=iterations)
 
 
+def _interp_complex(mu, grid, Z):
+    Zf = Z.reshape(grid.size, -1)
+    out = np.empty((np.asarray(mu).size, Zf.shape[1]), complex)
+    for c in range(Zf.shape[1]):
+        out[:, c] = np.interp(mu, grid, Zf[:, c].real) + 1j * np.interp(mu, grid, Zf[:, c].imag)
+    return out.reshape((-1, *Z.shape[1:]))
+
+
+def lf_tension_spectra(res: LineDampingResult, gradient, sol, mu) -> np.ndarray:
+    """LF fairlead tension spectra (m, n_lines), N^2 s/rad, of the lines with their dynamics:
+    the tension per unit body motion ``g + dt(mu)`` (``gradient`` (n_lines, 6) the quasi-static
+    one of the catenary, ``dt`` the FE lines' dynamic increment of ``res``) applied to the LF
+    cross-spectrum of the body, ``h S_LF h^H``."""
+    h = np.asarray(gradient, float)[None] + _interp_complex(mu, res.mu, res.tension)
+    return np.real(np.einsum("nli,nij,nlj->nl", h, sol.lf_cross_spectrum, h.conj()))
+
+
 def lf_impedance_on(res: LineDampingResult, mu) -> np.ndarray:
     """The impedance increment of ``res`` linearly interpolated onto the LF grid ``mu``
     (real and imaginary parts; zero at ``mu = 0``), (m, 6, 6) complex."""
-    Z = res.impedance.reshape(res.mu.size, 36)
-    out = np.empty((np.asarray(mu).size, 36), complex)
-    for c in range(36):
-        out[:, c] = (np.interp(mu, res.mu, Z[:, c].real)
-                     + 1j * np.interp(mu, res.mu, Z[:, c].imag))
-    return out.reshape(-1, 6, 6)
+    return _interp_complex(mu, res.mu, res.impedance)
 
 
 def iterate_line_damping(built, mean, model, sol):

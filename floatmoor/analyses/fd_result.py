@@ -147,3 +147,4 @@ class FDResult:
     lf_mooring_frequency: float | None = None
     fairlead_damping: np.ndarray | None = None
     line_damping_iterations: int | None = None
+    tension_std_lf_quasi_static: np.ndarray | None = None

@@ -113,7 +113,7 @@ from ..solvers.frequency_domain import (
 )
 from ..solvers.statics import solve_equilibrium
 from .fd_dataset import to_dataset
-from .fd_line_damping import damping_ratio, iterate_line_damping
+from .fd_line_damping import damping_ratio, iterate_line_damping, lf_tension_spectra
 from .fd_line_dynamics import dynamic_line_columns
 from .fd_loads import interp0, qtf_function, relative_flow_damping, rot6
 from .fd_maxima import combine_maxima, rayleigh_maxima, tension_columns
@@ -187,15 +187,19 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
                      total_stiffness=eq.total_stiffness + drag_lin[0])
     model, lf_parts = _linear_model(built, opt, grid, loads, eq, C_drift, viscous, notes)
     sol = solve_frequency_domain(model)
-    damping_parts = {}
+    damping_parts, line_dyn = {}, None
     if opt.line_damping == "fe":
-        model, sol, damping_parts = _line_damping(built, mean_parts["mean"], model, sol, notes)
+        model, sol, damping_parts, line_dyn = _line_damping(built, mean_parts["mean"], model,
+                                                            sol, notes)
     lf_periods = _lf_natural_periods(model.stiffness, sol.lf_mass, opt, notes)
     mean = mean_parts["mean"]
     motions = _motion_statistics(mean, sol, model, opt.duration)
     lines = _line_statistics(moor, mean, sol, model, opt.duration,
                              tension_offset=mean_parts.get("tension_static_line_current"),
                              gradient_offset=None if drag_lin is None else drag_lin[1])
+    if line_dyn is not None:
+        # the LF tension with the lines' dynamics (their impedance is in the LF motion)
+        lines.update(_dynamic_lf_tension(line_dyn, lines, sol, model, opt.duration))
     if opt.tension_model == "dynamic":
         # WF tension from the FE lines in the frequency domain; LF stays quasi-static
         lines.update(dynamic_line_columns(built, mean, sol, model, lines, opt.duration))
@@ -528,7 +532,8 @@ def _linear_model(built: BuiltScene, opt: FDOptions, grid: _WaveGrid, loads: _Me
 def _line_damping(built: BuiltScene, mean, model, sol, notes: _Notes):
     """``line_damping: fe``: the mooring lines' LF impedance from their FE models, iterated
     with the response (:func:`~floatmoor.analyses.fd_line_damping.iterate_line_damping`).
-    Returns the model and solution with it, and the FDResult fields."""
+    Returns the model and solution with it, the FDResult fields and the
+    :class:`~floatmoor.analyses.fd_line_damping.LineDampingResult`."""
     model, sol, res = iterate_line_damping(built, mean, model, sol)
     zeta = damping_ratio(res.damping, model.stiffness, sol.lf_mass, 0)
     notes.append(f"line_damping: fe: mooring-line LF damping {res.damping[0, 0] / 1e3:.0f} kN s/m "
@@ -539,7 +544,30 @@ def _line_damping(built: BuiltScene, mean, model, sol, notes: _Notes):
                         "lf_stiffness_mooring_dynamic": res.stiffness,
                         "lf_mooring_frequency": res.omega,
                         "fairlead_damping": res.fairlead_damping,
-                        "line_damping_iterations": res.iterations}
+                        "line_damping_iterations": res.iterations}, res
+
+
+def _dynamic_lf_tension(res, lines: dict, sol, model, duration: float) -> dict:
+    """``line_damping: fe``: the LF tension std and Tz of every line from the quasi-static
+    gradient plus the FE line's dynamic increment
+    (:func:`~floatmoor.analyses.fd_line_damping.lf_tension_spectra`), and the tension columns
+    that depend on them; the quasi-static LF std beside it."""
+    failed = np.asarray(lines["line_failed"], bool)
+    S = lf_tension_spectra(res, np.nan_to_num(lines["tension_gradient"]), sol, model.mu)
+    std, tz = response_std_tz(model.mu, S)
+    cols = tension_columns(lines["tension_static"], std, tz, lines["tension_std_wf"],
+                           lines["tension_tz_wf"], lines["mbs"], duration)
+
+    def nan_failed(x):
+        return np.where(failed, np.nan, x)
+
+    return {"tension_std_lf": nan_failed(std), "tension_tz_lf": nan_failed(tz),
+            "tension_max_lf": nan_failed(cols["max_lf"]),
+            "tension_wf_base": nan_failed(cols["wf_base"]),
+            "tension_max_total": nan_failed(cols["max_total"]),
+            "tension_branch": cols["branch"],
+            "safety_factor": nan_failed(cols["safety_factor"]),
+            "tension_std_lf_quasi_static": np.asarray(lines["tension_std_lf"], float)}
 
 
 def _lf_natural_periods(K, lf_mass, opt: FDOptions, notes: _Notes) -> np.ndarray:

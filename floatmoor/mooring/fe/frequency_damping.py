@@ -54,12 +54,15 @@ class FairleadImpedance:
 
     omega : (k,) rad/s, the evaluation frequencies; impedance : (k, 3, 3) complex, N/m;
     stiffness = Re impedance (N/m), damping = Im impedance / omega (N s/m), (k, 3, 3);
+    tension_transfer : (k, 3) complex, N/m, the fairlead (top element) tension per unit
+    fairlead displacement along each earth axis;
     node_velocity_std : (n,) m/s, the speed std of every node over all bands (trace of the
     velocity covariance); fairlead_velocity_std : (3,) m/s per earth axis; iterations, converged.
     """
 
     omega: np.ndarray
     impedance: np.ndarray
+    tension_transfer: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
     node_velocity_std: np.ndarray
@@ -152,6 +155,9 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
         Z += 1j * we[:, None, None] * (np.einsum("ab,kbc->kac", Co, np.eye(3)[None]
                                                  - X[:, n - 2]) + Cd[n - 1][None])
         B = Z.imag / we[:, None, None]
+        # top element: tension (kax + i w B / L0) e . (x_f - x_{n-2}) per unit fairlead motion
+        g_top = kax[-1] + 1j * we * st.B[-1] / st.L0[-1]
+        tT = g_top[:, None] * np.einsum("a,kab->kb", e[-1], np.eye(3)[None] - X[:, n - 2])
         if not drag:
             converged = True
             break
@@ -175,7 +181,7 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
     if not drag:
         cov_v[:] = np.nan  # not computed without drag
     return FairleadImpedance(
-        omega=we, impedance=Z, stiffness=Z.real.copy(), damping=B,
+        omega=we, impedance=Z, tension_transfer=tT, stiffness=Z.real.copy(), damping=B,
         node_velocity_std=np.sqrt(np.maximum(np.trace(cov_v, axis1=1, axis2=2), 0.0)),
         fairlead_velocity_std=np.sqrt(np.maximum(np.diagonal(cov_v[n - 1]), 0.0)),
         iterations=iterations, converged=converged)
