@@ -8,12 +8,18 @@ tension, :mod:`~floatmoor.analyses.fd_line_dynamics`: the scene's FE options, li
 current), driven at its fairlead by the FD's WF and LF fairlead motion (two uncorrelated
 bands: ``h = X_t + X_r x arm`` of the RAOs with the wave spectrum, and ``J S_LF J^H`` of the LF
 cross-spectrum with ``J = [I, -[arm]x]``); the line's drag is linearised with the node
-velocities of both bands (:func:`~floatmoor.mooring.fe.frequency_damping.fairlead_impedance`)
-and the damping ``Im Z(w) / w`` of its fairlead impedance at the LF natural frequency of the
-floater becomes the body matrix ``B = sum J^T B_f J`` (6 x 6), added to the LF damping.  The
-LF motion depends on that damping and the drag linearisation on the motion: the two are
-iterated (:func:`iterate_line_damping`) until the mooring damping changes by less than
-``LINE_DAMPING_TOL``.
+velocities of both bands (:func:`~floatmoor.mooring.fe.frequency_damping.fairlead_impedance`).
+Its fairlead impedance ``Z(mu)`` beyond its static stiffness (which the catenary carries),
+``J^T (Z(mu) - Re Z(0)) J`` summed over the lines (surge, sway and yaw block), is evaluated on
+``N_MU`` frequencies of the LF band and interpolated onto the LF grid
+(``FDModel.lf_impedance``): its imaginary part is the line damping ``mu B(mu)``, its real
+part the drag's dynamic stiffening (the line cannot follow the fairlead through the water as
+it would statically; on the Floatel-like lines both vary by a factor 2-5 over the LF band,
+confirmed by time-domain forced oscillations, benchmarks/fd_lf_line_damping.py).  The LF
+motion depends on the impedance and the drag linearisation on the motion: the two are iterated
+(:func:`iterate_line_damping`) until the impedance changes by less than ``LINE_DAMPING_TOL``.
+The LF tension of each line takes the FE line's dynamic tension increment on the catenary's
+quasi-static gradient (:func:`lf_tension_spectra`).
 """
 
 from __future__ import annotations

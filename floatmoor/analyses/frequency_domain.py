@@ -41,7 +41,12 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    attribute ``lf_added_mass_source``); heave, roll and pitch follow quasi-statically.  Damping:
    vessel linear damping, quadratic damping linearised stochastically (iterated), wind and
    current damping -dF/dv of F = C(theta_rel) |U - v|^2 at the mean velocities, optionally
-   Aranha's wave drift damping.  Excitation: slowly varying drift by Newman's approximation
+   Aranha's wave drift damping; with ``line_damping: fe`` (option, default ``none``) the
+   mooring lines' LF impedance from their FE models under the WF and LF fairlead motion
+   (drag damping and the drag's dynamic stiffening, frequency by frequency, iterated with the
+   response: :mod:`~floatmoor.analyses.fd_line_damping`; Floatel-like 100-year case: 42 % of
+   the LF surge damping at the natural period, LF surge std 2.44 -> 1.71 m against 1.81 m in
+   coupled FE storms, benchmarks/RESULTS.md).  Excitation: slowly varying drift by Newman's approximation
    (eq. 2.38) or the full difference-frequency QTF when the database has one, plus the wind
    gust 4 U^2 C C^T S_u (the scene's gust spectrum, NPD by default).  Integrated from 0 to the
    LF cut-off 2 pi / ``lf_cutoff_period`` (30 s: the LF band of Wang (2016) section
@@ -62,7 +67,9 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    from each line's FE model linearised in the frequency domain under its WF fairlead motion
    (:mod:`~floatmoor.analyses.fd_line_dynamics`; ANSYS (2013) eq. 9-75, touchdown by Ong &
    Pellegrino (2003)); the quasi-static WF std and the dynamic amplification are reported
-   beside it; the LF tension stays quasi-static.
+   beside it; the LF tension stays quasi-static unless ``line_damping: fe``, which adds the FE
+   lines' dynamic tension increment to the LF tension transfer (quasi-static LF std kept as
+   ``tension_std_lf_quasi_static``).
 6. **Viscous drift** (Wang (2016) chapter 6; the scene key ``forces: viscous_drift``):
    ``model: correction_formula`` replaces the potential mean drift coefficients by eq. 6.6
    (:func:`floatmoor.forces.slender.corrected_drift_database`, the same coefficients as the
