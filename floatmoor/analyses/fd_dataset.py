@@ -272,8 +272,11 @@ def format_table(ds: xr.Dataset) -> str:
                        f"{ds['dynamic_amplification'].values[j]:13.2f}"
                        f"{ds['tension_tz_wf_quasi_static'].values[j]:11.2f}"
                        f"{ds['tension_tz_wf'].values[j]:12.2f}")
-    out += ["  (Max Tot: eq. 2.49 on the linearised " + ("WF dynamic / LF quasi-static" if dynamic
-            else "quasi-static") + " tension; Max Tot catenary: the "
+    lf_dyn = ds.attrs.get("line_damping") == "fe"
+    kind = {(True, True): "WF and LF dynamic (FE lines)", (True, False): "WF dynamic / LF "
+            "quasi-static", (False, True): "WF quasi-static / LF dynamic (FE lines)",
+            (False, False): "quasi-static"}[(bool(dynamic), lf_dyn)]
+    out += ["  (Max Tot: eq. 2.49 on the linearised " + kind + " tension; Max Tot catenary: the "
             "catenary at the most likely pose of that excursion)"]
     if ds.attrs.get("notes"):
         out += ["", "notes: " + ds.attrs["notes"]]
