@@ -31,6 +31,7 @@ import numpy as np
 from ..core.errors import ConvergenceError
 from ..core.frames import rotation_matrix_into
 from ..mooring.fe.body import scene_line_inputs
+from ..mooring.fe.current_statics import MAX_STEP
 from ..mooring.fe.frequency_damping import fairlead_impedance
 from ..mooring.fe.from_system import spec_from_linedef
 from ..mooring.fe.line import FELine
@@ -124,10 +125,11 @@ class MooringLineDamping:
                                      gravity=system.gravity, line_types=inputs["line_types"],
                                      **spec_kw, **(inputs["current"] or {}))
             line = FELine(spec)
-            line.solve_static()
+            line.solve_static(max_step=MAX_STEP)     # trust radius: the grounded chain in current
             arm = R @ np.asarray(ld.fairlead, float)
             J = np.hstack([np.eye(3), -_skew(arm)])       # fairlead motion per body motion
             self.lines.append((line, J))
+        self._drag = [None] * len(self.lines)
 
     def __call__(self, sol, model, omega: float, iterations: int = 0) -> LineDampingResult:
         w, S, mu = model.omega, model.wave_spectrum, model.mu
@@ -150,7 +152,8 @@ class MooringLineDamping:
             Sx_lf = np.einsum("ai,nij,bj->nab", J, sol.lf_cross_spectrum, J)
             bands = [coarse_grid(w, Sx_wf, N_LINE_FREQUENCIES),
                      coarse_grid(mu, Sx_lf, N_LINE_FREQUENCIES)]
-            imp = fairlead_impedance(line, bands, ev)
+            imp = fairlead_impedance(line, bands, ev, drag0=self._drag[i])
+            self._drag[i] = imp.drag                         # warm start of the next call
             Zx = imp.impedance - imp.stiffness[0][None]      # beyond the static stiffness
             Zx[0] = 0.0
             Z6 += np.einsum("ai,kab,bj->kij", J, Zx, J)

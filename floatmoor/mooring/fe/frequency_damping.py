@@ -57,7 +57,9 @@ class FairleadImpedance:
     tension_transfer : (k, 3) complex, N/m, the fairlead (top element) tension per unit
     fairlead displacement along each earth axis;
     node_velocity_std : (n,) m/s, the speed std of every node over all bands (trace of the
-    velocity covariance); fairlead_velocity_std : (3,) m/s per earth axis; iterations, converged.
+    velocity covariance); fairlead_velocity_std : (3,) m/s per earth axis; drag : (n, 3, 3) the
+    linearised drag damping of the nodes (N s/m, a warm start for a next call); iterations,
+    converged.
     """
 
     omega: np.ndarray
@@ -67,6 +69,7 @@ class FairleadImpedance:
     damping: np.ndarray
     node_velocity_std: np.ndarray
     fairlead_velocity_std: np.ndarray
+    drag: np.ndarray
     iterations: int
     converged: bool
 
@@ -95,7 +98,7 @@ def _as_cross(omega, psd):
 
 def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: bool = True,
                        tol: float = 1e-3, max_iterations: int = 50,
-                       relaxation: float = 0.7) -> FairleadImpedance:
+                       relaxation: float = 0.7, drag0=None) -> FairleadImpedance:
     """Fairlead impedance (dynamic stiffness and damping) of a FE line moving with several
     uncorrelated bands of fairlead motion (see the module docstring).
 
@@ -112,6 +115,8 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
     tol : convergence on the relative change of the damping (Frobenius norm over the
         evaluation frequencies) between two drag linearisations.
     relaxation : weight of the new linearised drag in each iteration.
+    drag0 : (n, 3, 3), optional: the nodes' linearised drag to start from (``drag`` of an
+        earlier result of the same line), instead of the guess from the fairlead velocity.
     """
     if seabed not in SEABED_FD_MODELS:
         raise ValueError(f"seabed must be one of {SEABED_FD_MODELS}, got {seabed!r}")
@@ -142,7 +147,12 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
                for w, Sx, _, w2, _, _ in prep)
     frac = ((st.s - st.s[model.base]) / (st.s[-1] - st.s[model.base])).clip(0.0, 1.0)
     cov_v[:] = frac[:, None, None] ** 2 * sv_f[None]
-    Cd = _drag_damping(st, nb, q, cov_v) if drag else np.zeros((n, 3, 3))
+    if not drag:
+        Cd = np.zeros((n, 3, 3))
+    elif drag0 is not None:
+        Cd = np.array(drag0, float)
+    else:
+        Cd = _drag_damping(st, nb, q, cov_v)
     Ko, Co = model.Ko[-1], model.Co[-1]
     converged = False
     prev = None
@@ -183,5 +193,5 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
     return FairleadImpedance(
         omega=we, impedance=Z, tension_transfer=tT, stiffness=Z.real.copy(), damping=B,
         node_velocity_std=np.sqrt(np.maximum(np.trace(cov_v, axis1=1, axis2=2), 0.0)),
-        fairlead_velocity_std=np.sqrt(np.maximum(np.diagonal(cov_v[n - 1]), 0.0)),
+        fairlead_velocity_std=np.sqrt(np.maximum(np.diagonal(cov_v[n - 1]), 0.0)), drag=Cd,
         iterations=iterations, converged=converged)
