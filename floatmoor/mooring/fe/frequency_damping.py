@@ -57,7 +57,8 @@ class FairleadImpedance:
     tension_transfer : (k, 3) complex, N/m, the fairlead (top element) tension per unit
     fairlead displacement along each earth axis;
     node_velocity_std : (n,) m/s, the speed std of every node over all bands (trace of the
-    velocity covariance); fairlead_velocity_std : (3,) m/s per earth axis; drag : (n, 3, 3) the
+    velocity covariance), node_velocity_covariance : (n, 3, 3) (m/s)^2, earth axes;
+    fairlead_velocity_std : (3,) m/s per earth axis; drag : (n, 3, 3) the
     linearised drag damping of the nodes (N s/m, a warm start for a next call); iterations,
     converged.
     """
@@ -68,6 +69,7 @@ class FairleadImpedance:
     stiffness: np.ndarray
     damping: np.ndarray
     node_velocity_std: np.ndarray
+    node_velocity_covariance: np.ndarray
     fairlead_velocity_std: np.ndarray
     drag: np.ndarray
     iterations: int
@@ -193,5 +195,6 @@ def fairlead_impedance(line, bands, omega_eval, *, seabed: str = "fe", drag: boo
     return FairleadImpedance(
         omega=we, impedance=Z, tension_transfer=tT, stiffness=Z.real.copy(), damping=B,
         node_velocity_std=np.sqrt(np.maximum(np.trace(cov_v, axis1=1, axis2=2), 0.0)),
+        node_velocity_covariance=cov_v.copy(),
         fairlead_velocity_std=np.sqrt(np.maximum(np.diagonal(cov_v[n - 1]), 0.0)), drag=Cd,
         iterations=iterations, converged=converged)
