@@ -259,9 +259,10 @@ def format_table(ds: xr.Dataset) -> str:
                    + f"{ds['safety_factor'].values[j]:8.2f}"
                    + f"{ds['tension_max_total_catenary'].values[j] / 1e3:9.1f}")
     dynamic = "dynamic_amplification" in ds
+    lf_dyn = ds.attrs.get("line_damping") == "fe"
     if dynamic:
         out += [("  (StD WF, Max WF, Max Tot, Safety factor: dynamic WF tension of the FE lines; "
-                 "LF quasi-static)"), "",
+                 + ("LF with the FE lines' dynamics)" if lf_dyn else "LF quasi-static)")), "",
                 "* WAVE-FREQUENCY TENSION: QUASI-STATIC AND DYNAMIC (FE line) *  (kN)",
                 "  Line      StD WF QS  StD WF dyn   Dyn. ampl.  Tz QS (s)  Tz dyn (s)"]
         for j, name in enumerate(ds["line"].values):
@@ -272,7 +273,6 @@ def format_table(ds: xr.Dataset) -> str:
                        f"{ds['dynamic_amplification'].values[j]:13.2f}"
                        f"{ds['tension_tz_wf_quasi_static'].values[j]:11.2f}"
                        f"{ds['tension_tz_wf'].values[j]:12.2f}")
-    lf_dyn = ds.attrs.get("line_damping") == "fe"
     kind = {(True, True): "WF and LF dynamic (FE lines)", (True, False): "WF dynamic / LF "
             "quasi-static", (False, True): "WF quasi-static / LF dynamic (FE lines)",
             (False, False): "quasi-static"}[(bool(dynamic), lf_dyn)]

@@ -38,13 +38,13 @@ from ..mooring.fe.line import FELine
 from ..solvers.frequency_domain import HORIZONTAL_DOFS, solve_frequency_domain
 from .fd_line_dynamics import N_LINE_FREQUENCIES, coarse_grid
 
-__all__ = ["LINE_DAMPING_MODELS", "LineDampingResult", "MooringLineDamping",
+__all__ = ["LineDampingResult", "MooringLineDamping",
            "damping_ratio", "iterate_line_damping", "lf_impedance_on",
            "lf_mode_frequency", "lf_tension_spectra"]
 
-LINE_DAMPING_MODELS = ("none", "fe")
 LINE_DAMPING_TOL = 0.01
-"""Relative change (Frobenius norm of the horizontal block) at which the iteration stops."""
+"""Relative change of the impedance increment (Frobenius norm over its frequencies) at which the
+iteration with the response stops."""
 LINE_DAMPING_MAX_ITER = 20
 
 
