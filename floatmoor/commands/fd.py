@@ -29,7 +29,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="LF cut-off period, s (default 30)")
     p.add_argument("--tension-model", choices=("quasi_static", "dynamic"), default=None,
                    help="WF line tension: quasi-static catenary, or dynamic (FE lines in the "
-                        "frequency domain; LF stays quasi-static)")
+                        "frequency domain; LF stays quasi-static unless --line-damping fe)")
     p.add_argument("--line-current-drag", action="store_true",
                    help="include the static current drag on the lines in the mean position "
                         "(each line's FE statics in the current; scene key "

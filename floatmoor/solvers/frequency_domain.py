@@ -259,7 +259,7 @@ class FDOptions:
     duration : s, the storm duration for the number of cycles N = duration / Tz (3 h).
     tension_model : ``quasi_static``, or ``dynamic``: the WF tension of every line from its FE
         model in the frequency domain (:mod:`floatmoor.analyses.fd_line_dynamics`; LF stays
-        quasi-static).
+        quasi-static unless ``line_damping: fe``).
     drift : ``auto`` (the full QTF when the database has one, else Newman), ``newman``, ``qtf``.
     wave_drift_damping : add Aranha's wave drift damping to the LF system.
     lf_cutoff_period : s, upper end of the LF band (2 pi / period rad/s).
