@@ -26,6 +26,7 @@ MIXED_FORCE = "N (surge, sway, heave), N m (roll, pitch, yaw)"
 SPECTRUM_UNITS = "m^2 s/rad (translations), rad^2 s/rad (rotations)"
 FORCE_SPECTRUM_UNITS = "N^2 s/rad (forces), N^2 m^2 s/rad (moments)"
 DAMPING_UNITS = "N s/m, N s, N m s/rad"
+STIFFNESS_UNITS = "N/m, N, N m/rad"
 
 
 @dataclass(frozen=True)
@@ -148,6 +149,19 @@ VARIABLES: tuple[Variable, ...] = (
     Variable("tension_static_line_current", L, "N",
              "static current drag of the lines: change of the static fairlead tension "
              "(included in tension_static)"),
+    # line_damping: fe only
+    Variable("lf_damping_mooring", DD, DAMPING_UNITS,
+             "LF damping of the mooring lines (FE, drag linearised with WF and LF motion) at "
+             "the LF surge natural frequency"),
+    Variable("lf_stiffness_mooring_dynamic", DD, STIFFNESS_UNITS,
+             "LF dynamic stiffness of the mooring lines beyond their static stiffness, at the "
+             "LF surge natural frequency"),
+    Variable("tension_std_lf_quasi_static", L, "N",
+             "LF tension std, quasi-static (catenary gradient; tension_std_lf has the FE lines' "
+             "dynamics)"),
+    Variable("fairlead_damping", ("line", "axis", "axis2"), "N s/m",
+             "LF damping of each line at its fairlead (earth axes), at the LF surge natural "
+             "frequency"),
 )
 
 
@@ -168,6 +182,10 @@ ATTRIBUTES: tuple[tuple[str, Callable[[FDResult], object]], ...] = (
     ("duration", lambda r: r.options.duration),
     ("tension_model", lambda r: r.options.tension_model),
     ("line_current_drag", lambda r: int(r.mean_force_line_current is not None)),
+    ("line_damping", lambda r: r.options.line_damping),
+    ("line_damping_frequency", lambda r: float("nan") if r.lf_mooring_frequency is None
+     else r.lf_mooring_frequency),
+    ("line_damping_iterations", lambda r: r.line_damping_iterations or 0),
     ("drift_method", lambda r: r.drift_method if r.has_waves else "none (no waves)"),
     ("viscous_drift_model", _viscous_attr),
     ("lf_added_mass_source", lambda r: r.lf_added_mass_source),
@@ -241,9 +259,10 @@ def format_table(ds: xr.Dataset) -> str:
                    + f"{ds['safety_factor'].values[j]:8.2f}"
                    + f"{ds['tension_max_total_catenary'].values[j] / 1e3:9.1f}")
     dynamic = "dynamic_amplification" in ds
+    lf_dyn = ds.attrs.get("line_damping") == "fe"
     if dynamic:
         out += [("  (StD WF, Max WF, Max Tot, Safety factor: dynamic WF tension of the FE lines; "
-                 "LF quasi-static)"), "",
+                 + ("LF with the FE lines' dynamics)" if lf_dyn else "LF quasi-static)")), "",
                 "* WAVE-FREQUENCY TENSION: QUASI-STATIC AND DYNAMIC (FE line) *  (kN)",
                 "  Line      StD WF QS  StD WF dyn   Dyn. ampl.  Tz QS (s)  Tz dyn (s)"]
         for j, name in enumerate(ds["line"].values):
@@ -254,8 +273,10 @@ def format_table(ds: xr.Dataset) -> str:
                        f"{ds['dynamic_amplification'].values[j]:13.2f}"
                        f"{ds['tension_tz_wf_quasi_static'].values[j]:11.2f}"
                        f"{ds['tension_tz_wf'].values[j]:12.2f}")
-    out += ["  (Max Tot: eq. 2.49 on the linearised " + ("WF dynamic / LF quasi-static" if dynamic
-            else "quasi-static") + " tension; Max Tot catenary: the "
+    kind = {(True, True): "WF and LF dynamic (FE lines)", (True, False): "WF dynamic / LF "
+            "quasi-static", (False, True): "WF quasi-static / LF dynamic (FE lines)",
+            (False, False): "quasi-static"}[(bool(dynamic), lf_dyn)]
+    out += ["  (Max Tot: eq. 2.49 on the linearised " + kind + " tension; Max Tot catenary: the "
             "catenary at the most likely pose of that excursion)"]
     if ds.attrs.get("notes"):
         out += ["", "notes: " + ds.attrs["notes"]]

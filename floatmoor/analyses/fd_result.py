@@ -140,3 +140,11 @@ class FDResult:
     # line_current_drag (None otherwise): the lines' static current drag at the mean position
     mean_force_line_current: np.ndarray | None = None
     tension_static_line_current: np.ndarray | None = None
+    # line_damping: fe (None otherwise): the lines' LF impedance at the LF surge natural
+    # frequency (analyses/fd_line_damping.py)
+    lf_damping_mooring: np.ndarray | None = None
+    lf_stiffness_mooring_dynamic: np.ndarray | None = None
+    lf_mooring_frequency: float | None = None
+    fairlead_damping: np.ndarray | None = None
+    line_damping_iterations: int | None = None
+    tension_std_lf_quasi_static: np.ndarray | None = None

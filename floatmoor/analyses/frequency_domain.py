@@ -41,7 +41,12 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    attribute ``lf_added_mass_source``); heave, roll and pitch follow quasi-statically.  Damping:
    vessel linear damping, quadratic damping linearised stochastically (iterated), wind and
    current damping -dF/dv of F = C(theta_rel) |U - v|^2 at the mean velocities, optionally
-   Aranha's wave drift damping.  Excitation: slowly varying drift by Newman's approximation
+   Aranha's wave drift damping; with ``line_damping: fe`` (option, default ``none``) the
+   mooring lines' LF impedance from their FE models under the WF and LF fairlead motion
+   (drag damping and the drag's dynamic stiffening, frequency by frequency, iterated with the
+   response: :mod:`~floatmoor.analyses.fd_line_damping`; Floatel-like 100-year case: 42 % of
+   the LF surge damping at the natural period, LF surge std 2.44 -> 1.71 m against 1.81 m in
+   coupled FE storms, benchmarks/RESULTS.md).  Excitation: slowly varying drift by Newman's approximation
    (eq. 2.38) or the full difference-frequency QTF when the database has one, plus the wind
    gust 4 U^2 C C^T S_u (the scene's gust spectrum, NPD by default).  Integrated from 0 to the
    LF cut-off 2 pi / ``lf_cutoff_period`` (30 s: the LF band of Wang (2016) section
@@ -62,7 +67,9 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    from each line's FE model linearised in the frequency domain under its WF fairlead motion
    (:mod:`~floatmoor.analyses.fd_line_dynamics`; ANSYS (2013) eq. 9-75, touchdown by Ong &
    Pellegrino (2003)); the quasi-static WF std and the dynamic amplification are reported
-   beside it; the LF tension stays quasi-static.
+   beside it; the LF tension stays quasi-static unless ``line_damping: fe``, which adds the FE
+   lines' dynamic tension increment to the LF tension transfer (quasi-static LF std kept as
+   ``tension_std_lf_quasi_static``).
 6. **Viscous drift** (Wang (2016) chapter 6; the scene key ``forces: viscous_drift``):
    ``model: correction_formula`` replaces the potential mean drift coefficients by eq. 6.6
    (:func:`floatmoor.forces.slender.corrected_drift_database`, the same coefficients as the
@@ -113,6 +120,7 @@ from ..solvers.frequency_domain import (
 )
 from ..solvers.statics import solve_equilibrium
 from .fd_dataset import to_dataset
+from .fd_line_damping import damping_ratio, iterate_line_damping, lf_tension_spectra
 from .fd_line_dynamics import dynamic_line_columns
 from .fd_loads import interp0, qtf_function, relative_flow_damping, rot6
 from .fd_maxima import combine_maxima, rayleigh_maxima, tension_columns
@@ -186,12 +194,19 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
                      total_stiffness=eq.total_stiffness + drag_lin[0])
     model, lf_parts = _linear_model(built, opt, grid, loads, eq, C_drift, viscous, notes)
     sol = solve_frequency_domain(model)
+    damping_parts, line_dyn = {}, None
+    if opt.line_damping == "fe":
+        model, sol, damping_parts, line_dyn = _line_damping(built, mean_parts["mean"], model,
+                                                            sol, notes)
     lf_periods = _lf_natural_periods(model.stiffness, sol.lf_mass, opt, notes)
     mean = mean_parts["mean"]
     motions = _motion_statistics(mean, sol, model, opt.duration)
     lines = _line_statistics(moor, mean, sol, model, opt.duration,
                              tension_offset=mean_parts.get("tension_static_line_current"),
                              gradient_offset=None if drag_lin is None else drag_lin[1])
+    if line_dyn is not None:
+        # the LF tension with the lines' dynamics (their impedance is in the LF motion)
+        lines.update(_dynamic_lf_tension(line_dyn, lines, sol, model, opt.duration))
     if opt.tension_model == "dynamic":
         # WF tension from the FE lines in the frequency domain; LF stays quasi-static
         lines.update(dynamic_line_columns(built, mean, sol, model, lines, opt.duration))
@@ -203,7 +218,7 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
         wave_heading=grid.beta, wind_speed_at_coefficient_height=loads.U_w,
         wind_coefficient_height=float(loads.z_wind) if loads.z_wind is not None else float("nan"),
         current_speed_surface=loads.U_c, wave_spectrum_fraction_covered=grid.covered,
-        linearisation_iterations=sol.iterations, notes=tuple(notes),
+        linearisation_iterations=sol.iterations, **damping_parts, notes=tuple(notes),
         run_time_s=time.perf_counter() - t_start)
 
 
@@ -519,6 +534,47 @@ def _linear_model(built: BuiltScene, opt: FDOptions, grid: _WaveGrid, loads: _Me
                    "lf_damping_wind": B_wind, "lf_damping_current": B_cur,
                    "lf_damping_wave_drift": B_drift, "drift_method": drift_method,
                    "lf_added_mass_source": a0_source}
+
+
+def _line_damping(built: BuiltScene, mean, model, sol, notes: _Notes):
+    """``line_damping: fe``: the mooring lines' LF impedance from their FE models, iterated
+    with the response (:func:`~floatmoor.analyses.fd_line_damping.iterate_line_damping`).
+    Returns the model and solution with it, the FDResult fields and the
+    :class:`~floatmoor.analyses.fd_line_damping.LineDampingResult`."""
+    model, sol, res = iterate_line_damping(built, mean, model, sol)
+    zeta = damping_ratio(res.damping, model.stiffness, sol.lf_mass, 0)
+    notes.append(f"line_damping: fe: mooring-line LF damping {res.damping[0, 0] / 1e3:.0f} kN s/m "
+                 f"in surge ({zeta:.1%} of critical) and dynamic stiffness "
+                 f"{res.stiffness[0, 0] / 1e3:+.1f} kN/m at the LF surge natural frequency "
+                 f"{res.omega:.4f} rad/s; {res.iterations} iterations with the response")
+    return model, sol, {"lf_damping_mooring": res.damping,
+                        "lf_stiffness_mooring_dynamic": res.stiffness,
+                        "lf_mooring_frequency": res.omega,
+                        "fairlead_damping": res.fairlead_damping,
+                        "line_damping_iterations": res.iterations}, res
+
+
+def _dynamic_lf_tension(res, lines: dict, sol, model, duration: float) -> dict:
+    """``line_damping: fe``: the LF tension std and Tz of every line from the quasi-static
+    gradient plus the FE line's dynamic increment
+    (:func:`~floatmoor.analyses.fd_line_damping.lf_tension_spectra`), and the tension columns
+    that depend on them; the quasi-static LF std beside it."""
+    failed = np.asarray(lines["line_failed"], bool)
+    S = lf_tension_spectra(res, np.nan_to_num(lines["tension_gradient"]), sol, model.mu)
+    std, tz = response_std_tz(model.mu, S)
+    cols = tension_columns(lines["tension_static"], std, tz, lines["tension_std_wf"],
+                           lines["tension_tz_wf"], lines["mbs"], duration)
+
+    def nan_failed(x):
+        return np.where(failed, np.nan, x)
+
+    return {"tension_std_lf": nan_failed(std), "tension_tz_lf": nan_failed(tz),
+            "tension_max_lf": nan_failed(cols["max_lf"]),
+            "tension_wf_base": nan_failed(cols["wf_base"]),
+            "tension_max_total": nan_failed(cols["max_total"]),
+            "tension_branch": cols["branch"],
+            "safety_factor": nan_failed(cols["safety_factor"]),
+            "tension_std_lf_quasi_static": np.asarray(lines["tension_std_lf"], float)}
 
 
 def _lf_natural_periods(K, lf_mass, opt: FDOptions, notes: _Notes) -> np.ndarray:

@@ -29,11 +29,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="LF cut-off period, s (default 30)")
     p.add_argument("--tension-model", choices=("quasi_static", "dynamic"), default=None,
                    help="WF line tension: quasi-static catenary, or dynamic (FE lines in the "
-                        "frequency domain; LF stays quasi-static)")
+                        "frequency domain; LF stays quasi-static unless --line-damping fe)")
     p.add_argument("--line-current-drag", action="store_true",
                    help="include the static current drag on the lines in the mean position "
                         "(each line's FE statics in the current; scene key "
                         "frequency_domain: line_current_drag)")
+    p.add_argument("--line-damping", choices=("none", "fe"), default=None,
+                   help="LF mooring-line damping: none (default), or fe: the FE lines in the "
+                        "frequency domain under the WF and LF fairlead motion (scene key "
+                        "frequency_domain: line_damping)")
 
 
 def to_netcdf(ds, path) -> Path:
@@ -72,6 +76,8 @@ def run(args: argparse.Namespace) -> int:
         overrides["tension_model"] = args.tension_model
     if args.line_current_drag:
         overrides["line_current_drag"] = True
+    if args.line_damping is not None:
+        overrides["line_damping"] = args.line_damping
     bounds = _fibre_bounds(built0)
     if bounds:
         return _run_fibre_bounds(args, overrides, bounds)

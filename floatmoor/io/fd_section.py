@@ -11,6 +11,7 @@ frequency_domain:
   d_omega: 0.005               # rad/s, step of the WF frequency grid
   heading_iterations: 4        # fixed-point iterations on the mean yaw
   line_current_drag: false     # static current drag on the lines in the mean position
+  line_damping: none           # or fe: LF damping (and dynamic stiffness) of the FE lines
 ```
 
 ``line_current_drag: true`` solves every line's statics in the scene's current with its FE
@@ -19,6 +20,11 @@ change of the line forces to the catenary mooring in the mean equilibrium; the s
 and the linearisation are then taken at that mean pose, with the drag's own change with the
 pose in the stiffness and the tension gradients (:mod:`floatmoor.mooring.fe.current_statics`).  Without current in the scene it changes
 nothing.
+
+``line_damping: fe`` adds the mooring lines' LF damping: every line's FE model in the frequency
+domain under the WF and LF fairlead motion (drag linearised with both, iterated with the
+response), its impedance beyond the static stiffness in the LF system
+(:mod:`floatmoor.analyses.fd_line_damping`).  Without it the LF damping is the hull's only.
 
 Every key is optional (defaults of :class:`~floatmoor.solvers.frequency_domain.FDOptions`).
 """
@@ -31,7 +37,12 @@ from typing import Any
 
 from ..core.config import Node
 from ..core.errors import SceneError
-from ..solvers.frequency_domain import DRIFT_METHODS, TENSION_MODELS, FDOptions
+from ..solvers.frequency_domain import (
+    DRIFT_METHODS,
+    LINE_DAMPING_MODELS,
+    TENSION_MODELS,
+    FDOptions,
+)
 
 __all__ = ["parse_fd_options", "parse_frequency_domain", "describe_frequency_domain",
            "FD_KEYS"]
@@ -54,6 +65,7 @@ def parse_fd_options(node: Node) -> FDOptions:
         "d_omega": node.float("d_omega", d.d_omega, gt=0.0, unit="rad/s"),
         "heading_iterations": node.int("heading_iterations", d.heading_iterations, ge=1),
         "line_current_drag": node.bool("line_current_drag", d.line_current_drag),
+        "line_damping": node.str("line_damping", d.line_damping, choices=LINE_DAMPING_MODELS),
     }
     try:
         return FDOptions(**kw)
@@ -76,4 +88,5 @@ def describe_frequency_domain(options: FDOptions | None, scene) -> list[str]:
             f"{options.tension_model}, drift {options.drift}, LF cut-off "
             f"{options.lf_cutoff_period:g} s"
             + (", wave drift damping" if options.wave_drift_damping else "")
-            + (", current drag on the lines" if options.line_current_drag else "")]
+            + (", current drag on the lines" if options.line_current_drag else "")
+            + (", FE line damping" if options.line_damping == "fe" else "")]

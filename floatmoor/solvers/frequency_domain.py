@@ -42,7 +42,7 @@ __all__ = [
     "SQRT_8_OVER_PI", "HORIZONTAL_DOFS", "spectral_moment", "response_std_tz",
     "wave_frequency_rao", "response_cross_spectrum", "newman_drift_spectrum",
     "qtf_drift_spectrum", "gust_force_spectrum", "lf_transfer", "equivalent_quadratic_damping",
-    "mean_drift_force", "aranha_drift_damping", "FDOptions", "TENSION_MODELS", "DRIFT_METHODS",
+    "mean_drift_force", "aranha_drift_damping", "FDOptions", "TENSION_MODELS", "DRIFT_METHODS", "LINE_DAMPING_MODELS",
     "FDModel", "FDSolution", "solve_frequency_domain",
 ]
 
@@ -201,12 +201,17 @@ def gust_force_spectrum(force_per_gust, s_u):
 
 
 # -- low frequency ------------------------------------------------------------------------------
-def lf_transfer(mu, mass, damping, stiffness):
-    """Low-frequency transfer matrices H(mu) = [K - mu^2 M + i mu B]^-1, (m, 6, 6) complex
-    (eq. 2.45 in matrix form).  Give M and B zero in the DOFs that follow quasi-statically."""
+def lf_transfer(mu, mass, damping, stiffness, impedance=None):
+    """Low-frequency transfer matrices H(mu) = [K - mu^2 M + i mu B + Z_x(mu)]^-1, (m, 6, 6)
+    complex (eq. 2.45 in matrix form).  Give M and B zero in the DOFs that follow
+    quasi-statically.  ``impedance`` (m, 6, 6) complex, optional: a frequency-dependent
+    impedance Z_x added to it (the mooring lines' dynamic stiffness and damping beyond the
+    quasi-static catenary, ``line_damping: fe``)."""
     mu = np.asarray(mu, float)
     Z = (np.asarray(stiffness, float)[None] - mu[:, None, None] ** 2 * np.asarray(mass, float)[None]
          + 1j * mu[:, None, None] * np.asarray(damping, float)[None])
+    if impedance is not None:
+        Z = Z + np.asarray(impedance, complex)
     try:
         return np.linalg.inv(Z)
     except np.linalg.LinAlgError:
@@ -243,6 +248,7 @@ def aranha_drift_damping(omega, s_eta, coefficient_along, gravity, direction):
 
 
 TENSION_MODELS = ("quasi_static", "dynamic")
+LINE_DAMPING_MODELS = ("none", "fe")
 DRIFT_METHODS = ("auto", "newman", "qtf")
 
 @dataclass(frozen=True, kw_only=True)
@@ -253,7 +259,7 @@ class FDOptions:
     duration : s, the storm duration for the number of cycles N = duration / Tz (3 h).
     tension_model : ``quasi_static``, or ``dynamic``: the WF tension of every line from its FE
         model in the frequency domain (:mod:`floatmoor.analyses.fd_line_dynamics`; LF stays
-        quasi-static).
+        quasi-static unless ``line_damping: fe``).
     drift : ``auto`` (the full QTF when the database has one, else Newman), ``newman``, ``qtf``.
     wave_drift_damping : add Aranha's wave drift damping to the LF system.
     lf_cutoff_period : s, upper end of the LF band (2 pi / period rad/s).
@@ -269,6 +275,12 @@ class FDOptions:
         are then taken there, and the drag's own change with the pose (central differences)
         is added to the mooring stiffness and the tension gradients
         (:mod:`floatmoor.analyses.frequency_domain`).
+    line_damping : ``none`` (default: the quasi-static catenary gives the LF system stiffness
+        and no damping) or ``fe``: the mooring lines' LF impedance from their FE model in the
+        frequency domain, driven by the WF and LF fairlead motion, the drag linearised with
+        both and iterated with the response; the increment over the static stiffness (line drag
+        damping and the drag's dynamic stiffening) enters the LF system at every LF frequency
+        (:mod:`floatmoor.analyses.fd_line_damping`).
     """
 
     duration: float = 10800.0
@@ -280,6 +292,7 @@ class FDOptions:
     d_omega: float = 0.005
     heading_iterations: int = 4
     line_current_drag: bool = False
+    line_damping: str = "none"
 
     def __post_init__(self):
         def bad(key, expected, found):
@@ -302,6 +315,8 @@ class FDOptions:
             bad("wave_drift_damping", "true or false", self.wave_drift_damping)
         if not isinstance(self.line_current_drag, bool):
             bad("line_current_drag", "true or false", self.line_current_drag)
+        if self.line_damping not in LINE_DAMPING_MODELS:
+            bad("line_damping", "one of: " + ", ".join(LINE_DAMPING_MODELS), self.line_damping)
 
 
 # -- the coupled solution -----------------------------------------------------------------------
@@ -317,6 +332,8 @@ class FDModel:
     lf_added_mass : (6, 6) A(0) (or its stand-in); lf_extra_damping : (6, 6) wind, current and
     wave drift damping.  mu : (m,) low-frequency grid (rad/s).
     lf_force_spectrum : (m, 6, 6) slowly varying force cross-spectra (drift + gust).
+    lf_impedance : (m, 6, 6) complex or None, added to the LF impedance (:func:`lf_transfer`):
+    the mooring lines' dynamic stiffness and damping (``line_damping: fe``).
     max_iter, tol : the stochastic linearisation loop.
     """
 
@@ -333,6 +350,7 @@ class FDModel:
     lf_extra_damping: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     mu: np.ndarray
     lf_force_spectrum: np.ndarray
+    lf_impedance: np.ndarray | None = None
     max_iter: int = 50
     tol: float = 1e-4
 
@@ -403,7 +421,7 @@ def solve_frequency_domain(model: FDModel) -> FDSolution:
         c_wf, cv_wf = _covariances(w, wf_cross)
         B_lf = np.zeros((6, 6))
         B_lf[ix] = (model.linear_damping + B_eq + model.lf_extra_damping)[ix]
-        Hl = lf_transfer(mu, M_lf, B_lf, model.stiffness)
+        Hl = lf_transfer(mu, M_lf, B_lf, model.stiffness, model.lf_impedance)
         lf_cross = response_cross_spectrum(Hl, model.lf_force_spectrum)
         c_lf, cv_lf = _covariances(mu, lf_cross)
         if not quadratic:

@@ -40,6 +40,7 @@ import xarray as xr
 
 from ...core.errors import FloatmoorWarning, NumericalError
 from ...core.quadrature import trapezoid_weights
+from . import kernels as KN
 from .drag_linearisation import drag_damping_1d, drag_damping_2d
 from .fibre_law import EL_FIB, EL_LAW, LAW_TWO_COMPONENT, dynamic_stiffness, working_tension
 from .frequency_kernels import line_transfer, spectral_moments
@@ -65,7 +66,9 @@ class LineStatics:
     tangential) and ``kc`` (isotropic, point bodies), seabed springs ``ks`` (N/m) and dampers
     ``cs`` (N s/m) of the line's seabed model, the current velocity ``u_c`` (n, 3); the seabed
     level ``z_seabed``, the largest diameter, the segments (lengths, EA, submerged weight) and the
-    bending stiffness flag."""
+    bending stiffness flag; ``ks_tangent`` (n,) N/m, the slope of the FE line's contact force at
+    each node's static penetration (the kernel's smoothed contact law), used by the ``fe``
+    seabed model of :func:`~floatmoor.mooring.fe.frequency_damping.fairlead_impedance`."""
 
     name: str
     r: np.ndarray
@@ -89,6 +92,7 @@ class LineStatics:
     seg_ea: np.ndarray
     seg_w: np.ndarray
     has_bending: bool
+    ks_tangent: np.ndarray | None = None
 
 
 def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
@@ -165,6 +169,18 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
         cs = 2.0 * np.sqrt(ks * (m + man))
     z_seabed = -sp.seabed.depth + (sp.seabed.mud_depth if sp.seabed.model == "mud_layer"
                                    else 0.0)
+    ks_t = np.zeros(nn)
+    P, S = getattr(line, "P", None), getattr(line, "S", None)
+    if P is not None and S is not None:
+        # the kernel's contact law (kernels._line_forces): force ks g(pen), g(p) = p above
+        # dpen = max(w / (2 ks), S_DC), 2 p^2 / dpen - p^3 / dpen^2 below; its slope here
+        pen = S[KN.S_ZC] - r[:, 2]
+        kn = P[:, KN.NP_KS]
+        on = (pen > 0.0) & (kn > 0.0)
+        dpen = np.maximum(0.5 * np.maximum(P[:, KN.NP_W], 1e-12) / np.where(on, kn, 1.0),
+                          S[KN.S_DC])
+        x = np.clip(pen / dpen, 0.0, 1.0)
+        ks_t = np.where(on, kn * np.where(pen < dpen, x * (4.0 - 3.0 * x), 1.0), 0.0)
     u_c = np.zeros((nn, 3))
     if len(sp.current_z):
         cz = np.asarray(sp.current_z, float)
@@ -179,7 +195,7 @@ def line_statics(line, *, dynamic_ea: bool = True) -> LineStatics:
         diameter=dmax, seg_lengths=np.array([sg.length for sg in sp.segments]),
         seg_ea=np.array([sg.line_type.ea for sg in sp.segments]),
         seg_w=np.array([sg.line_type.submerged_weight(rho, g) for sg in sp.segments]),
-        has_bending=any(sg.bending_stiffness > 0 for sg in sp.segments))
+        has_bending=any(sg.bending_stiffness > 0 for sg in sp.segments), ks_tangent=ks_t)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -220,7 +236,10 @@ class _Model:
     e_l: np.ndarray    # horizontal unit vector across the line
 
 
-def _assemble(st: LineStatics, seabed: str, cut_fraction: float):
+def _assemble(st: LineStatics, seabed: str, cut_fraction: float, contact_tangent: bool = False):
+    """The line's matrices.  ``contact_tangent``: the ``fe`` seabed springs are the slopes of the
+    FE line's contact law at the static penetration (``st.ks_tangent``) instead of the full
+    spring stiffness on every node within half a diameter of the seabed."""
     r = st.r
     n = r.shape[0]
     e, le, q = _tangents(r)
@@ -251,8 +270,12 @@ def _assemble(st: LineStatics, seabed: str, cut_fraction: float):
     if seabed == "fe":
         zz = np.zeros((3, 3))
         zz[2, 2] = 1.0
-        Kn += np.where(contact, st.ks, 0.0)[:, None, None] * zz
-        C0 += np.where(contact, st.cs, 0.0)[:, None, None] * zz
+        if contact_tangent and st.ks_tangent is not None:
+            Kn += st.ks_tangent[:, None, None] * zz
+            C0 += np.where(st.ks_tangent > 0.0, st.cs, 0.0)[:, None, None] * zz
+        else:
+            Kn += np.where(contact, st.ks, 0.0)[:, None, None] * zz
+            C0 += np.where(contact, st.cs, 0.0)[:, None, None] * zz
     elif i_td > 0:
         if seabed == "pinned":
             base = i_td
