@@ -9,8 +9,13 @@ both codes; MoorDyn (PyPI ``moordyn``, MoorDyn-C v2, its default RK2) sub-steps 
 Internal damping: the same axial damping coefficient (N s) at every discretisation (0.8 of
 critical for 160 elements), so that refining converges to one physical line.
 
-Accuracy: every run against the converged run of its own code (4x the elements, a quarter of
-the time step: floatmoor 160 elements at dt 0.025 s; MoorDyn 160 segments at dtM 0.25 ms: with the
+Accuracy: every run against the converged run of its own code (4x the elements and a much
+shorter step: floatmoor 160 elements at dt 0.00625 s, 16 steps per coupling step with the
+fairlead on the cubic Hermite curve through the coupling data, which differs from a run with
+the exact fairlead motion at every 0.00625 s step by less than 0.001 % (``--check-ref``); until
+2026-11-24 the reference was 160 elements at dt 0.025 s with the fairlead interpolated linearly
+in position and velocity, 0.15 / 0.54 / 0.44 % away from the exact-motion solution;
+MoorDyn 160 segments at dtM 0.25 ms: with the
 fixed damping coefficient 160 segments are unstable at 1 ms), on the
 fairlead tension at the coupling times: error of the maximum, of the range (max - min) and the
 RMS of the difference over the range of the reference.  "Equal accuracy": a floatmoor
@@ -50,6 +55,7 @@ from tests.mooring.fe.conftest import oc3_spec  # noqa: E402
 
 DT_C = 0.1                  # coupling step (s)
 N_REF = 160
+NSUB_REF = 16               # floatmoor reference: line steps per coupling step
 BA = 0.8 * 2.0 * math.sqrt(384.243e6 * 77.7066) * 902.2 / N_REF   # N s, all discretisations
 
 
@@ -122,15 +128,21 @@ def _quiet_stdout():
         os.close(saved)
 
 
-def run_floatmoor(n, motion, t_end, *, nsub=1, newton="exact", rho=0.7, dt=DT_C):
-    """Fairlead tension at the coupling times, CPU of the steps, CPU of the statics."""
+def run_floatmoor(n, motion, t_end, *, nsub=1, newton="exact", rho=0.7, dt=DT_C, exact=False):
+    """Fairlead tension at the coupling times, CPU of the steps, CPU of the statics.  With
+    ``exact`` the ``nsub`` line steps per coupling step each get the exact fairlead motion (the
+    motion evaluated at every line step, recorded at the coupling times) instead of its
+    interpolation between the coupling times."""
     line = FELine(oc3_spec(n=n, damping=BA))
     c0 = time.process_time()
     line.solve_static()
     line.start(newton=newton, rho_inf=rho)
     c_static = time.process_time() - c0
     c0 = time.process_time()
-    ds = run_prescribed(line, motion, t_end, dt, substeps=nsub)
+    if exact:
+        ds = run_prescribed(line, motion, t_end, dt / nsub, record_every=nsub)
+    else:
+        ds = run_prescribed(line, motion, t_end, dt, substeps=nsub)
     cpu = time.process_time() - c0
     return ds.time.values, ds.fairlead_tension.values, cpu, c_static, line.newton_iterations
 
@@ -203,9 +215,9 @@ def scan(case, nseg=40):
               f"{'(stable, within 0.1 %)' if ok else '(NOT within 0.1 % or unstable)'}")
 
 
-def fm_grid(newton=("exact", "modified", "fast")):
+def fm_grid(newton=("exact", "modified", "fast"), elements=(20, 30, 40, 60, 80)):
     """floatmoor settings tried: elements, sub-steps per coupling step, Newton mode, rho_inf."""
-    return [(n, nsub, nw, rho) for n in (20, 30, 40, 60, 80) for nsub in (1, 2, 4)
+    return [(n, nsub, nw, rho) for n in elements for nsub in (1, 2, 4)
             for nw in newton for rho in (0.7, 1.0)]
 
 
@@ -218,6 +230,9 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cases", nargs="+", default=list(CASES))
     ap.add_argument("--newton", nargs="+", default=["exact", "modified", "fast"])
+    ap.add_argument("--elements", nargs="+", type=int, default=[20, 30, 40, 60, 80])
+    ap.add_argument("--check-ref", action="store_true",
+                    help="compare the floatmoor reference with the exact-motion run and stop")
     args = ap.parse_args()
     import moordyn  # noqa: F401
     import numba
@@ -231,14 +246,24 @@ def main():
             scan(case, args.nseg)
         return
     run_floatmoor(10, CASES["harmonic"][0], 1.0)      # numba cache load / compile
+    if args.check_ref:
+        for case in args.cases:
+            motion, t_end, t_eval = CASES[case]
+            t_fr, T_fr, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF)
+            t_fx, T_fx, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF, exact=True)
+            e = errors(t_fr, T_fr, t_fx, T_fx, t_eval)
+            print(f"{case}: reference ({N_REF} el., {NSUB_REF} Hermite sub-steps) against the "
+                  f"exact-motion run at the same step: max / range / rms "
+                  f"{' / '.join(f'{100 * x:.4f}' for x in e)} %")
+        return
     for case in args.cases:
         motion, t_end, t_eval = CASES[case]
-        t_fr, T_fr, c_fr, *_ = run_floatmoor(N_REF, motion, t_end, nsub=4)
+        t_fr, T_fr, c_fr, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF)
         t_mr, T_mr, c_mr, _ = run_moordyn(N_REF, args.dtm_ref, motion, t_end)
         em, er, es = errors(t_fr, T_fr, t_mr, T_mr, t_eval)
         sel = t_fr >= t_eval
         print(f"\n## {case}: {t_end:g} s, evaluated from {t_eval:g} s")
-        print(f"references: floatmoor {N_REF} el. dt {DT_C / 4:g} s (max "
+        print(f"references: floatmoor {N_REF} el. dt {DT_C / NSUB_REF:g} s (max "
               f"{T_fr[sel].max() / 1e3:.1f} kN, range {np.ptp(T_fr[sel]) / 1e3:.1f} kN, CPU "
               f"{c_fr:.1f} s); MoorDyn {N_REF} seg. dtM {args.dtm_ref * 1e3:g} ms (CPU "
               f"{c_mr:.1f} s); the two references differ by max {100 * em:.2f} %, range "
@@ -249,7 +274,7 @@ def main():
         t_m, T_m = md_runs[0][:2]
         md_err = errors(t_m, T_m, t_mr, T_mr, t_eval)
         rows = []
-        for n, nsub, nw, rho in fm_grid(args.newton):
+        for n, nsub, nw, rho in fm_grid(args.newton, args.elements):
             try:
                 t_f, T_f, c, cs, its = run_floatmoor(n, motion, t_end, nsub=nsub, newton=nw,
                                                      rho=rho)
