@@ -30,7 +30,11 @@ solve and floatmoor's statics excluded and printed apart), the best of ``--repea
 interleaved MoorDyn / floatmoor.
 
 Run: ``python benchmarks/bench_fe_moordyn.py [--scan] [--dtm 0.006] [--repeat 3]
-[--newton exact modified fast]`` (the Newton modes of the floatmoor grid).
+[--newton exact modified fast] [--elements 20 30 40 60 80]`` (the Newton modes and element
+counts of the floatmoor grid); ``--diagnose`` splits floatmoor's error into its time part (dt
+0.1 and 0.05 s against the same elements at dt 0.00625 s, with the spectrum of the difference)
+and its space part (elements at dt 0.00625 s against the reference); ``--check-ref`` compares
+the reference with the run handed the exact motion at every line step.
 """
 
 from __future__ import annotations
@@ -215,6 +219,35 @@ def scan(case, nseg=40):
               f"{'(stable, within 0.1 %)' if ok else '(NOT within 0.1 % or unstable)'}")
 
 
+def _band_power(d, bands=((0.0, 0.3), (0.3, 1.0), (1.0, 2.0), (2.0, 5.01))):
+    """Share of the power of the difference ``d`` (sampled every DT_C) in frequency bands."""
+    D = np.fft.rfft(d - d.mean())
+    fr = np.fft.rfftfreq(d.size, DT_C)
+    P = np.abs(D) ** 2
+    P /= max(P.sum(), 1e-300)
+    return " ".join(f"{lo:g}-{min(hi, 5.0):g} Hz {P[(fr >= lo) & (fr < hi)].sum():.2f}"
+                    for lo, hi in bands)
+
+
+def diagnose(case, elements):
+    """Time and space error of floatmoor at each element count: space error = the run at
+    NSUB_REF steps per coupling step against the reference; time error = the runs at dt 0.1
+    and 0.05 s against the same element count at NSUB_REF steps, with the band powers of the
+    difference (where in the spectrum the time error sits)."""
+    motion, t_end, t_eval = CASES[case]
+    t_r, T_r, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF)
+    fmt = lambda e: " / ".join(f"{100 * x:.3f}" for x in e)  # noqa: E731
+    print(f"\n## {case}: time and space error (max / range / rms %)")
+    for n in elements:
+        t_b, T_b, *_ = run_floatmoor(n, motion, t_end, nsub=NSUB_REF)
+        print(f"{n} el.: space error (dt {DT_C / NSUB_REF:g} s) {fmt(errors(t_b, T_b, t_r, T_r, t_eval))}")
+        sel = t_b >= t_eval - 1e-9
+        for nsub in (1, 2):
+            t, T, *_ = run_floatmoor(n, motion, t_end, nsub=nsub)
+            print(f"    time error dt {DT_C / nsub:g} s {fmt(errors(t, T, t_b, T_b, t_eval))}; "
+                  f"power of the difference: {_band_power(T[sel] - T_b[sel])}")
+
+
 def fm_grid(newton=("exact", "modified", "fast"), elements=(20, 30, 40, 60, 80)):
     """floatmoor settings tried: elements, sub-steps per coupling step, Newton mode, rho_inf."""
     return [(n, nsub, nw, rho) for n in elements for nsub in (1, 2, 4)
@@ -231,6 +264,8 @@ def main():
     ap.add_argument("--cases", nargs="+", default=list(CASES))
     ap.add_argument("--newton", nargs="+", default=["exact", "modified", "fast"])
     ap.add_argument("--elements", nargs="+", type=int, default=[20, 30, 40, 60, 80])
+    ap.add_argument("--diagnose", action="store_true",
+                    help="time and space error of floatmoor per element count, and stop")
     ap.add_argument("--check-ref", action="store_true",
                     help="compare the floatmoor reference with the exact-motion run and stop")
     args = ap.parse_args()
@@ -246,6 +281,10 @@ def main():
             scan(case, args.nseg)
         return
     run_floatmoor(10, CASES["harmonic"][0], 1.0)      # numba cache load / compile
+    if args.diagnose:
+        for case in args.cases:
+            diagnose(case, args.elements)
+        return
     if args.check_ref:
         for case in args.cases:
             motion, t_end, t_eval = CASES[case]
