@@ -34,7 +34,9 @@ Run: ``python benchmarks/bench_fe_moordyn.py [--scan] [--dtm 0.006] [--repeat 3]
 counts of the floatmoor grid); ``--diagnose`` splits floatmoor's error into its time part (dt
 0.1 and 0.05 s against the same elements at dt 0.00625 s, with the spectrum of the difference)
 and its space part (elements at dt 0.00625 s against the reference); ``--check-ref`` compares
-the reference with the run handed the exact motion at every line step.
+the reference with the run handed the exact motion at every line step; ``--lift-off-damping``
+runs floatmoor (grid and reference) with the seabed damping acting both ways
+(``Seabed.lift_off_damping``).
 """
 
 from __future__ import annotations
@@ -53,13 +55,14 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from floatmoor.core.errors import NumericalError  # noqa: E402
-from floatmoor.mooring.fe import FELine  # noqa: E402
+from floatmoor.mooring.fe import FELine, Seabed  # noqa: E402
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed  # noqa: E402
-from tests.mooring.fe.conftest import oc3_spec  # noqa: E402
+from tests.mooring.fe.conftest import OC3, oc3_spec  # noqa: E402
 
 DT_C = 0.1                  # coupling step (s)
 N_REF = 160
 NSUB_REF = 16               # floatmoor reference: line steps per coupling step
+SEABED_KW = {}              # floatmoor seabed options of every run (--lift-off-damping)
 BA = 0.8 * 2.0 * math.sqrt(384.243e6 * 77.7066) * 902.2 / N_REF   # N s, all discretisations
 
 
@@ -137,7 +140,8 @@ def run_floatmoor(n, motion, t_end, *, nsub=1, newton="exact", rho=0.7, dt=DT_C,
     ``exact`` the ``nsub`` line steps per coupling step each get the exact fairlead motion (the
     motion evaluated at every line step, recorded at the coupling times) instead of its
     interpolation between the coupling times."""
-    line = FELine(oc3_spec(n=n, damping=BA))
+    seabed = Seabed(depth=OC3["depth"], **SEABED_KW) if SEABED_KW else None
+    line = FELine(oc3_spec(n=n, damping=BA, seabed=seabed))
     c0 = time.process_time()
     line.solve_static()
     line.start(newton=newton, rho_inf=rho)
@@ -264,16 +268,21 @@ def main():
     ap.add_argument("--cases", nargs="+", default=list(CASES))
     ap.add_argument("--newton", nargs="+", default=["exact", "modified", "fast"])
     ap.add_argument("--elements", nargs="+", type=int, default=[20, 30, 40, 60, 80])
+    ap.add_argument("--lift-off-damping", action="store_true",
+                    help="floatmoor runs (and its reference) with seabed lift_off_damping")
     ap.add_argument("--diagnose", action="store_true",
                     help="time and space error of floatmoor per element count, and stop")
     ap.add_argument("--check-ref", action="store_true",
                     help="compare the floatmoor reference with the exact-motion run and stop")
     args = ap.parse_args()
+    if args.lift_off_damping:
+        SEABED_KW["lift_off_damping"] = True
     import moordyn  # noqa: F401
     import numba
 
     print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
           f"{numba.__version__}; load {' / '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    print(f"# floatmoor seabed options {SEABED_KW or 'default'}")
     print(f"# coupling step {DT_C} s; internal damping {BA:.4g} N s at every discretisation; "
           f"MoorDyn {args.nseg} segments at dtM {args.dtm * 1e3:g} ms (RK2)")
     if args.scan:

@@ -41,8 +41,8 @@ N_NP = 14
 EL_L0, EL_C1, EL_C2, EL_C3, EL_B = range(5)
 N_EL = 7
 # scalar parameters
-S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC, S_BEND = range(8)
-N_S = 8
+S_ZC, S_VR, S_CD, S_CURC, S_CURS, S_RHO, S_DC, S_BEND, S_SBLIFT = range(9)
+N_S = 9
 # friction codes (see config.FRICTION_MODELS); 3 = static displacement ramp
 FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 # friction state columns: c_axial, c_lateral, v_prev_axial, v_prev_lateral, ref_x, ref_y,
@@ -527,7 +527,9 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
             # (vz ~ 0) do not make Newton switch between two branches
             cs = P[i, NP_CS]
             vz = v[i, 2]
-            if vz <= -V_SB:
+            if vz <= -V_SB or S[S_SBLIFT] > 0.0:
+                # (S_SBLIFT, seabed ``lift_off_damping``: the damping acts both ways, as in
+                # MoorDyn; it damps the bouncing of the touchdown node of a coarse line)
                 h = vz
                 dh = 1.0
             elif vz >= V_SB:
