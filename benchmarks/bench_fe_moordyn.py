@@ -9,8 +9,13 @@ both codes; MoorDyn (PyPI ``moordyn``, MoorDyn-C v2, its default RK2) sub-steps 
 Internal damping: the same axial damping coefficient (N s) at every discretisation (0.8 of
 critical for 160 elements), so that refining converges to one physical line.
 
-Accuracy: every run against the converged run of its own code (4x the elements, a quarter of
-the time step: floatmoor 160 elements at dt 0.025 s; MoorDyn 160 segments at dtM 0.25 ms: with the
+Accuracy: every run against the converged run of its own code (4x the elements and a much
+shorter step: floatmoor 160 elements at dt 0.00625 s, 16 steps per coupling step with the
+fairlead on the cubic Hermite curve through the coupling data, which differs from a run with
+the exact fairlead motion at every 0.00625 s step by less than 0.001 % (``--check-ref``); until
+2026-11-24 the reference was 160 elements at dt 0.025 s with the fairlead interpolated linearly
+in position and velocity, 0.15 / 0.54 / 0.44 % away from the exact-motion solution;
+MoorDyn 160 segments at dtM 0.25 ms: with the
 fixed damping coefficient 160 segments are unstable at 1 ms), on the
 fairlead tension at the coupling times: error of the maximum, of the range (max - min) and the
 RMS of the difference over the range of the reference.  "Equal accuracy": a floatmoor
@@ -25,7 +30,13 @@ solve and floatmoor's statics excluded and printed apart), the best of ``--repea
 interleaved MoorDyn / floatmoor.
 
 Run: ``python benchmarks/bench_fe_moordyn.py [--scan] [--dtm 0.006] [--repeat 3]
-[--newton exact modified fast]`` (the Newton modes of the floatmoor grid).
+[--newton exact modified fast] [--elements 20 30 40 60 80]`` (the Newton modes and element
+counts of the floatmoor grid); ``--diagnose`` splits floatmoor's error into its time part (dt
+0.1 and 0.05 s against the same elements at dt 0.00625 s, with the spectrum of the difference)
+and its space part (elements at dt 0.00625 s against the reference); ``--check-ref`` compares
+the reference with the run handed the exact motion at every line step; ``--lift-off-damping``
+runs floatmoor (grid and reference) with the seabed damping acting both ways
+(``Seabed.lift_off_damping``).
 """
 
 from __future__ import annotations
@@ -44,12 +55,14 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from floatmoor.core.errors import NumericalError  # noqa: E402
-from floatmoor.mooring.fe import FELine  # noqa: E402
+from floatmoor.mooring.fe import FELine, Seabed  # noqa: E402
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, run_prescribed  # noqa: E402
-from tests.mooring.fe.conftest import oc3_spec  # noqa: E402
+from tests.mooring.fe.conftest import OC3, oc3_spec  # noqa: E402
 
 DT_C = 0.1                  # coupling step (s)
 N_REF = 160
+NSUB_REF = 16               # floatmoor reference: line steps per coupling step
+SEABED_KW = {}              # floatmoor seabed options of every run (--lift-off-damping)
 BA = 0.8 * 2.0 * math.sqrt(384.243e6 * 77.7066) * 902.2 / N_REF   # N s, all discretisations
 
 
@@ -122,15 +135,22 @@ def _quiet_stdout():
         os.close(saved)
 
 
-def run_floatmoor(n, motion, t_end, *, nsub=1, newton="exact", rho=0.7, dt=DT_C):
-    """Fairlead tension at the coupling times, CPU of the steps, CPU of the statics."""
-    line = FELine(oc3_spec(n=n, damping=BA))
+def run_floatmoor(n, motion, t_end, *, nsub=1, newton="exact", rho=0.7, dt=DT_C, exact=False):
+    """Fairlead tension at the coupling times, CPU of the steps, CPU of the statics.  With
+    ``exact`` the ``nsub`` line steps per coupling step each get the exact fairlead motion (the
+    motion evaluated at every line step, recorded at the coupling times) instead of its
+    interpolation between the coupling times."""
+    seabed = Seabed(depth=OC3["depth"], **SEABED_KW) if SEABED_KW else None
+    line = FELine(oc3_spec(n=n, damping=BA, seabed=seabed))
     c0 = time.process_time()
     line.solve_static()
     line.start(newton=newton, rho_inf=rho)
     c_static = time.process_time() - c0
     c0 = time.process_time()
-    ds = run_prescribed(line, motion, t_end, dt, substeps=nsub)
+    if exact:
+        ds = run_prescribed(line, motion, t_end, dt / nsub, record_every=nsub)
+    else:
+        ds = run_prescribed(line, motion, t_end, dt, substeps=nsub)
     cpu = time.process_time() - c0
     return ds.time.values, ds.fairlead_tension.values, cpu, c_static, line.newton_iterations
 
@@ -203,9 +223,38 @@ def scan(case, nseg=40):
               f"{'(stable, within 0.1 %)' if ok else '(NOT within 0.1 % or unstable)'}")
 
 
-def fm_grid(newton=("exact", "modified", "fast")):
+def _band_power(d, bands=((0.0, 0.3), (0.3, 1.0), (1.0, 2.0), (2.0, 5.01))):
+    """Share of the power of the difference ``d`` (sampled every DT_C) in frequency bands."""
+    D = np.fft.rfft(d - d.mean())
+    fr = np.fft.rfftfreq(d.size, DT_C)
+    P = np.abs(D) ** 2
+    P /= max(P.sum(), 1e-300)
+    return " ".join(f"{lo:g}-{min(hi, 5.0):g} Hz {P[(fr >= lo) & (fr < hi)].sum():.2f}"
+                    for lo, hi in bands)
+
+
+def diagnose(case, elements):
+    """Time and space error of floatmoor at each element count: space error = the run at
+    NSUB_REF steps per coupling step against the reference; time error = the runs at dt 0.1
+    and 0.05 s against the same element count at NSUB_REF steps, with the band powers of the
+    difference (where in the spectrum the time error sits)."""
+    motion, t_end, t_eval = CASES[case]
+    t_r, T_r, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF)
+    fmt = lambda e: " / ".join(f"{100 * x:.3f}" for x in e)  # noqa: E731
+    print(f"\n## {case}: time and space error (max / range / rms %)")
+    for n in elements:
+        t_b, T_b, *_ = run_floatmoor(n, motion, t_end, nsub=NSUB_REF)
+        print(f"{n} el.: space error (dt {DT_C / NSUB_REF:g} s) {fmt(errors(t_b, T_b, t_r, T_r, t_eval))}")
+        sel = t_b >= t_eval - 1e-9
+        for nsub in (1, 2):
+            t, T, *_ = run_floatmoor(n, motion, t_end, nsub=nsub)
+            print(f"    time error dt {DT_C / nsub:g} s {fmt(errors(t, T, t_b, T_b, t_eval))}; "
+                  f"power of the difference: {_band_power(T[sel] - T_b[sel])}")
+
+
+def fm_grid(newton=("exact", "modified", "fast"), elements=(20, 30, 40, 60, 80)):
     """floatmoor settings tried: elements, sub-steps per coupling step, Newton mode, rho_inf."""
-    return [(n, nsub, nw, rho) for n in (20, 30, 40, 60, 80) for nsub in (1, 2, 4)
+    return [(n, nsub, nw, rho) for n in elements for nsub in (1, 2, 4)
             for nw in newton for rho in (0.7, 1.0)]
 
 
@@ -218,12 +267,22 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cases", nargs="+", default=list(CASES))
     ap.add_argument("--newton", nargs="+", default=["exact", "modified", "fast"])
+    ap.add_argument("--elements", nargs="+", type=int, default=[20, 30, 40, 60, 80])
+    ap.add_argument("--lift-off-damping", action="store_true",
+                    help="floatmoor runs (and its reference) with seabed lift_off_damping")
+    ap.add_argument("--diagnose", action="store_true",
+                    help="time and space error of floatmoor per element count, and stop")
+    ap.add_argument("--check-ref", action="store_true",
+                    help="compare the floatmoor reference with the exact-motion run and stop")
     args = ap.parse_args()
+    if args.lift_off_damping:
+        SEABED_KW["lift_off_damping"] = True
     import moordyn  # noqa: F401
     import numba
 
     print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
           f"{numba.__version__}; load {' / '.join(f'{v:.2f}' for v in os.getloadavg())}")
+    print(f"# floatmoor seabed options {SEABED_KW or 'default'}")
     print(f"# coupling step {DT_C} s; internal damping {BA:.4g} N s at every discretisation; "
           f"MoorDyn {args.nseg} segments at dtM {args.dtm * 1e3:g} ms (RK2)")
     if args.scan:
@@ -231,14 +290,28 @@ def main():
             scan(case, args.nseg)
         return
     run_floatmoor(10, CASES["harmonic"][0], 1.0)      # numba cache load / compile
+    if args.diagnose:
+        for case in args.cases:
+            diagnose(case, args.elements)
+        return
+    if args.check_ref:
+        for case in args.cases:
+            motion, t_end, t_eval = CASES[case]
+            t_fr, T_fr, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF)
+            t_fx, T_fx, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF, exact=True)
+            e = errors(t_fr, T_fr, t_fx, T_fx, t_eval)
+            print(f"{case}: reference ({N_REF} el., {NSUB_REF} Hermite sub-steps) against the "
+                  f"exact-motion run at the same step: max / range / rms "
+                  f"{' / '.join(f'{100 * x:.4f}' for x in e)} %")
+        return
     for case in args.cases:
         motion, t_end, t_eval = CASES[case]
-        t_fr, T_fr, c_fr, *_ = run_floatmoor(N_REF, motion, t_end, nsub=4)
+        t_fr, T_fr, c_fr, *_ = run_floatmoor(N_REF, motion, t_end, nsub=NSUB_REF)
         t_mr, T_mr, c_mr, _ = run_moordyn(N_REF, args.dtm_ref, motion, t_end)
         em, er, es = errors(t_fr, T_fr, t_mr, T_mr, t_eval)
         sel = t_fr >= t_eval
         print(f"\n## {case}: {t_end:g} s, evaluated from {t_eval:g} s")
-        print(f"references: floatmoor {N_REF} el. dt {DT_C / 4:g} s (max "
+        print(f"references: floatmoor {N_REF} el. dt {DT_C / NSUB_REF:g} s (max "
               f"{T_fr[sel].max() / 1e3:.1f} kN, range {np.ptp(T_fr[sel]) / 1e3:.1f} kN, CPU "
               f"{c_fr:.1f} s); MoorDyn {N_REF} seg. dtM {args.dtm_ref * 1e3:g} ms (CPU "
               f"{c_mr:.1f} s); the two references differ by max {100 * em:.2f} %, range "
@@ -249,7 +322,7 @@ def main():
         t_m, T_m = md_runs[0][:2]
         md_err = errors(t_m, T_m, t_mr, T_mr, t_eval)
         rows = []
-        for n, nsub, nw, rho in fm_grid(args.newton):
+        for n, nsub, nw, rho in fm_grid(args.newton, args.elements):
             try:
                 t_f, T_f, c, cs, its = run_floatmoor(n, motion, t_end, nsub=nsub, newton=nw,
                                                      rho=rho)

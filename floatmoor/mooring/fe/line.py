@@ -261,6 +261,7 @@ class FELine:
         S[K.S_BEND] = 1.0 if np.any(P[:, K.NP_CB] > 0.0) else 0.0
         cs_ = spec.seabed.contact_smoothing
         S[K.S_DC] = 0.5 * dmax if cs_ is None else cs_
+        S[K.S_SBLIFT] = 1.0 if spec.seabed.lift_off_damping else 0.0
         if fib_rec:
             S = np.concatenate([S] + fib_rec)
         if axial_stiffness_limit is not None:

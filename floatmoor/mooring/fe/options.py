@@ -19,7 +19,8 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
                                        #   two_component | working_curve | constant
         fibre_time_constant: 300.0     # s, mean-strain filter of two_component (fibre_law.py)
         seabed: {model: springs, stiffness: 2.7e5, damping: 2.7e4}
-                                       # or {model: mud_layer, mud_depth: 0.1}
+                                       # or {model: mud_layer, mud_depth: 0.1};
+                                       #   lift_off_damping: true (damping both ways)
         friction: {model: velocity_ramp, mu_axial: 0.7, mu_lateral: 1.0, zero_crossing_period: 10.0}
                                        # model: none | velocity_ramp |
                                        #   velocity_ramp_double_quadratic |
@@ -53,7 +54,8 @@ INTEGRATORS = ("generalized_alpha", "explicit")
 _KEYS = {"element_length", "n_elements", "internal_damping", "rho_inf", "substeps", "dt",
          "integrator", "axial_stiffness_limit", "seabed", "friction", "fibre_law",
          "fibre_time_constant", "newton"}
-_SEABED_KEYS = {"model", "stiffness", "damping", "mud_depth", "contact_smoothing"}
+_SEABED_KEYS = {"model", "stiffness", "damping", "mud_depth", "contact_smoothing",
+                "lift_off_damping"}
 _FRICTION_KEYS = {"model", "mu_axial", "mu_lateral", "ramp_velocity", "zero_crossing_period",
                   "ramp_displacement"}
 
@@ -154,6 +156,8 @@ def parse_fe_options(node: Node | None) -> FEOptions:
                     d[k] = sb.float(k, gt=0.0, unit=unit)
                 else:
                     d[k] = sb.float(k, ge=0.0, unit=unit)
+        if "lift_off_damping" in sb:
+            d["lift_off_damping"] = sb.bool("lift_off_damping")
         kw["seabed"] = d
     if "friction" in node:
         fr = node.child("friction")
