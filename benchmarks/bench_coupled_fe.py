@@ -131,9 +131,9 @@ def main() -> None:
         loop = ds.attrs["run_time_s"]
         if len(args.threads) > 1:
             key = (dt, nw)
-            if key not in single:
-                single[key] = ds
-            else:
+            if th == args.threads[0]:
+                single.setdefault(key, ds)
+            elif key in single:
                 same = all(np.array_equal(ds[v].values, single[key][v].values,
                                           equal_nan=ds[v].dtype.kind == "f")
                            for v in ds.data_vars)
