@@ -113,8 +113,8 @@ def test_a_failing_line_step_raises_the_serial_error(tmp_path):
     assert msgs[0] == msgs[1]
 
 
-def _packed(threads):
-    """The OC3 mooring's three lines (10 m elements) packed for the multi-line kernels."""
+def _packed():
+    """The OC3 mooring's three lines (25 m elements) packed for the multi-line kernels."""
     from floatmoor.core.config import Node
     from floatmoor.io.mooring_section import parse_mooring
     from floatmoor.mooring.fe.body import FEMooring
@@ -143,7 +143,7 @@ def test_parallel_kernel_any_slot_count(slots):
     out = []
     for mode in (SerialLines(np.zeros(3, np.int64), 1),
                  ParallelLines(np.zeros(3, np.int64), slots)):
-        fm = _packed(slots)
+        fm = _packed()
         body, lines = fm._packed
         Q = []
         for k in range(1, 21):
@@ -173,7 +173,7 @@ import numpy as np
 from tests.solvers.test_fe_threads import _packed
 from floatmoor.mooring.fe.line import FELine
 from floatmoor.mooring.fe.multi import ParallelLines, advance_lines, body_accept
-fm = _packed(2)
+fm = _packed()
 body, lines = fm._packed
 mode = ParallelLines(np.zeros(3, np.int64), 2)
 for k in range(1, 4):

@@ -200,15 +200,16 @@ def lines_mode(n_lines: int, threads: int):
 
 @njit(cache=True, parallel=True)
 def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, status, threads):
-    """:func:`body_advance` with the lines advanced in threads (``numba.prange`` over
-    ``threads`` slots, slot ``k`` advancing lines ``k, k + threads, ...``; run it with numba's
-    thread count ``threads``; ``status`` (n,) int64 scratch: each line's advance status).  Bit for bit the
-    results of :func:`body_advance` for any number of threads: each line's advance touches only
-    that line's bundles, and the end forces, the wrench ``body.Q``, the counters and the
-    failure report are done after the threads, in the line order.  When several lines fail, the
-    lowest index is reported (the serial loop stops there); the lines after it were advanced
-    too (their trial states, scratch until accepted, differ from a serial run's; the counters,
-    forces and ``Q`` do not)."""
+    """:func:`body_advance` with the lines advanced in threads: ``numba.prange`` over
+    ``threads`` slots, slot ``k`` advancing lines ``k, k + threads, ...`` (run it with numba's
+    thread count ``threads``); ``status`` (n,) int64 scratch, each line's advance status.
+
+    Bit for bit the results of :func:`body_advance` for any number of threads: each line's
+    advance touches only that line's bundles (the typed list is only read), and the end
+    forces, the wrench ``body.Q``, the counters and the failure report are done after the
+    threads, in the line order.  When several lines fail, the lowest index is reported (the
+    serial loop stops there); the lines after it were advanced too (their trial states, scratch
+    until accepted, differ from a serial run's; the counters, forces and ``Q`` do not)."""
     fair_b, R, rf_all, vf_all, arm, Q, forces, on, fail, counters = body
     rotation_matrix_into(pose[3], pose[4], pose[5], R)
     for k in range(6):
