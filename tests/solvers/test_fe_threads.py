@@ -261,3 +261,28 @@ def test_run_command_threads_flag(tmp_path, capsys):
                      "--threads", "auto"]) == 0
     with xr.open_dataset(next(out.glob("*.nc"))) as ds:
         assert ds.attrs["fe_threads"] == min(available_threads(), worker_thread_cap(1))
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(available_threads() < 2, reason="numba has one thread here")
+def test_one_thread_compiles_no_parallel_kernel(tmp_path):
+    """From an empty numba cache, a one-thread FE run compiles the serial kernel and not the
+    parallel one (compile seconds only for scenes that ask for threads); a two-thread run after
+    it compiles the parallel kernel, each kernel for one signature."""
+    from tests.test_first_run import _run
+
+    first, second = _run("""
+from floatmoor.analyses.simulate import simulate
+from floatmoor.io.solver_section import SolverSpec
+simulate("scenes/floatel_100yr_fe.yaml", seed=1, duration=2.0)
+n1 = len(compiled)
+simulate("scenes/floatel_100yr_fe.yaml", seed=1, duration=2.0, solver=SolverSpec(threads=2))
+print(json.dumps([compiled[:n1], compiled[n1:]]))
+""", tmp_path)
+    names1 = [c[0] for c in first]
+    names2 = [c[0] for c in second]
+    multi = "floatmoor.mooring.fe.multi."
+    assert multi + "body_advance" in names1
+    assert multi + "body_advance_parallel" not in names1
+    assert names2.count(multi + "body_advance_parallel") == 1
+    assert multi + "body_advance" not in names2
