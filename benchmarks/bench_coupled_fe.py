@@ -18,6 +18,12 @@ line moved by a pseudo-random +-x0 m per coordinate from its static position bef
 start), ``code=2`` (a raw ``kernels.NW_*`` code of the iteration, here the predictor alone),
 e.g. ``--newton exact exact:tol=1e-8 exact:x0=1e-6 exact:code=2 modified``; ``--per-line`` prints
 every line's maximum and its time.
+
+``--threads 1 2``: the FE lines advanced in that many threads (scene option ``solver:
+{threads: N}``), the runs interleaved with the Newton modes; the time loop is printed as wall
+and CPU seconds of the process (all its threads), and every threaded run is checked bit for bit
+against the one-thread run of the same mode (``identical``).  The OpenMP wait policy is
+floatmoor's (passive) unless ``OMP_WAIT_POLICY`` is set in the environment.
 """
 
 from __future__ import annotations
@@ -49,6 +55,7 @@ def main() -> None:
     ap.add_argument("--per-line", action="store_true")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-qs", action="store_true")
+    ap.add_argument("--threads", type=int, nargs="+", default=[1])
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     import numba
@@ -56,6 +63,7 @@ def main() -> None:
     from floatmoor.analyses.simulate import simulate
     from floatmoor.io.build import build
     from floatmoor.io.scene import load_scene
+    from floatmoor.io.solver_section import SolverSpec
     from floatmoor.mooring.fe.line import FELine
 
     plain_start = FELine.start
@@ -94,9 +102,11 @@ def main() -> None:
           f"{numba.__version__}; seed {args.seed}, {args.duration:g} s simulated "
           f"(transient 1200 s left out of the maxima)")
     # warm-up (numba cache load / compile) on a short run
-    t0 = time.perf_counter()
-    simulate(FE, seed=args.seed, duration=20.0, dt=args.dt[0])
-    print(f"first short FE run (cache load or compile): {time.perf_counter() - t0:.1f} s")
+    for th in sorted(set(args.threads)):
+        t0 = time.perf_counter()
+        simulate(FE, seed=args.seed, duration=20.0, dt=args.dt[0], solver=SolverSpec(threads=th))
+        print(f"first short FE run, {th} thread(s) (cache load or compile): "
+              f"{time.perf_counter() - t0:.1f} s")
     qs = {}
     for dt in ([] if args.no_qs else args.dt):
         w0 = time.perf_counter()
@@ -107,22 +117,36 @@ def main() -> None:
               f"{time.perf_counter() - w0:.1f} s, max tension {qs[dt].max() / 1e3:.0f} kN "
               f"(line {ds.line.values[int(np.argmax(qs[dt]))]}); load {_load()}")
     first = {}
-    runs = [(dt, nw) for dt in args.dt for _ in range(args.repeat) for nw in args.newton]
-    for dt, nw in runs:
+    single = {}
+    runs = [(dt, nw, th) for dt in args.dt for _ in range(args.repeat) for nw in args.newton
+            for th in args.threads]
+    for dt, nw, th in runs:
         built = fe_scene(nw)
         w0 = time.perf_counter()
         c0 = time.process_time()
-        ds = simulate(built, seed=args.seed, duration=args.duration, dt=dt)
+        ds = simulate(built, seed=args.seed, duration=args.duration, dt=dt,
+                      solver=SolverSpec(threads=th))
         wall = time.perf_counter() - w0
         cpu = time.process_time() - c0
         loop = ds.attrs["run_time_s"]
+        if len(args.threads) > 1:
+            key = (dt, nw)
+            if th == args.threads[0]:
+                single.setdefault(key, ds)
+            elif key in single:
+                same = all(np.array_equal(ds[v].values, single[key][v].values,
+                                          equal_nan=ds[v].dtype.kind == "f")
+                           for v in ds.data_vars)
+                print(f"    {th} thread(s) against {single[key].attrs.get('fe_threads', 1)}: "
+                      f"{'identical' if same else 'DIFFERENT'}")
         sel = ds.time.values >= 1200.0
         tfe = ds.line_tension.values[sel].max(axis=0)
         tmax_line = ds.max_tension_along_line.values[sel].max()
         n_steps = ds.time.size - 1
         newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
         i = int(np.argmax(tfe))
-        print(f"FE  dt {dt:g} newton {nw}: loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
+        print(f"FE  dt {dt:g} newton {nw} threads {ds.attrs.get('fe_threads', 1)}: "
+              f"loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
               f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
               f"per wall s; {newton:.2f} Newton iterations per line step, "
               f"{ds.attrs['fe_step_halvings']} halvings; load {_load()}")

@@ -9,7 +9,12 @@
   command again); files are written to ``*.nc.tmp`` and renamed when complete, so a file that
   exists is complete;
 * a failing seed never stops the others: its error is written to ``<name>_seed<NNNN>.error.txt``
-  and reported at the end (and the file is removed when that seed later succeeds).
+  and reported at the end (and the file is removed when that seed later succeeds);
+* threads of the FE lines (``solver: {threads: N}`` or ``threads=``): each of the ``W`` worker
+  processes runs with at most ``cores // W`` threads (at least 1;
+  :func:`floatmoor.io.solver_section.with_thread_cap`), so seeds and threads never ask for more
+  than the cores; in-process runs take at most the cores.  The threads change no result (not
+  part of the fingerprint).
 """
 
 from __future__ import annotations
@@ -100,9 +105,21 @@ def _ignore_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
+def _worker_context():
+    """The start method of the worker processes: the platform's default (fork on Linux), or
+    ``spawn`` once numba's thread pool runs in this process (a threaded run of FE lines before,
+    ``solver.threads``): numba's OpenMP pool terminates a forked child (not fork-safe)."""
+    par = sys.modules.get("numba.np.ufunc.parallel")
+    if par is None or not getattr(par, "_is_initialized", False):
+        return None
+    import multiprocessing
+    return multiprocessing.get_context("spawn")
+
+
 def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
-             fingerprint: str = "") -> SeedOutcome:
-    """Worker: simulate one seed and write it (temp file + rename)."""
+             fingerprint: str = "", threads=None, thread_cap: int = 1) -> SeedOutcome:
+    """Worker: simulate one seed and write it (temp file + rename); ``threads`` (None: the
+    scene's) at most ``thread_cap``."""
     import warnings
 
     import numpy as np
@@ -118,10 +135,12 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
         with warnings.catch_warnings():  # the parent has shown the scene's warnings
             warnings.simplefilter("ignore")
             scene = load_scene(scene_path)
+        from ..io.solver_section import with_thread_cap
+        solver = with_thread_cap(scene.solver, thread_cap, threads)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("ignore")
             warnings.simplefilter("always", FloatmoorWarning)
-            ds = simulate(scene, seed=seed, **overrides)
+            ds = simulate(scene, seed=seed, solver=solver, **overrides)
         messages = tuple(dict.fromkeys(str(w.message) for w in caught
                                        if issubclass(w.category, FloatmoorWarning)))
         if fingerprint:
@@ -154,7 +173,7 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
 
 def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrides=None,
               echo=print, progress: bool | None = None, force: bool = False,
-              in_process: bool | None = None) -> BatchResult:
+              in_process: bool | None = None, threads=None) -> BatchResult:
     """Run ``seeds`` of the scene file ``scene_path`` into ``out_dir``.
 
     Parameters
@@ -169,6 +188,8 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     force : recompute seeds whose files came from different inputs (default: refuse).
     in_process : run the seeds in this process (default: when ``workers`` is 1); otherwise in
         worker processes, which Ctrl-C stops at once (a seed in progress is abandoned).
+    threads : threads of the FE lines per seed, a positive integer or ``"auto"`` (default: the
+        scene's ``solver.threads``); at most the cores divided among the worker processes.
 
     Returns
     -------
@@ -286,6 +307,9 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     src = os.fspath(Path(scene_path).resolve())
     if in_process is None:
         in_process = workers == 1
+    from ..io.solver_section import worker_thread_cap
+    cap = worker_thread_cap(1 if in_process else workers)
+    run_kw = {"threads": threads, "thread_cap": cap}
     record = out_dir / "interrupted.txt"
     running: set[int] = set()
     with _interrupts_as_keyboard_interrupt():
@@ -293,13 +317,14 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
             if in_process:
                 for s, path in todo:
                     running = {s}
-                    report(_run_one(src, s, os.fspath(path), overrides, fp_text))
+                    report(_run_one(src, s, os.fspath(path), overrides, fp_text, **run_kw))
                 running = set()
             elif todo:
-                pool = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint)
+                pool = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint,
+                                           mp_context=_worker_context())
                 try:
                     futs = {pool.submit(_run_one, src, s, os.fspath(path), overrides,
-                                        fp_text): (s, path) for s, path in todo}
+                                        fp_text, **run_kw): (s, path) for s, path in todo}
                     running = {s for s, _ in todo}
                     for fut in as_completed(futs):
                         s, path = futs[fut]

@@ -295,7 +295,7 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
                                    "at the step start plus the change of the lines' "
                                    "quasi-static catenary force (floatmoor/solvers/"
                                    "fe_coupling.py)")
-        for k in ("fe_substeps", "fe_newton_iterations", "fe_step_halvings"):
+        for k in ("fe_substeps", "fe_newton_iterations", "fe_step_halvings", "fe_threads"):
             if k in r.info:
                 ds.attrs[k] = int(r.info[k])
         if "fe_elements" in r.info:

@@ -115,7 +115,8 @@ def warm_worker(base_path: str, analysis: dict) -> dict:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             _api.frequency_domain(short)
-            _api.simulate(dataclasses.replace(short, mooring=copy.deepcopy(mooring)), seed=1)
+            _api.simulate(dataclasses.replace(short, mooring=copy.deepcopy(mooring)), seed=1,
+                          solver=one_thread(scene))
     except Exception as exc:  # noqa: BLE001 - the tasks report their own errors
         out["error"] = _error_text(exc)
     out["wall_time_s"] = time.perf_counter() - t0
@@ -307,6 +308,14 @@ def storm_dataset(ds, case, seed: int, storage, transient: float, keep_series: b
     return out
 
 
+def one_thread(scene):
+    """The scene's ``solver`` options with one thread for the FE lines: a campaign runs one
+    storm per single-threaded worker process (parallel over storms), so a task never starts
+    threads of its own (results are the same: the threads are bit-identical)."""
+    from ..io.solver_section import with_thread_cap
+    return with_thread_cap(getattr(scene, "solver", None), 1)
+
+
 def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path: str,
               keep_series: bool | None = None) -> dict:
     """Simulate one storm (``case``, ``seed``) and write ``out_path``; never raises."""
@@ -321,7 +330,7 @@ def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path
             warnings.simplefilter("ignore")
             warnings.simplefilter("always", FloatmoorWarning)
             t_sim, c_sim = time.perf_counter(), time.process_time()
-            ds = _api.simulate(built, seed=int(seed))
+            ds = _api.simulate(built, seed=int(seed), solver=one_thread(scene))
             sim_time = time.perf_counter() - t_sim   # the storm's own run time
             sim_cpu = time.process_time() - c_sim
         transient = float(scene.analysis.transient)

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-__all__ = ["positive_float", "nonnegative_float", "seed_int", "positive_int", "MAX_SEED"]
+__all__ = ["positive_float", "nonnegative_float", "seed_int", "positive_int", "thread_count",
+           "MAX_SEED"]
 
 
 def _number(text: str, ok, what: str) -> float:
@@ -55,6 +56,17 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected an integer >= 1, found {text}")
     return value
+
+
+def thread_count(text: str) -> int | str:
+    """A thread count: an integer >= 1 or ``auto``."""
+    if text.strip().lower() == "auto":
+        return "auto"
+    try:
+        return positive_int(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 1 or auto, found "
+                                         f"{text[:40]!r}") from None
 
 
 def check_out_dir(path) -> None:

@@ -17,7 +17,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .argtypes import check_out_dir, positive_float, positive_int
+from .argtypes import check_out_dir, positive_float, positive_int, thread_count
 
 HELP = "time-domain storm simulation of seeds in parallel (one netCDF file per seed)"
 
@@ -40,6 +40,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="time step in s (default: analysis.dt)")
     p.add_argument("--lines", type=positive_int, default=3, metavar="N",
                    help="most loaded lines shown in the table (default 3)")
+    p.add_argument("--threads", type=thread_count, default=None, metavar="N",
+                   help="threads advancing the finite-element lines of each seed, N or auto "
+                        "(default: the scene's solver.threads, else 1); at most the cores "
+                        "divided by the workers; results are identical")
 
 
 def summary_table(files, n_lines: int = 3) -> str:
@@ -147,7 +151,7 @@ def _run_batch(args, seeds, out, overrides, resume_out=None) -> int:
     try:
         batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
                           echo=lambda s: print(s, flush=True), force=args.force,
-                          in_process=False)
+                          in_process=False, threads=args.threads)
     except BatchInterrupted as exc:
         done = [o.seed for o in exc.finished]
         print(f"floatmoor: interrupted: {len(done)} seed(s) finished, {len(exc.interrupted)} "
@@ -172,7 +176,8 @@ def _resume_command(args: argparse.Namespace, out: Path) -> str:
     import shlex
     words = ["floatmoor", "run", args.scene, "--out", str(out)]
     for flag, value in (("--seeds", args.seeds), ("--duration", args.duration),
-                        ("--dt", args.dt), ("--workers", args.workers)):
+                        ("--dt", args.dt), ("--workers", args.workers),
+                        ("--threads", args.threads)):
         if value is not None:
             words += [flag, f"{value:g}" if isinstance(value, float) else str(value)]
     return " ".join(shlex.quote(w) for w in words)

@@ -5,6 +5,7 @@ solver:
   catenary: predictor      # exact (default) | predictor
   memory: state_space      # convolution (default) | state_space
   memory_fit_tol: 0.01     # relative L2 error of the state-space fits (default 0.01)
+  threads: 2               # threads for the finite-element lines: 1 (default) | N | auto
 ```
 
 ``catenary``: ``exact`` solves every quasi-static line at every RK4 stage by Newton's method to
@@ -22,19 +23,35 @@ with ``memory_fit_tol: 0.001`` (0.6 s more setup); the storm's peaks move by 0.0
 order of the time-step error at dt 0.1 s (benchmarks/RESULTS.md).
 ``floatmoor convergence --solver`` reports the differences against run time.
 
+``threads``: the finite-element lines of the body are advanced in that many threads
+(:func:`floatmoor.mooring.fe.multi.body_advance_parallel`); the results are bit for bit those of
+one thread (the lines are independent within a body step; their sum stays in the line order),
+so this is not an approximation and changes nothing without FE lines.  ``auto``: numba's
+thread pool (``NUMBA_NUM_THREADS``, the CPUs by default); a number above it is reduced to it.
+Processes that run several storms at once never oversubscribe the cores
+(:func:`with_thread_cap`): ``floatmoor run`` with ``--workers W`` runs each worker with at most
+``cores // W`` threads (at least 1), and campaign tasks (one storm per single-threaded worker)
+with 1.  One thread (the default) runs the serial kernel, which neither contains nor compiles
+the parallel one.
+
 Every key is optional; the defaults are the exact path (bit-identical results).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 from ..core.config import Node
+from ..core.errors import SceneError
 
 __all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES",
-           "MEMORY_MODES", "catenary_tol"]
+           "MEMORY_MODES", "catenary_tol", "THREADS_AUTO", "parse_threads", "available_threads",
+           "run_threads", "with_thread_cap", "worker_thread_cap"]
 
-SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol")
+SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads")
+THREADS_AUTO = "auto"
+THREADS_EXPECTED = "a positive integer or auto"
 CATENARY_MODES = ("exact", "predictor")
 MEMORY_MODES = ("convolution", "state_space")
 
@@ -46,6 +63,8 @@ class SolverSpec:
     catenary: str = "exact"
     memory: str = "convolution"
     memory_fit_tol: float = 0.01
+    threads: int | str = 1
+    """Threads for the FE lines: a positive integer or ``"auto"`` (:func:`run_threads`)."""
     file: object = field(default=None, compare=False)
 
     @property
@@ -57,6 +76,10 @@ class SolverSpec:
         fit = (f" (fit {self.memory_fit_tol:g})" if self.memory == "state_space" else "")
         return f"catenary {self.catenary}, memory {self.memory}{fit}"
 
+    def describe_threads(self) -> str:
+        """``""`` for one thread, else e.g. ``"threads 2"``."""
+        return "" if self.threads == 1 else f"threads {self.threads}"
+
 
 def parse_solver(node: Node) -> SolverSpec:
     """Read a ``solver:`` mapping (SceneError naming file and key for every mistake)."""
@@ -66,7 +89,61 @@ def parse_solver(node: Node) -> SolverSpec:
                       memory=node.str("memory", d.memory, choices=MEMORY_MODES),
                       memory_fit_tol=node.float("memory_fit_tol", d.memory_fit_tol, gt=0.0,
                                                 lt=1.0),
+                      threads=parse_threads(node.raw("threads", d.threads), file=node.file,
+                                            key=node.key("threads")),
                       file=node.file)
+
+
+def parse_threads(value, *, file=None, key: str = "solver.threads") -> int | str:
+    """A thread count: a positive integer or ``"auto"`` (SceneError naming ``file`` and
+    ``key`` otherwise); digits in a string (a command-line value) are read as the integer."""
+    if isinstance(value, str) and value.strip().isdigit():
+        value = int(value.strip())
+    if value == THREADS_AUTO:
+        return THREADS_AUTO
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise SceneError(file, key, THREADS_EXPECTED, value)
+    return int(value)
+
+
+def available_threads() -> int:
+    """numba's thread pool: ``NUMBA_NUM_THREADS`` (the CPUs of the machine by default)."""
+    import numba
+    return max(1, int(numba.config.NUMBA_NUM_THREADS))
+
+
+def run_threads(spec: SolverSpec | None) -> int:
+    """The threads a run of ``spec`` uses: 1 without a spec, ``auto`` the whole pool
+    (:func:`available_threads`), a number at most the pool."""
+    if spec is None:
+        return 1
+    pool = available_threads()
+    if spec.threads == THREADS_AUTO:
+        return pool
+    return max(1, min(int(spec.threads), pool))
+
+
+def worker_thread_cap(workers: int) -> int:
+    """Threads per process when ``workers`` processes run at once: the CPUs available to this
+    process divided among them (at least 1)."""
+    import os
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        cores = os.cpu_count() or 1
+    return max(1, cores // max(1, int(workers)))
+
+
+def with_thread_cap(spec: SolverSpec | None, cap: int, threads=None) -> SolverSpec | None:
+    """``spec`` with ``threads`` (when given: a command-line choice replacing the scene's) and
+    at most ``cap`` threads (a process among several running storms at once); ``None`` stays
+    ``None`` unless ``threads`` asks for more than one."""
+    if threads is not None:
+        spec = dataclasses.replace(spec if spec is not None else SolverSpec(), threads=threads)
+    if spec is None:
+        return None
+    n = min(run_threads(spec), max(1, int(cap)))
+    return spec if n == spec.threads else dataclasses.replace(spec, threads=n)
 
 
 def catenary_tol(spec: SolverSpec | None) -> float:
@@ -77,6 +154,9 @@ def catenary_tol(spec: SolverSpec | None) -> float:
 
 def describe_solver(spec: SolverSpec | None, scene=None) -> list[str]:
     """Lines for ``Scene.describe()``."""
-    if spec is None or spec.exact:
+    if spec is None:
         return []
-    return [f"solver: {spec.describe()}"]
+    words = [] if spec.exact else [spec.describe()]
+    if spec.describe_threads():
+        words.append(spec.describe_threads())
+    return [f"solver: {', '.join(words)}"] if words else []

@@ -59,11 +59,21 @@ Scope and limits
   :func:`floatmoor.mooring.fe.kernels.record_into` at every step.
 * A failing FE step raises NumericalError naming the time, the line and node and a remedy; the
   tension guard (``tension_guard`` x MBS) also applies to the FE tensions.
+
+Threads
+-------
+``solver: {threads: N}`` (:mod:`floatmoor.io.solver_section`): the FE lines of the body are
+advanced in N threads at every body step (:class:`FERun` ``mode`` a
+:class:`~floatmoor.mooring.fe.multi.ParallelLines`, kernel
+:func:`~floatmoor.mooring.fe.multi.body_advance_parallel`); results bit for bit those of one
+thread.  One thread (the default) compiles and runs the serial kernel only.  numba's thread
+count is set around the run and restored (:func:`numba_threads`).
 """
 
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -75,7 +85,14 @@ from ..core.frames import rotation_matrix_into
 from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
-from ..mooring.fe.multi import FEBody, add_line_wrench, body_accept, body_advance, line_list
+from ..mooring.fe.multi import (
+    FEBody,
+    add_line_wrench,
+    advance_lines,
+    body_accept,
+    line_list,
+    lines_mode,
+)
 from ..mooring.system import system_force_kernel
 from .td_kernel import (
     STATUS_CATENARY,
@@ -114,6 +131,10 @@ class FERun(NamedTuple):
     records: np.ndarray
     """(3, n_steps+1, n_lines) out: max tension along the line, grounded length, touchdown
     tension of the FE lines (NaN for the others)."""
+    mode: object
+    """:class:`~floatmoor.mooring.fe.multi.SerialLines` or
+    :class:`~floatmoor.mooring.fe.multi.ParallelLines`: the lines advanced one after the
+    other or in threads (:func:`~floatmoor.mooring.fe.multi.advance_lines`; bit-identical)."""
 
 
 @dataclass(kw_only=True)
@@ -336,8 +357,8 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
         vel[3] = prate[3] * cps * cph - prate[4] * sps
         vel[4] = prate[3] * sps * cph + prate[4] * cps
         vel[5] = prate[5] - prate[3] * sph
-        st = body_advance((n + 1) * dt, dt, fe.nsub, fe.max_split, x, vel, fe_body,
-                          fe_lines)
+        st = advance_lines(fe.mode, (n + 1) * dt, dt, fe.nsub, fe.max_split, x, vel, fe_body,
+                           fe_lines)
         if st < 0:
             status[0] = STATUS_FE
             status[1] = n + 1
@@ -347,11 +368,14 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
         body_accept(fe_body.on, fe_lines)
 
 
-def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int):
+def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
     ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
     the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
-    n+1, n_lines))``; the FE channels are NaN for quasi-static lines.
+    n+1, n_lines))``; the FE channels are NaN for quasi-static lines.  ``threads`` > 1:
+    the lines advance in that many threads (numba's count set for the kernel and restored
+    after it; bit-identical results, :func:`floatmoor.mooring.fe.multi.body_advance_parallel`);
+    1: the serial kernel.
 
     Raises
     ------
@@ -392,13 +416,45 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int):
     fe = FERun(index=np.ascontiguousarray(c.index), active=active_fe,
                warm=np.zeros((n_lines, 2)), nsub=int(c.substeps),
                max_split=int(FELine.MAX_SPLIT),
-               records=np.full((3, n_steps + 1, n_lines), np.nan))
-    td_fe_kernel(body, terms, moor, st, out, fe, fe_body, line_list(lines))
+               records=np.full((3, n_steps + 1, n_lines), np.nan),
+               mode=lines_mode(nf, threads))
+    with numba_threads(fe.mode.threads):
+        td_fe_kernel(body, terms, moor, st, out, fe, fe_body, line_list(lines))
     fm.on[:] = on
     t_end = int(status[1]) * body.dt
     for ln in lines:
         ln.set_time(t_end)
     return status, fe.records
+
+
+OMP_WAIT_POLICY = "PASSIVE"
+"""Wait policy of the OpenMP threads that numba starts for the FE lines, unless the environment
+sets ``OMP_WAIT_POLICY`` or ``GOMP_SPINCOUNT``: the threads meet twice per body step (~0.3 ms
+of work), and a thread spinning while its partner waits for a core makes a loaded machine up
+to 10 times slower (benchmarks/RESULTS.md); passive threads sleep instead."""
+
+
+@contextmanager
+def numba_threads(n: int):
+    """numba's thread count ``n`` inside the block (of this thread), the previous one after it;
+    nothing for one thread (the serial kernels do not use the pool).  Before numba starts its
+    threads (the first call in a process), the environment gets :data:`OMP_WAIT_POLICY`
+    unless it chooses a wait policy itself."""
+    n = int(n)
+    if n <= 1:
+        yield
+        return
+    import os
+
+    import numba
+    if "OMP_WAIT_POLICY" not in os.environ and "GOMP_SPINCOUNT" not in os.environ:
+        os.environ["OMP_WAIT_POLICY"] = OMP_WAIT_POLICY  # read when the OpenMP library loads
+    before = numba.get_num_threads()
+    numba.set_num_threads(min(n, int(numba.config.NUMBA_NUM_THREADS)))
+    try:
+        yield
+    finally:
+        numba.set_num_threads(before)
 
 
 def raise_fe_status(c: FECoupling, status) -> None:

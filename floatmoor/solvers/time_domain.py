@@ -419,13 +419,16 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     if a.fe is None:
         td_kernel(body, terms, lines, out)
     else:
+        from ..io.solver_section import run_threads
         from .fe_coupling import FE_RECORDS, raise_fe_status
         from .fe_coupling import run as fe_run
-        fe_status, fe_out = fe_run(a.fe, body, terms, lines, out, x0=x0, n_lines=n_lines)
+        threads = run_threads(a.solver)
+        fe_status, fe_out = fe_run(a.fe, body, terms, lines, out, x0=x0, n_lines=n_lines,
+                                   threads=threads)
         raise_fe_status(a.fe, fe_status)
         status[:] = fe_status[:3]
         fe_records = dict(zip(FE_RECORDS, fe_out))
-        fe_info = {"fe_substeps": int(a.fe.substeps),
+        fe_info = {"fe_substeps": int(a.fe.substeps), "fe_threads": int(threads),
                    "fe_newton_iterations": int(a.fe.mooring.counters[:, 0].sum()),
                    "fe_step_halvings": int(a.fe.mooring.counters[:, 1].sum()),
                    "fe_elements": [int(ln.n_nodes - 1) for ln in a.fe.mooring.lines]}

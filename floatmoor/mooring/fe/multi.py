@@ -6,6 +6,15 @@ unchanged), the end forces and their generalised force on the body are one call
 typed list of their :class:`~.bundles.LineBundle` (the bundles hold the lines' own arrays: no
 copies), so every :class:`FELine` stays valid for its other methods; the body side is one
 :class:`FEBody`.
+
+Threads (``solver: {threads: N}``): :func:`body_advance_parallel` advances the lines of a
+body in ``numba.prange`` (a ``parallel=True`` kernel), each line on one thread with its own
+bundles (every array a line's advance writes is its own: state, work arrays, counters of the
+advance in ``work.stats``; the typed list is only read), and then sums the wrench, the counters
+and the failure report in the serial line order: its results are bit for bit those of
+:func:`body_advance` for any thread count.  :func:`advance_lines` chooses the kernel on the
+type of its ``mode`` bundle (:class:`SerialLines` or :class:`ParallelLines`), so a serial run
+neither contains nor compiles the parallel kernel.
 """
 
 from __future__ import annotations
@@ -13,12 +22,15 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
+from numba.extending import overload
 
 from ...core.frames import rotation_matrix_into
 from .kernels import ga_advance
 
-__all__ = ["FEBody", "new_body", "line_list", "body_advance", "body_accept", "add_line_wrench"]
+__all__ = ["FEBody", "new_body", "line_list", "body_advance", "body_accept", "add_line_wrench",
+           "SerialLines", "ParallelLines", "lines_mode", "advance_lines",
+           "body_advance_parallel"]
 
 
 class FEBody(NamedTuple):
@@ -88,14 +100,7 @@ def body_advance(t1, dt, nsub, max_split, pose, vel, body, lines):
         Q[k] = 0.0
     nl = fair_b.shape[0]
     for i in range(nl):
-        for c in range(3):
-            arm[i, c] = R[c, 0] * fair_b[i, 0] + R[c, 1] * fair_b[i, 1] + R[c, 2] * fair_b[i, 2]
-        rf_all[i, 0] = pose[0] + arm[i, 0]
-        rf_all[i, 1] = pose[1] + arm[i, 1]
-        rf_all[i, 2] = pose[2] + arm[i, 2]
-        vf_all[i, 0] = vel[0] + vel[4] * arm[i, 2] - vel[5] * arm[i, 1]
-        vf_all[i, 1] = vel[1] + vel[5] * arm[i, 0] - vel[3] * arm[i, 2]
-        vf_all[i, 2] = vel[2] + vel[3] * arm[i, 1] - vel[4] * arm[i, 0]
+        fairlead_into(i, pose, vel, R, fair_b, arm, rf_all, vf_all)
         if not on[i]:
             for c in range(3):
                 forces[i, c] = 0.0
@@ -117,6 +122,21 @@ def body_advance(t1, dt, nsub, max_split, pose, vel, body, lines):
             forces[i, c] = f[n - 1, c]
         add_line_wrench(i, arm, forces, Q)
     return 0
+
+
+@njit(cache=True)
+def fairlead_into(i, pose, vel, R, fair_b, arm, rf, vf):
+    """Lever arm ``arm[i]`` (rotation ``R`` of the body-axes fairlead ``fair_b[i]``), position
+    ``rf[i]`` and velocity ``vf[i]`` of fairlead ``i`` for the body at ``pose`` moving with
+    ``vel`` (angular velocity in earth axes)."""
+    for c in range(3):
+        arm[i, c] = R[c, 0] * fair_b[i, 0] + R[c, 1] * fair_b[i, 1] + R[c, 2] * fair_b[i, 2]
+    rf[i, 0] = pose[0] + arm[i, 0]
+    rf[i, 1] = pose[1] + arm[i, 1]
+    rf[i, 2] = pose[2] + arm[i, 2]
+    vf[i, 0] = vel[0] + vel[4] * arm[i, 2] - vel[5] * arm[i, 1]
+    vf[i, 1] = vel[1] + vel[5] * arm[i, 0] - vel[3] * arm[i, 2]
+    vf[i, 2] = vel[2] + vel[3] * arm[i, 1] - vel[4] * arm[i, 0]
 
 
 @njit(cache=True)
@@ -145,3 +165,111 @@ def body_accept(on, lines):
         now.a[:, :] = tr.a
         now.f[:, :] = tr.f
         now.fs[:, :] = tr.fs
+
+
+# -- threads ----------------------------------------------------------------------------------
+class SerialLines(NamedTuple):
+    """Mode bundle of :func:`advance_lines`: the lines one after the other
+    (:func:`body_advance`)."""
+
+    status: np.ndarray
+    """(n,) int64 (unused here: the fields of :class:`ParallelLines`)."""
+    threads: int
+    """1."""
+
+
+class ParallelLines(NamedTuple):
+    """Mode bundle of :func:`advance_lines`: the lines in threads
+    (:func:`body_advance_parallel`)."""
+
+    status: np.ndarray
+    """(n,) int64 status of each line's last advance (out)."""
+    threads: int
+    """Threads (numba's thread count must be set to it around the kernel call)."""
+
+
+def lines_mode(n_lines: int, threads: int):
+    """The mode bundle for ``n_lines`` lines advanced with ``threads`` threads: serial for one
+    thread (or one line), parallel otherwise."""
+    status = np.zeros(max(int(n_lines), 1), np.int64)
+    nt = min(int(threads), int(n_lines))
+    if nt > 1:
+        return ParallelLines(status=status, threads=nt)
+    return SerialLines(status=status, threads=1)
+
+
+@njit(cache=True, parallel=True)
+def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, status, threads):
+    """:func:`body_advance` with the lines advanced in threads: ``numba.prange`` over
+    ``threads`` slots, slot ``k`` advancing lines ``k, k + threads, ...`` (run it with numba's
+    thread count ``threads``); ``status`` (n,) int64 scratch, each line's advance status.
+
+    Bit for bit the results of :func:`body_advance` for any number of threads: each line's
+    advance touches only that line's bundles (the typed list is only read), and the end
+    forces, the wrench ``body.Q``, the counters and the failure report are done after the
+    threads, in the line order.  When several lines fail, the lowest index is reported (the
+    serial loop stops there); the lines after it were advanced too (their trial states, scratch
+    until accepted, differ from a serial run's; the counters, forces and ``Q`` do not)."""
+    fair_b, R, rf_all, vf_all, arm, Q, forces, on, fail, counters = body
+    rotation_matrix_into(pose[3], pose[4], pose[5], R)
+    for k in range(6):
+        Q[k] = 0.0
+    nl = fair_b.shape[0]
+    for i in range(nl):
+        fairlead_into(i, pose, vel, R, fair_b, arm, rf_all, vf_all)
+    # one prange iteration per thread, lines interleaved (thread k: lines k, k + nt, ...): the
+    # lines of a mooring come in clusters (corners, windward and leeward), each thread gets
+    # some of every cluster
+    nt = max(1, min(threads, nl))
+    for k in prange(nt):
+        for i in range(np.int64(k), nl, nt):
+            status[i] = 0
+            if on[i]:
+                ln = lines[i]
+                st_i = ln.work.stats
+                st_i[0] = 0.0
+                st_i[1] = 0.0
+                status[i] = ga_advance(t1, dt, nsub, max_split, rf_all[i], vf_all[i], ln.now,
+                                       ln.trial, ln.step, ln.par, ln.work)
+    for i in range(nl):
+        if not on[i]:
+            for c in range(3):
+                forces[i, c] = 0.0
+            continue
+        ln = lines[i]
+        st_i = ln.work.stats
+        counters[i, 0] += st_i[0]
+        counters[i, 1] += st_i[1]
+        if status[i] < 0:
+            fail[0] = i
+            return status[i]
+        f = ln.trial.f
+        n = f.shape[0]
+        for c in range(3):
+            forces[i, c] = f[n - 1, c]
+        add_line_wrench(i, arm, forces, Q)
+    return 0
+
+
+def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+    """:func:`body_advance` (``mode`` a :class:`SerialLines`) or
+    :func:`body_advance_parallel` (a :class:`ParallelLines`).  Compiled, the choice is made on
+    the type of ``mode`` (:func:`_advance_lines_typed`): a kernel compiled for serial lines
+    neither contains nor compiles the parallel one."""
+    if isinstance(mode, ParallelLines):
+        return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
+                                     mode.status, mode.threads)
+    return body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
+
+
+@overload(advance_lines)
+def _advance_lines_typed(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+    if getattr(mode, "instance_class", None) is ParallelLines:
+        def parallel(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+            return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
+                                         mode.status, mode.threads)
+        return parallel
+
+    def serial(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+        return body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
+    return serial
