@@ -71,7 +71,7 @@ from floatmoor.analyses.simulate import simulate
 t_import = time.process_time()
 simulate({scene!r}, seed=1, duration=60.0, dt=0.1)
 t_end = time.process_time()
-print("function (nested: compiled for its caller)            CPU s   of which LLVM")
+print("function (latest first; indented: compiled for its caller)  CPU s  of which LLVM")
 for depth, name, cpu, llvm in reversed(rows):
     print(f"{{'  ' * depth + name:52s}} {{cpu:6.2f}}  {{llvm:6.2f}}")
 top = sum(r[2] for r in rows if r[0] == 0)
