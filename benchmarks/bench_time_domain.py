@@ -13,6 +13,10 @@ dt = 0.1 s, 10800 s simulated.  Prints
 
 Run: ``.venv/bin/python benchmarks/bench_time_domain.py [--duration 10800] [--dt 0.1]
 [--solver catenary=predictor,memory=state_space]``
+
+``--compile-profile``: instead, the first run's compilation function by function (a 60 s run
+in a fresh subprocess with an empty numba cache): numba's compile events, nested, inclusive CPU
+seconds and the CPU spent holding LLVM's lock (optimisation and machine code) inside each.
 """
 
 from __future__ import annotations
@@ -40,6 +44,51 @@ print(time.perf_counter() - t0)
 """
 
 
+_PROFILE = """
+import time, warnings
+t_start = time.process_time()
+from numba.core import event
+stack, rows = [], []
+class Compile(event.Listener):
+    def on_start(self, ev):
+        stack.append([time.process_time(), 0.0])
+    def on_end(self, ev):
+        t0, llvm = stack.pop()
+        rows.append((len(stack), ev.data["dispatcher"].py_func.__qualname__,
+                     time.process_time() - t0, llvm))
+        if stack:
+            stack[-1][1] += llvm
+class Llvm(event.Listener):
+    def on_start(self, ev):
+        self.t0 = time.process_time()
+    def on_end(self, ev):
+        if stack:
+            stack[-1][1] += time.process_time() - self.t0
+event.register("numba:compile", Compile())
+event.register("numba:llvm_lock", Llvm())
+warnings.simplefilter("ignore")
+from floatmoor.analyses.simulate import simulate
+t_import = time.process_time()
+simulate({scene!r}, seed=1, duration=60.0, dt=0.1)
+t_end = time.process_time()
+print("function (latest first; indented: compiled for its caller)  CPU s  of which LLVM")
+for depth, name, cpu, llvm in reversed(rows):
+    print(f"{{'  ' * depth + name:52s}} {{cpu:6.2f}}  {{llvm:6.2f}}")
+top = sum(r[2] for r in rows if r[0] == 0)
+print(f"imports {{t_import - t_start:.2f}} s, all compilation {{top:.2f}} s, whole process "
+      f"{{t_end - t_start:.2f}} s (CPU)")
+"""
+
+
+def compile_profile() -> None:
+    """Print the compile profile of a first run (empty numba cache, fresh process)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        env = dict(os.environ, NUMBA_CACHE_DIR=tmp)
+        out = subprocess.run([sys.executable, "-c", _PROFILE.format(scene=str(SCENE))],
+                             env=env, capture_output=True, text=True, check=True)
+    print(out.stdout)
+
+
 def first_run(cache_dir: str | None) -> float:
     env = dict(os.environ)
     if cache_dir is not None:
@@ -58,7 +107,12 @@ def main() -> None:
                     help="solver options, e.g. catenary=predictor,memory=state_space")
     ap.add_argument("--extreme", action="store_true",
                     help="instead: dt sweep of the storm / taut / slack cases (1200 s each)")
+    ap.add_argument("--compile-profile", action="store_true",
+                    help="instead: the first run's compilation, function by function")
     args = ap.parse_args()
+    if args.compile_profile:
+        compile_profile()
+        return
     if args.extreme:
         extreme()
         return

@@ -135,3 +135,38 @@ print(json.dumps(compiled))
     assert "floatmoor.mooring.catenary_step.system_force_step_kernel" not in names, names
     assert not [n for n in names if n.startswith("floatmoor.mooring.fibre")
                 and not n.endswith("_fibre_step_typed.<locals>.nothing")], names
+
+
+@pytest.mark.slow
+def test_seed_batch_compiles_the_time_loop_once(tmp_path):
+    """Two seeds on two worker processes from an empty cache: one worker compiles the time loop
+    and the other loads it from numba's cache once it is there (run_seeds' compile-once
+    start-up), instead of both compiling the same kernels at the same time.  Compile events
+    are recorded per process (the workers are forked with the listener)."""
+    log = tmp_path / "events"
+    log.mkdir()
+    out = _run(f"""
+import os
+from numba.core import event
+class PerProcess(event.Listener):
+    def on_start(self, ev):
+        pass
+    def on_end(self, ev):
+        f = ev.data["dispatcher"].py_func
+        with open(os.path.join({str(log)!r}, str(os.getpid())), "a") as fh:
+            fh.write(f.__module__ + "." + f.__qualname__ + "\\n")
+event.register("numba:compile", PerProcess())
+from floatmoor.analyses.runner import run_seeds
+res = run_seeds("scenes/floatel_100yr.yaml", [1, 2], {str(tmp_path / "out")!r}, workers=2,
+                overrides={{"duration": 1500.0}}, echo=None, progress=False)
+print(json.dumps([o.status for o in res.outcomes]))
+""", tmp_path)
+    assert out == ["done", "done"]
+    per_process = {p.name: p.read_text().split() for p in log.iterdir()}
+    loops = [pid for pid, names in per_process.items()
+             if "floatmoor.solvers.td_kernel.td_steps" in names]
+    assert len(loops) == 1, per_process
+    others = {pid: names for pid, names in per_process.items() if pid != loops[0]}
+    assert not [n for names in others.values() for n in names
+                if n.startswith("floatmoor.solvers.") or n.startswith("floatmoor.mooring.")], \
+        others

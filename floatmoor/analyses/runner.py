@@ -116,6 +116,83 @@ def _worker_context():
     return multiprocessing.get_context("spawn")
 
 
+# Compiling once for the batch (numba cache empty): the first worker to start a seed compiles
+# the kernels ("lead"); the others wait until its time loop is compiled and cached, then load
+# it from numba's cache instead of compiling the same kernels at the same time.
+_TIME_LOOPS = (("floatmoor.solvers.td_kernel", "td_steps"),
+               ("floatmoor.solvers.fe_coupling", "td_fe_kernel"))
+_WAIT_MAX = 600.0  # s; a waiting worker compiles for itself after that
+_compile_once = None  # in a worker: (ready Event, lead Lock), or None
+
+
+def _worker_init(ready=None, lead=None) -> None:
+    """Worker initializer: ignore Ctrl-C; keep the compile-once event and lock (or None)."""
+    global _compile_once
+    _ignore_sigint()
+    _compile_once = (ready, lead) if ready is not None else None
+
+
+def _time_loop_cached() -> bool:
+    """True when numba's cache folder of this process already holds a time loop (a cache
+    filled by an earlier run: nothing to wait for)."""
+    if os.environ.get("NUMBA_DISABLE_JIT", "0") not in ("", "0"):
+        return True
+    folder = os.environ.get("NUMBA_CACHE_DIR")
+    if not folder or not Path(folder).is_dir():
+        return False
+    return any(True for _ in Path(folder).glob("**/td_kernel.td_steps-*.nbi"))
+
+
+def _ready_listener(ready):
+    """numba event listener of the lead worker: sets ``ready`` when the outermost compilation
+    (numba's compiler lock released: the compiled kernels are in the cache) leaves a time loop
+    kernel with a compiled signature."""
+    from numba.core import event
+
+    class ReadyWhenTimeLoopCompiled(event.Listener):
+        def __init__(self):
+            self.depth = 0
+
+        def on_start(self, ev):
+            self.depth += 1
+
+        def on_end(self, ev):
+            self.depth -= 1
+            if self.depth == 0 and not ready.is_set():
+                for mod, name in _TIME_LOOPS:
+                    kernel = getattr(sys.modules.get(mod), name, None)
+                    if kernel is not None and kernel.signatures:
+                        ready.set()
+                        return
+
+    return ReadyWhenTimeLoopCompiled()
+
+
+def _compile_role():
+    """``("lead", (ready, listener))`` when this worker compiles first for the batch (it sets
+    ``ready`` when its time loop is cached, or when its seed ends), else ``(None, None)``, after
+    waiting for the lead's ``ready`` when another worker leads.  Only a worker's first seed
+    takes part."""
+    global _compile_once
+    if _compile_once is None:
+        return None, None
+    ready, lead = _compile_once
+    _compile_once = None  # only the first seed of a worker takes part
+    if ready.is_set():
+        return None, None
+    if lead.acquire(block=False):  # never released: one lead per batch
+        try:
+            from numba.core import event
+            listener = _ready_listener(ready)
+            event.register("numba:compiler_lock", listener)
+        except BaseException:
+            ready.set()  # the others compile for themselves
+            raise
+        return "lead", (ready, listener)
+    ready.wait(_WAIT_MAX)
+    return None, None
+
+
 def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
              fingerprint: str = "", threads=None, thread_cap: int = 1) -> SeedOutcome:
     """Worker: simulate one seed and write it (temp file + rename); ``threads`` (None: the
@@ -130,6 +207,7 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
 
     out = Path(out_path)
     err_file = out.with_suffix(".error.txt")
+    role, lead = _compile_role()
     t0 = time.perf_counter()
     try:
         with warnings.catch_warnings():  # the parent has shown the scene's warnings
@@ -169,6 +247,12 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
         except OSError:
             pass
         return SeedOutcome(seed, "failed", out, error=text, wall_time=time.perf_counter() - t0)
+    finally:
+        if role == "lead":  # also when the seed failed: the others compile for themselves
+            from numba.core import event
+            ready, listener = lead
+            event.unregister("numba:compiler_lock", listener)
+            ready.set()
 
 
 def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrides=None,
@@ -320,8 +404,14 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
                     report(_run_one(src, s, os.fspath(path), overrides, fp_text, **run_kw))
                 running = set()
             elif todo:
-                pool = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint,
-                                           mp_context=_worker_context())
+                mp_ctx = _worker_context()
+                init_args = ()
+                if workers > 1 and len(todo) > 1 and not _time_loop_cached():
+                    import multiprocessing
+                    ctx = mp_ctx if mp_ctx is not None else multiprocessing.get_context()
+                    init_args = (ctx.Event(), ctx.Lock())
+                pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
+                                           initargs=init_args, mp_context=mp_ctx)
                 try:
                     futs = {pool.submit(_run_one, src, s, os.fspath(path), overrides,
                                         fp_text, **run_kw): (s, path) for s, path in todo}

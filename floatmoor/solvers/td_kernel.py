@@ -71,6 +71,15 @@ from .td_bundles import PredictorLines, new_state
 __all__ = ["td_kernel", "td_steps", "rk4_step", "start_state", "STATUS_OK", "STATUS_NAN",
            "STATUS_GUARD", "STATUS_TENSION", "STATUS_CATENARY", "STATUS_NAMES"]
 
+INTERNAL = dict(no_cpython_wrapper=True, no_cfunc_wrapper=True, _nrt=False)
+"""numba options of the kernels called only from compiled code (:func:`_rhs`, :func:`_accel`,
+the choice of :func:`line_forces`): no Python or C wrapper (unboxing the bundles' ~70 arrays
+was 2,000 lines of LLVM IR per wrapper), and no reference counting (``_nrt=False``: the kernels
+allocate nothing and only borrow their arguments; with it, every use of a bundle counted the
+references of all its arrays, 1,700 calls and 20,000 ``extractvalue`` in the unoptimised IR of
+:func:`td_steps`, which LLVM then spent seconds removing).  Same arithmetic; numba refuses to
+compile an allocation under ``_nrt=False``, so an allocation added later fails loudly."""
+
 STATUS_OK = 0
 """Every step done."""
 STATUS_NAN = 1
@@ -93,7 +102,7 @@ def set_status(status, code, step, index):
     status[2] = index
 
 
-@njit(cache=True)
+@njit(cache=True, **INTERNAL)
 def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
     """Total force ``st.f`` (6,) and the force of every term ``st.parts`` (n_terms, 6), earth
     axes (moments about the displaced reference point), at sample j (time j dt/2), stage
@@ -235,7 +244,7 @@ def line_forces(j, x, lines, st, stage):
     return _exact_line_forces(j, x, lines, st)
 
 
-@overload(line_forces)
+@overload(line_forces, jit_options=INTERNAL)
 def _line_forces_typed(j, x, lines, st, stage):
     cls = getattr(lines, "instance_class", None)
     if cls is not None and issubclass(cls, PredictorLines):
@@ -249,7 +258,7 @@ def _line_forces_typed(j, x, lines, st, stage):
 
 
 
-@njit(cache=True)
+@njit(cache=True, **INTERNAL)
 def _accel(x, v, f, inertia, minv, mom, g, a):
     """Yaw-frame acceleration ``a`` from the earth-axis force ``f``: turn it into the
     yaw-following frame and solve (M + A_inf) a = f_h - c with the generalized momentum
@@ -453,7 +462,7 @@ def _state_status(x, v, x0, guard):
     return STATUS_OK, -1
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True, _nrt=False)
 def td_steps(n_first, n_last, body, terms, lines, st, out):
     """Steps ``n_first .. n_last - 1`` of the loop of :func:`td_kernel` (resumable: the state
     is carried in ``st`` and the line states in ``lines``).
