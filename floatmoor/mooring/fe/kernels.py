@@ -1120,7 +1120,9 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
     G_i^-1`` (:func:`_inv3_vals`), ``y_i = rhs[i] - Of[i-1] W[i-1] y_i-1``, then the backward
     sweep ``x_i = W[i] (y_i - Of[i] x_i+1)``.  Written out on scalars (the previous pivot's
     inverse and right-hand side carried in locals): every sum keeps the order of the
-    loop form, ``0.0 + p0 + p1 + p2`` (so the same bits, signed zeros included).
+    loop form, ``p0 + p1 + p2`` (the loop's leading ``0.0 +`` left out: it changes at most
+    the sign of a zero, which no later product, sum or quotient by a non-zero pivot carries
+    into a non-zero number).
     """
     w00 = w01 = w02 = w10 = w11 = w12 = w20 = w21 = w22 = 0.0
     y0 = y1 = y2 = 0.0
@@ -1140,9 +1142,9 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
         if i > i0:
             p = i - 1
             # W[p] y[p]
-            z0 = 0.0 + w00 * y0 + w01 * y1 + w02 * y2
-            z1 = 0.0 + w10 * y0 + w11 * y1 + w12 * y2
-            z2 = 0.0 + w20 * y0 + w21 * y1 + w22 * y2
+            z0 = w00 * y0 + w01 * y1 + w02 * y2
+            z1 = w10 * y0 + w11 * y1 + w12 * y2
+            z2 = w20 * y0 + w21 * y1 + w22 * y2
             o00 = Of[p, 0, 0]
             o01 = Of[p, 0, 1]
             o02 = Of[p, 0, 2]
@@ -1153,28 +1155,28 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
             o21 = Of[p, 2, 1]
             o22 = Of[p, 2, 2]
             # H = W[p] Of[p]
-            h00 = 0.0 + w00 * o00 + w01 * o10 + w02 * o20
-            h01 = 0.0 + w00 * o01 + w01 * o11 + w02 * o21
-            h02 = 0.0 + w00 * o02 + w01 * o12 + w02 * o22
-            h10 = 0.0 + w10 * o00 + w11 * o10 + w12 * o20
-            h11 = 0.0 + w10 * o01 + w11 * o11 + w12 * o21
-            h12 = 0.0 + w10 * o02 + w11 * o12 + w12 * o22
-            h20 = 0.0 + w20 * o00 + w21 * o10 + w22 * o20
-            h21 = 0.0 + w20 * o01 + w21 * o11 + w22 * o21
-            h22 = 0.0 + w20 * o02 + w21 * o12 + w22 * o22
+            h00 = w00 * o00 + w01 * o10 + w02 * o20
+            h01 = w00 * o01 + w01 * o11 + w02 * o21
+            h02 = w00 * o02 + w01 * o12 + w02 * o22
+            h10 = w10 * o00 + w11 * o10 + w12 * o20
+            h11 = w10 * o01 + w11 * o11 + w12 * o21
+            h12 = w10 * o02 + w11 * o12 + w12 * o22
+            h20 = w20 * o00 + w21 * o10 + w22 * o20
+            h21 = w20 * o01 + w21 * o11 + w22 * o21
+            h22 = w20 * o02 + w21 * o12 + w22 * o22
             # G -= Of[p] H ;  y -= Of[p] (W[p] y[p])
-            g00 -= 0.0 + o00 * h00 + o01 * h10 + o02 * h20
-            g01 -= 0.0 + o00 * h01 + o01 * h11 + o02 * h21
-            g02 -= 0.0 + o00 * h02 + o01 * h12 + o02 * h22
-            r0 -= 0.0 + o00 * z0 + o01 * z1 + o02 * z2
-            g10 -= 0.0 + o10 * h00 + o11 * h10 + o12 * h20
-            g11 -= 0.0 + o10 * h01 + o11 * h11 + o12 * h21
-            g12 -= 0.0 + o10 * h02 + o11 * h12 + o12 * h22
-            r1 -= 0.0 + o10 * z0 + o11 * z1 + o12 * z2
-            g20 -= 0.0 + o20 * h00 + o21 * h10 + o22 * h20
-            g21 -= 0.0 + o20 * h01 + o21 * h11 + o22 * h21
-            g22 -= 0.0 + o20 * h02 + o21 * h12 + o22 * h22
-            r2 -= 0.0 + o20 * z0 + o21 * z1 + o22 * z2
+            g00 -= o00 * h00 + o01 * h10 + o02 * h20
+            g01 -= o00 * h01 + o01 * h11 + o02 * h21
+            g02 -= o00 * h02 + o01 * h12 + o02 * h22
+            r0 -= o00 * z0 + o01 * z1 + o02 * z2
+            g10 -= o10 * h00 + o11 * h10 + o12 * h20
+            g11 -= o10 * h01 + o11 * h11 + o12 * h21
+            g12 -= o10 * h02 + o11 * h12 + o12 * h22
+            r1 -= o10 * z0 + o11 * z1 + o12 * z2
+            g20 -= o20 * h00 + o21 * h10 + o22 * h20
+            g21 -= o20 * h01 + o21 * h11 + o22 * h21
+            g22 -= o20 * h02 + o21 * h12 + o22 * h22
+            r2 -= o20 * z0 + o21 * z1 + o22 * z2
         Y[i, 0] = r0
         Y[i, 1] = r1
         Y[i, 2] = r2
@@ -1828,14 +1830,13 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     S = lp.S
     q = lw.q
     n = r.shape[0]
+    # the trial state starts as the accepted one: its friction state is copied (a step
+    # updates it), the first sub-step reads the nodes straight from the accepted state (s01:
+    # the same values, no copy) and every completed sub-step writes its result into the trial
     for i in range(n):
-        for k in range(3):
-            rA[i, k] = r[i, k]
-            vA[i, k] = v[i, k]
-            aA[i, k] = a[i, k]
-            fnA[i, k] = fn[i, k]
         for k in range(fs.shape[1]):
             fs1[i, k] = fs[i, k]
+    s01 = LineState(r, v, a, fn, fs1)
     t0 = t1 - dt
     full = 1
     for _ in range(max_split):
@@ -1852,7 +1853,7 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
             rf[k] = r[n - 1, k] + s * (rf1[k] - r[n - 1, k])
             vf[k] = v[n - 1, k] + s * (vf1[k] - v[n - 1, k])
         tk = t0 + (pos + sz) * hmin
-        it = gen_alpha_step(tk, sz * hmin, rf, vf, s1, s2, lp, lw)
+        it = gen_alpha_step(tk, sz * hmin, rf, vf, s01 if pos == 0 else s1, s2, lp, lw)
         if it < 0:
             if sz > 1:
                 sz //= 2
