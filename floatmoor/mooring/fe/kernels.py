@@ -76,26 +76,38 @@ NW_QSTOP = 4
 
 
 @njit(cache=True)
-def _current(z, cur_z, cur_u):
+def _current_scale(cur_z):
+    """Levels per metre of the current profile (the guess of :func:`_current`; 0 for fewer
+    than two levels)."""
+    n = cur_z.shape[0]
+    if n < 2 or not cur_z[n - 1] > cur_z[0]:
+        return 0.0
+    return (n - 1) / (cur_z[n - 1] - cur_z[0])
+
+
+@njit(cache=True)
+def _current(z, cur_z, cur_u, sc):
+    """Current speed at the level ``z`` (m/s), linear between the levels ``cur_z``; ``sc`` the
+    levels per metre of :func:`_current_scale`."""
     n = cur_z.shape[0]
     if n == 0:
         return 0.0
-    if z <= cur_z[0]:
+    if z <= cur_z[0] or n == 1:
         return cur_u[0]
     if z >= cur_z[n - 1]:
         return cur_u[n - 1]
-    # bisection for the first level not below z (j + 1): the interval a linear scan from the
-    # seabed finds, in O(log n) (the profile has 61+ levels and every node looks it up at every
-    # force evaluation)
-    lo = 0
-    hi = n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if cur_z[mid] < z:
-            lo = mid
-        else:
-            hi = mid
-    j = lo
+    # the level interval j with cur_z[j] < z <= cur_z[j + 1]: guessed from the mean level
+    # spacing and walked from there (no step for the uniform profiles the scenes build; the
+    # same interval as a bisection, so the same bits).  Every node looks the current up at
+    # every force evaluation.
+    g = (z - cur_z[0]) * sc
+    j = 0
+    if g >= 1.0:
+        j = min(int(g), n - 2)
+    while j > 0 and cur_z[j] >= z:
+        j -= 1
+    while cur_z[j + 1] < z:
+        j += 1
     w = (z - cur_z[j]) / (cur_z[j + 1] - cur_z[j])
     return (1.0 - w) * cur_u[j] + w * cur_u[j + 1]
 
@@ -213,6 +225,33 @@ def node_mass(r, P, q, Mb):
     """3x3 mass blocks (structural + added mass) of every node into ``Mb`` (n, 3, 3)."""
     node_tangents(r, q)
     n = r.shape[0]
+    for i in range(n):
+        m = P[i, NP_MASS] + P[i, NP_MAC]
+        man = P[i, NP_MAN]
+        mat = P[i, NP_MAT]
+        for a in range(3):
+            for b in range(3):
+                qq = q[i, a] * q[i, b]
+                d = 1.0 if a == b else 0.0
+                Mb[i, a, b] = m * d + man * (d - qq) + mat * qq
+
+
+@njit(cache=True)
+def _node_mass_el(r, P, el, q, Mb):
+    """:func:`node_mass` with the element directions and lengths computed once into ``el``
+    (n-1, 4) as :func:`_line_forces` does and the tangents taken from them
+    (:func:`_tangents_from`: the same sums, the same bits as :func:`node_tangents`)."""
+    n = r.shape[0]
+    for j in range(n - 1):
+        dx = r[j + 1, 0] - r[j, 0]
+        dy = r[j + 1, 1] - r[j, 1]
+        dz = r[j + 1, 2] - r[j, 2]
+        ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+        el[j, 0] = dx / ll
+        el[j, 1] = dy / ll
+        el[j, 2] = dz / ll
+        el[j, 3] = ll
+    _tangents_from(el, q)
     for i in range(n):
         m = P[i, NP_MASS] + P[i, NP_MAC]
         man = P[i, NP_MAN]
@@ -353,15 +392,13 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
         el[j, 2] = dz / ll
         el[j, 3] = ll
     _tangents_from(el, q)
-    for i in range(n):
-        f[i, 0] = 0.0
-        f[i, 1] = 0.0
-        f[i, 2] = -P[i, NP_W]
-        if want_jac:
-            for a in range(3):
-                for b in range(3):
-                    Dg[i, a, b] = 0.0
-    # ---- elements
+    # ---- elements.  Element j adds its force and tangent block to nodes j and j+1; a node's
+    # sums are formed in registers in the order of the element loop (the node's own load, then
+    # element i-1, then element i) and stored once: the bits of accumulating in place.
+    fc0 = 0.0
+    fc1 = 0.0
+    fc2 = -P[0, NP_W]
+    d00 = d01 = d02 = d10 = d11 = d12 = d20 = d21 = d22 = 0.0
     for j in range(n - 1):
         ll = el[j, 3]
         ex = el[j, 0]
@@ -384,62 +421,138 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
             T = E[j, EL_C1] * eps
             dTde = E[j, EL_C1]
         B = 0.0
-        dvx = v[j + 1, 0] - v[j, 0]
-        dvy = v[j + 1, 1] - v[j, 1]
-        dvz = v[j + 1, 2] - v[j, 2]
-        ldot = ex * dvx + ey * dvy + ez * dvz
-        if held:
-            # a held element keeps its full internal damping: faded over the slack transition
-            # (strain e0 = weight / c1, 6e-11 for c1 = 3.84e14 N) the damping force B ldot / L0
-            # would switch on and off between two iterates
-            B = E[j, EL_B]
-            T += B * ldot / L0
-        elif eps > 0.0:
-            # internal damping faded in over the slack transition (smooth step)
-            xs = eps / e0
-            sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
-            dsm = 6.0 * xs * (1.0 - xs) / e0 if xs < 1.0 else 0.0
-            B = E[j, EL_B] * sm
-            T += B * ldot / L0
-            dTde += E[j, EL_B] * dsm * ldot / L0
+        Bj = E[j, EL_B]
+        dvx = 0.0
+        dvy = 0.0
+        dvz = 0.0
+        ldot = 0.0
+        # (without internal damping, Bj = 0, the damping terms below are zeros added to T and
+        # dT/deps, which changes no bit: left out)
+        if Bj != 0.0:
+            dvx = v[j + 1, 0] - v[j, 0]
+            dvy = v[j + 1, 1] - v[j, 1]
+            dvz = v[j + 1, 2] - v[j, 2]
+            ldot = ex * dvx + ey * dvy + ez * dvz
+            if held:
+                # a held element keeps its full internal damping: faded over the slack
+                # transition (strain e0 = weight / c1, 6e-11 for c1 = 3.84e14 N) the damping
+                # force B ldot / L0 would switch on and off between two iterates
+                B = Bj
+                T += B * ldot / L0
+            elif eps > 0.0:
+                # internal damping faded in over the slack transition (smooth step)
+                xs = eps / e0
+                sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
+                dsm = 6.0 * xs * (1.0 - xs) / e0 if xs < 1.0 else 0.0
+                B = Bj * sm
+                T += B * ldot / L0
+                dTde += Bj * dsm * ldot / L0
         tens[j] = T
-        f[j, 0] += T * ex
-        f[j, 1] += T * ey
-        f[j, 2] += T * ez
-        f[j + 1, 0] -= T * ex
-        f[j + 1, 1] -= T * ey
-        f[j + 1, 2] -= T * ez
+        tx = T * ex
+        ty = T * ey
+        tz = T * ez
+        f[j, 0] = fc0 + tx
+        f[j, 1] = fc1 + ty
+        f[j, 2] = fc2 + tz
+        fc0 = 0.0 - tx
+        fc1 = 0.0 - ty
+        fc2 = -P[j + 1, NP_W] - tz
         if want_jac:
-            ka = cK * dTde / L0
-            # geometric stiffness from the tension estimate of the iteration when given (the
-            # tension of a mixed displacement-tension Newton: not blown up by the second-order
-            # length error of the last correction on a very stiff element)
-            kg = cK * max(act[j] if managed else T, 0.0) / ll
-            if eps <= 0.0 and cC == 0.0:
-                # statics: a slack element gets its linear axial stiffness in the tangent so that
-                # Newton pulls it taut (the residual keeps T = 0); dynamics keep the true tangent
-                ka = cK * E[j, EL_C1] / L0
             if cC == 0.0:
-                # statics: floor the geometric stiffness of a slack or nearly slack element at its
-                # own weight over its length (tangent only) so a slack grounded node is not
-                # laterally singular
+                # statics: a slack element gets its linear axial stiffness in the tangent so
+                # that Newton pulls it taut (the residual keeps T = 0); dynamics keep the true
+                # tangent.  And the geometric stiffness of a slack or nearly slack element is
+                # floored at its own weight over its length (tangent only) so a slack grounded
+                # node is not laterally singular
+                if eps <= 0.0:
+                    ka = cK * E[j, EL_C1] / L0
+                else:
+                    ka = cK * dTde / L0
                 kg = cK * max(T, abs(P[j, NP_W]) + abs(P[j + 1, NP_W])) / ll
-            cb = cC * B / L0
-            # position derivative of the damping force (B / L0) ldot e through ldot (not
-            # symmetric): (B / (L0 l)) e dv_perp^T; the part through e is in the geometric term
-            kb = cK * B / (L0 * ll)
-            e0 = (ex, ey, ez)
-            dvp = (dvx - ldot * ex, dvy - ldot * ey, dvz - ldot * ez)
-            for a in range(3):
-                for b in range(3):
-                    ee = e0[a] * e0[b]
-                    d = 1.0 if a == b else 0.0
-                    val = (ka + cb) * ee + kg * (d - ee)
-                    if kb != 0.0:
-                        val += kb * e0[a] * dvp[b]
-                    Dg[j, a, b] += val
-                    Dg[j + 1, a, b] += val
-                    Of[j, a, b] = -val
+            else:
+                ka = cK * dTde / L0
+                # geometric stiffness from the tension estimate of the iteration when given
+                # (the tension of a mixed displacement-tension Newton: not blown up by the
+                # second-order length error of the last correction on a very stiff element)
+                kg = cK * max(act[j] if managed else T, 0.0) / ll
+            cb = 0.0
+            kb = 0.0
+            if B != 0.0:
+                cb = cC * B / L0
+                # position derivative of the damping force (B / L0) ldot e through ldot (not
+                # symmetric): (B / (L0 l)) e dv_perp^T; the part through e is in the geometric
+                # term
+                kb = cK * B / (L0 * ll)
+            kac = ka + cb
+            # (ka + cb) e e^T + kg (I - e e^T), symmetric to the bit (e_a e_b = e_b e_a)
+            ee = ex * ex
+            v00 = kac * ee + kg * (1.0 - ee)
+            ee = ey * ey
+            v11 = kac * ee + kg * (1.0 - ee)
+            ee = ez * ez
+            v22 = kac * ee + kg * (1.0 - ee)
+            ee = ex * ey
+            v01 = kac * ee + kg * (0.0 - ee)
+            v10 = v01
+            ee = ex * ez
+            v02 = kac * ee + kg * (0.0 - ee)
+            v20 = v02
+            ee = ey * ez
+            v12 = kac * ee + kg * (0.0 - ee)
+            v21 = v12
+            if kb != 0.0:
+                dpx = dvx - ldot * ex
+                dpy = dvy - ldot * ey
+                dpz = dvz - ldot * ez
+                v00 += kb * ex * dpx
+                v01 += kb * ex * dpy
+                v02 += kb * ex * dpz
+                v10 += kb * ey * dpx
+                v11 += kb * ey * dpy
+                v12 += kb * ey * dpz
+                v20 += kb * ez * dpx
+                v21 += kb * ez * dpy
+                v22 += kb * ez * dpz
+            Dg[j, 0, 0] = d00 + v00
+            Dg[j, 0, 1] = d01 + v01
+            Dg[j, 0, 2] = d02 + v02
+            Dg[j, 1, 0] = d10 + v10
+            Dg[j, 1, 1] = d11 + v11
+            Dg[j, 1, 2] = d12 + v12
+            Dg[j, 2, 0] = d20 + v20
+            Dg[j, 2, 1] = d21 + v21
+            Dg[j, 2, 2] = d22 + v22
+            d00 = 0.0 + v00
+            d01 = 0.0 + v01
+            d02 = 0.0 + v02
+            d10 = 0.0 + v10
+            d11 = 0.0 + v11
+            d12 = 0.0 + v12
+            d20 = 0.0 + v20
+            d21 = 0.0 + v21
+            d22 = 0.0 + v22
+            Of[j, 0, 0] = -v00
+            Of[j, 0, 1] = -v01
+            Of[j, 0, 2] = -v02
+            Of[j, 1, 0] = -v10
+            Of[j, 1, 1] = -v11
+            Of[j, 1, 2] = -v12
+            Of[j, 2, 0] = -v20
+            Of[j, 2, 1] = -v21
+            Of[j, 2, 2] = -v22
+    f[n - 1, 0] = fc0
+    f[n - 1, 1] = fc1
+    f[n - 1, 2] = fc2
+    if want_jac:
+        Dg[n - 1, 0, 0] = d00
+        Dg[n - 1, 0, 1] = d01
+        Dg[n - 1, 0, 2] = d02
+        Dg[n - 1, 1, 0] = d10
+        Dg[n - 1, 1, 1] = d11
+        Dg[n - 1, 1, 2] = d12
+        Dg[n - 1, 2, 0] = d20
+        Dg[n - 1, 2, 1] = d21
+        Dg[n - 1, 2, 2] = d22
     # ---- bending (pinned ends): discrete elastica energy c_i (1 - e_a . e_b) at interior nodes
     if S[S_BEND] > 0.0:
         _bending(r, P, f, want_jac, cK, Dg, Of, BX)
@@ -447,11 +560,12 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     zc = S[S_ZC]
     ccos = S[S_CURC]
     csin = S[S_CURS]
+    csc = _current_scale(cur_z)
     for i in range(n):
         qx = q[i, 0]
         qy = q[i, 1]
         qz = q[i, 2]
-        uc = _current(r[i, 2], cur_z, cur_u)
+        uc = _current(r[i, 2], cur_z, cur_u, csc)
         vrx = v[i, 0] - uc * ccos - wk[i, 0]
         vry = v[i, 1] - uc * csin - wk[i, 1]
         vrz = v[i, 2] - wk[i, 2]
@@ -485,21 +599,70 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
             f[i, 1] -= kc * vr * vry
             f[i, 2] -= kc * vr * vrz
         if want_jac:
-            qv = (qx, qy, qz)
-            vnv = (vnx, vny, vnz)
-            vrv = (vrx, vry, vrz)
-            for a in range(3):
-                for b in range(3):
-                    qq = qv[a] * qv[b]
-                    d = 1.0 if a == b else 0.0
-                    val = kdn * vn * (d - qq) + 2.0 * kdt * abs(vq) * qq
-                    if vn > 0.0:
-                        val += kdn * vnv[a] * vnv[b] / vn
-                    if kc > 0.0:
-                        val += kc * vr * d
-                        if vr > 0.0:
-                            val += kc * vrv[a] * vrv[b] / vr
-                    Dg[i, a, b] += cC * val
+            # kdn |v_n| (I - q q^T) + 2 kdt |v_q| q q^T + kdn v_n v_n^T / |v_n| (+ clump drag)
+            kv = kdn * vn
+            kt = 2.0 * kdt * abs(vq)
+            qq = qx * qx
+            v00 = kv * (1.0 - qq) + kt * qq
+            qq = qy * qy
+            v11 = kv * (1.0 - qq) + kt * qq
+            qq = qz * qz
+            v22 = kv * (1.0 - qq) + kt * qq
+            qq = qx * qy
+            v01 = kv * (0.0 - qq) + kt * qq
+            v10 = v01
+            qq = qx * qz
+            v02 = kv * (0.0 - qq) + kt * qq
+            v20 = v02
+            qq = qy * qz
+            v12 = kv * (0.0 - qq) + kt * qq
+            v21 = v12
+            if vn > 0.0:
+                kn = kdn * vnx
+                v00 += kn * vnx / vn
+                v01 += kn * vny / vn
+                v02 += kn * vnz / vn
+                kn = kdn * vny
+                v10 += kn * vnx / vn
+                v11 += kn * vny / vn
+                v12 += kn * vnz / vn
+                kn = kdn * vnz
+                v20 += kn * vnx / vn
+                v21 += kn * vny / vn
+                v22 += kn * vnz / vn
+            if kc > 0.0:
+                kr = kc * vr
+                v00 += kr * 1.0
+                v01 += kr * 0.0
+                v02 += kr * 0.0
+                v10 += kr * 0.0
+                v11 += kr * 1.0
+                v12 += kr * 0.0
+                v20 += kr * 0.0
+                v21 += kr * 0.0
+                v22 += kr * 1.0
+                if vr > 0.0:
+                    kn = kc * vrx
+                    v00 += kn * vrx / vr
+                    v01 += kn * vry / vr
+                    v02 += kn * vrz / vr
+                    kn = kc * vry
+                    v10 += kn * vrx / vr
+                    v11 += kn * vry / vr
+                    v12 += kn * vrz / vr
+                    kn = kc * vrz
+                    v20 += kn * vrx / vr
+                    v21 += kn * vry / vr
+                    v22 += kn * vrz / vr
+            Dg[i, 0, 0] += cC * v00
+            Dg[i, 0, 1] += cC * v01
+            Dg[i, 0, 2] += cC * v02
+            Dg[i, 1, 0] += cC * v10
+            Dg[i, 1, 1] += cC * v11
+            Dg[i, 1, 2] += cC * v12
+            Dg[i, 2, 0] += cC * v20
+            Dg[i, 2, 1] += cC * v21
+            Dg[i, 2, 2] += cC * v22
         # seabed contact: spring force ks g(pen) with g(p) = p for p >= d = w / (2 ks) (half the
         # static penetration) and the cubic 2 p^2 / d - p^3 / d^2 below (same value and slope
         # at d, zero slope at contact); damping faded in with the smooth step
@@ -929,59 +1092,129 @@ def _inv3(A, out):
 
 
 @njit(cache=True)
+def _inv3_vals(a, b, c, d, e, g, h, k, m):
+    """:func:`_inv3` of the block ``[[a, b, c], [d, e, g], [h, k, m]]`` given by its entries
+    (the same arithmetic): ``ok`` and the nine entries of the inverse by rows."""
+    c00 = e * m - g * k
+    c01 = -(d * m - g * h)
+    c02 = d * k - e * h
+    det = a * c00 + b * c01 + c * c02
+    if det == 0.0 or not math.isfinite(det):
+        return (False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    inv = 1.0 / det
+    return (True, c00 * inv, -(b * m - c * k) * inv, (b * g - c * e) * inv,
+            c01 * inv, (a * m - c * h) * inv, -(a * g - c * d) * inv,
+            c02 * inv, -(a * k - b * h) * inv, (a * e - b * d) * inv)
+
+
+@njit(cache=True)
 def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
     """Solve the block-tridiagonal system on nodes ``i0 .. i1-1`` (3x3 blocks).
 
     Diagonal blocks ``Dg[i]``, upper blocks ``Of[i]`` (row i, column i+1) and lower blocks
     ``Of[i-1]`` (row i, column i-1): element-assembled matrices have the same coupling block on
     both sides of the diagonal, symmetric or not.  ``W`` (n,3,3), ``Y`` (n,3), ``T1`` (3,3)
-    scratch; solution into ``x`` (n,3).
+    scratch; solution into ``x`` (n,3).  On return ``W[i]`` holds the inverse pivots and ``Y``
+    the forward-swept right-hand side (:func:`block_tridiag_resolve` reuses them).
     Returns the first node whose pivot block is singular, or -1.
+
+    Block Gaussian elimination: pivot ``G_i = Dg[i] - Of[i-1] W[i-1] Of[i-1]``, ``W[i] =
+    G_i^-1`` (:func:`_inv3_vals`), ``y_i = rhs[i] - Of[i-1] W[i-1] y_i-1``, then the backward
+    sweep ``x_i = W[i] (y_i - Of[i] x_i+1)``.  Written out on scalars (the previous pivot's
+    inverse and right-hand side carried in locals): every sum keeps the order of the
+    loop form, ``p0 + p1 + p2`` (the loop's leading ``0.0 +`` left out: it changes at most
+    the sign of a zero, which no later product, sum or quotient by a non-zero pivot carries
+    into a non-zero number).
     """
+    w00 = w01 = w02 = w10 = w11 = w12 = w20 = w21 = w22 = 0.0
+    y0 = y1 = y2 = 0.0
     for i in range(i0, i1):
-        # G = Dg[i] - Of[i-1] W[i-1] Of[i-1];  y = rhs[i] - Of[i-1] W[i-1] y[i-1]
-        for a in range(3):
-            for b in range(3):
-                T1[a, b] = Dg[i, a, b]
-            Y[i, a] = rhs[i, a]
+        g00 = Dg[i, 0, 0]
+        g01 = Dg[i, 0, 1]
+        g02 = Dg[i, 0, 2]
+        g10 = Dg[i, 1, 0]
+        g11 = Dg[i, 1, 1]
+        g12 = Dg[i, 1, 2]
+        g20 = Dg[i, 2, 0]
+        g21 = Dg[i, 2, 1]
+        g22 = Dg[i, 2, 2]
+        r0 = rhs[i, 0]
+        r1 = rhs[i, 1]
+        r2 = rhs[i, 2]
         if i > i0:
             p = i - 1
-            # H = W[p] Of[p]  (3x3), then T1 -= Of[p] H ; Y -= Of[p] (W[p] Y[p])
-            for a in range(3):
-                wy = 0.0
-                for b in range(3):
-                    wy += W[p, a, b] * Y[p, b]
-                x[p, a] = wy  # temporary: W[p] Y[p]
-            # H into W[i] (free until its pivot is inverted below), once instead of once per
-            # row a: the same sums in the same order
-            H = W[i]
-            for c in range(3):
-                for b in range(3):
-                    h = 0.0
-                    for d in range(3):
-                        h += W[p, c, d] * Of[p, d, b]
-                    H[c, b] = h
-            for a in range(3):
-                for b in range(3):
-                    s = 0.0
-                    for c in range(3):
-                        s += Of[p, a, c] * H[c, b]
-                    T1[a, b] -= s
-                s2 = 0.0
-                for c in range(3):
-                    s2 += Of[p, a, c] * x[p, c]
-                Y[i, a] -= s2
-        if not _inv3(T1, W[i]):
+            # W[p] y[p]
+            z0 = w00 * y0 + w01 * y1 + w02 * y2
+            z1 = w10 * y0 + w11 * y1 + w12 * y2
+            z2 = w20 * y0 + w21 * y1 + w22 * y2
+            o00 = Of[p, 0, 0]
+            o01 = Of[p, 0, 1]
+            o02 = Of[p, 0, 2]
+            o10 = Of[p, 1, 0]
+            o11 = Of[p, 1, 1]
+            o12 = Of[p, 1, 2]
+            o20 = Of[p, 2, 0]
+            o21 = Of[p, 2, 1]
+            o22 = Of[p, 2, 2]
+            # H = W[p] Of[p]
+            h00 = w00 * o00 + w01 * o10 + w02 * o20
+            h01 = w00 * o01 + w01 * o11 + w02 * o21
+            h02 = w00 * o02 + w01 * o12 + w02 * o22
+            h10 = w10 * o00 + w11 * o10 + w12 * o20
+            h11 = w10 * o01 + w11 * o11 + w12 * o21
+            h12 = w10 * o02 + w11 * o12 + w12 * o22
+            h20 = w20 * o00 + w21 * o10 + w22 * o20
+            h21 = w20 * o01 + w21 * o11 + w22 * o21
+            h22 = w20 * o02 + w21 * o12 + w22 * o22
+            # G -= Of[p] H ;  y -= Of[p] (W[p] y[p])
+            g00 -= o00 * h00 + o01 * h10 + o02 * h20
+            g01 -= o00 * h01 + o01 * h11 + o02 * h21
+            g02 -= o00 * h02 + o01 * h12 + o02 * h22
+            r0 -= o00 * z0 + o01 * z1 + o02 * z2
+            g10 -= o10 * h00 + o11 * h10 + o12 * h20
+            g11 -= o10 * h01 + o11 * h11 + o12 * h21
+            g12 -= o10 * h02 + o11 * h12 + o12 * h22
+            r1 -= o10 * z0 + o11 * z1 + o12 * z2
+            g20 -= o20 * h00 + o21 * h10 + o22 * h20
+            g21 -= o20 * h01 + o21 * h11 + o22 * h21
+            g22 -= o20 * h02 + o21 * h12 + o22 * h22
+            r2 -= o20 * z0 + o21 * z1 + o22 * z2
+        Y[i, 0] = r0
+        Y[i, 1] = r1
+        Y[i, 2] = r2
+        y0 = r0
+        y1 = r1
+        y2 = r2
+        ok, w00, w01, w02, w10, w11, w12, w20, w21, w22 = _inv3_vals(
+            g00, g01, g02, g10, g11, g12, g20, g21, g22)
+        if not ok:
             return i
+        W[i, 0, 0] = w00
+        W[i, 0, 1] = w01
+        W[i, 0, 2] = w02
+        W[i, 1, 0] = w10
+        W[i, 1, 1] = w11
+        W[i, 1, 2] = w12
+        W[i, 2, 0] = w20
+        W[i, 2, 1] = w21
+        W[i, 2, 2] = w22
+    # backward sweep: x_i = W[i] (y_i - Of[i] x_i+1), W[n-1] (and y) of the last node still in
+    # the locals
+    x0 = x1 = x2 = 0.0
     for i in range(i1 - 1, i0 - 1, -1):
-        for a in range(3):
-            s = Y[i, a]
-            if i < i1 - 1:
-                for b in range(3):
-                    s -= Of[i, a, b] * x[i + 1, b]
-            T1[0, a] = s
-        for a in range(3):
-            x[i, a] = W[i, a, 0] * T1[0, 0] + W[i, a, 1] * T1[0, 1] + W[i, a, 2] * T1[0, 2]
+        s0 = Y[i, 0]
+        s1 = Y[i, 1]
+        s2 = Y[i, 2]
+        if i < i1 - 1:
+            s0 = s0 - Of[i, 0, 0] * x0 - Of[i, 0, 1] * x1 - Of[i, 0, 2] * x2
+            s1 = s1 - Of[i, 1, 0] * x0 - Of[i, 1, 1] * x1 - Of[i, 1, 2] * x2
+            s2 = s2 - Of[i, 2, 0] * x0 - Of[i, 2, 1] * x1 - Of[i, 2, 2] * x2
+        x0 = W[i, 0, 0] * s0 + W[i, 0, 1] * s1 + W[i, 0, 2] * s2
+        x1 = W[i, 1, 0] * s0 + W[i, 1, 1] * s1 + W[i, 1, 2] * s2
+        x2 = W[i, 2, 0] * s0 + W[i, 2, 1] * s1 + W[i, 2, 2] * s2
+        x[i, 0] = x0
+        x[i, 1] = x1
+        x[i, 2] = x2
     return -1
 
 
@@ -1273,7 +1506,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     # weight-based bound of the residual when the position correction is below tol
     fcap = max(1e3 * ftol, math.sqrt(3.0 * n) * fround)
     ftol = max(ftol, math.sqrt(3.0 * n) * fround)
-    node_mass(r, P, q, Mb)
+    _node_mass_el(r, P, w.el, q, Mb)
     # predictor: constant acceleration, plus the fairlead's deviation from its own constant-
     # velocity prediction spread along the line in proportion to the node number (keeps the
     # element lengths nearly unchanged: essential for very stiff lines)
@@ -1324,7 +1557,9 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
                 r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
                                                                + beta * a1[i, k])
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
-        _line_forces(r1, v1, fs, par, fresh, cK, cC, f1, w, True)
+        # (with no stiff element no element is managed by the estimate: use_act False skips
+        # the per-element test, same bits)
+        _line_forces(r1, v1, fs, par, fresh, cK, cC, f1, w, nstiff > 0)
         # largest push of an element held as a bar in compression (the converged state must
         # not rely on it: the cable law has no compression)
         fbar = 0.0
@@ -1334,14 +1569,19 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
                     fbar = max(fbar, -tens[j])
         res = 0.0
         for i in range(1, n - 1):
+            # (1 - am) a1 + am a, once per node
+            b0 = (1.0 - am) * a1[i, 0] + am * a[i, 0]
+            b1 = (1.0 - am) * a1[i, 1] + am * a[i, 1]
+            b2 = (1.0 - am) * a1[i, 2] + am * a[i, 2]
             for k in range(3):
-                s = 0.0
-                for m in range(3):
-                    s += Mb[i, k, m] * ((1.0 - am) * a1[i, m] + am * a[i, m])
-                    if fresh:
-                        Dg[i, k, m] += (1.0 - am) * Mb[i, k, m]
-                Rr[i, k] = (1.0 - af) * f1[i, k] + af * fn[i, k] - s
-                res += Rr[i, k] * Rr[i, k]
+                s = 0.0 + Mb[i, k, 0] * b0 + Mb[i, k, 1] * b1 + Mb[i, k, 2] * b2
+                if fresh:
+                    Dg[i, k, 0] += (1.0 - am) * Mb[i, k, 0]
+                    Dg[i, k, 1] += (1.0 - am) * Mb[i, k, 1]
+                    Dg[i, k, 2] += (1.0 - am) * Mb[i, k, 2]
+                rk = (1.0 - af) * f1[i, k] + af * fn[i, k] - s
+                Rr[i, k] = rk
+                res += rk * rk
         if not math.isfinite(res):
             info[1] = 1
             return -3
@@ -1464,7 +1704,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     # Converged on the residual, the state is the last iterate's (the same a1, so the same
     # r1 and v1 to the bit) and f1, w.tens, w.q are already its forces: not evaluated again.
     if not by_res:
-        _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, True)
+        _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, nstiff > 0)
     for j in range(n - 1):
         if act[j] > 0.0 and tens[j] < 0.0:
             tens[j] = 0.0
@@ -1597,14 +1837,13 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     S = lp.S
     q = lw.q
     n = r.shape[0]
+    # the trial state starts as the accepted one: its friction state is copied (a step
+    # updates it), the first sub-step reads the nodes straight from the accepted state (s01:
+    # the same values, no copy) and every completed sub-step writes its result into the trial
     for i in range(n):
-        for k in range(3):
-            rA[i, k] = r[i, k]
-            vA[i, k] = v[i, k]
-            aA[i, k] = a[i, k]
-            fnA[i, k] = fn[i, k]
         for k in range(fs.shape[1]):
             fs1[i, k] = fs[i, k]
+    s01 = LineState(r, v, a, fn, fs1)
     t0 = t1 - dt
     full = 1
     for _ in range(max_split):
@@ -1630,7 +1869,7 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
             vf[k] = v0k + s * (vf1[k] - v0k) + 3.0 * c * (v0k + vf1[k]
                                                           - 2.0 * (rf1[k] - r0k) / dt)
         tk = t0 + (pos + sz) * hmin
-        it = gen_alpha_step(tk, sz * hmin, rf, vf, s1, s2, lp, lw)
+        it = gen_alpha_step(tk, sz * hmin, rf, vf, s01 if pos == 0 else s1, s2, lp, lw)
         if it < 0:
             if sz > 1:
                 sz //= 2
