@@ -39,7 +39,8 @@ in scenes; the environment components present in the base scene are turned, the 
 absent.  The FD screening of every case uses the base scene's ``frequency_domain:`` section
 (e.g. ``tension_model: dynamic``, or ``line_current_drag: true`` for the static current drag on
 the lines in the mean position, about 0.2 s more per case for the Floatel-like lines:
-benchmarks/RESULTS.md); each FD file records ``fd_tension_model`` and ``fd_line_current_drag``.
+benchmarks/RESULTS.md); each FD file records ``fd_tension_model``, ``fd_line_current_drag``
+and ``fd_line_damping``.
 """
 
 from __future__ import annotations

@@ -205,7 +205,7 @@ def _fd_dataset(fd, case):
     ds = xr.Dataset({k: fd[k] for k in _FD_VARS})
     ds.attrs = {"case": case.id, **{k: (str(v) if isinstance(v, str) else float(v))
                                     for k, v in case.row().items() if k != "case"}}
-    for k in ("drift_method", "tension_model", "duration", "line_current_drag"):
+    for k in ("drift_method", "tension_model", "duration", "line_current_drag", "line_damping"):
         ds.attrs[f"fd_{k}"] = fd.attrs[k]
     return ds
 

@@ -52,6 +52,7 @@ def test_campaign_fd_cases_use_the_option(tmp_path):
             ds = xr.open_dataset(tmp_path / "fd" / f"{case.id}.nc")
             scene, failed = case_scene(base_scene, case, dict(spec.analysis))
             assert scene.frequency_domain.line_damping == "fe"
+            assert ds.attrs["fd_line_damping"] == "fe"
             on = frequency_domain_result(build(scene, failed_lines=failed))
             off = frequency_domain_result(build(scene, failed_lines=failed), line_damping="none")
             assert on.lf_damping_mooring is not None and off.lf_damping_mooring is None
