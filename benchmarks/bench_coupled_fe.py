@@ -23,7 +23,8 @@ every line's maximum and its time.
 {threads: N}``), the runs interleaved with the Newton modes; the time loop is printed as wall
 and CPU seconds of the process (all its threads), and every threaded run is checked bit for bit
 against the one-thread run of the same mode (``identical``).  The OpenMP wait policy is
-floatmoor's (passive) unless ``OMP_WAIT_POLICY`` is set in the environment.
+floatmoor's (a bounded spin, ``GOMP_SPINCOUNT`` 100000) unless ``OMP_WAIT_POLICY`` or
+``GOMP_SPINCOUNT`` is set in the environment.
 """
 
 from __future__ import annotations

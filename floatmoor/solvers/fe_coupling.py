@@ -89,7 +89,6 @@ from ..mooring.fe.multi import (
     FEBody,
     add_line_wrench,
     advance_lines,
-    body_accept,
     line_list,
     lines_mode,
 )
@@ -365,7 +364,6 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
             status[2] = fe_body.fail[0]
             status[3] = st
             return
-        body_accept(fe_body.on, fe_lines)
 
 
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1):
@@ -427,18 +425,21 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
     return status, fe.records
 
 
-OMP_WAIT_POLICY = "PASSIVE"
-"""Wait policy of the OpenMP threads that numba starts for the FE lines, unless the environment
-sets ``OMP_WAIT_POLICY`` or ``GOMP_SPINCOUNT``: the threads meet twice per body step (~0.3 ms
-of work), and a thread spinning while its partner waits for a core makes a loaded machine up
-to 10 times slower (benchmarks/RESULTS.md); passive threads sleep instead."""
+GOMP_SPINCOUNT = "100000"
+"""How long a waiting OpenMP thread of the FE lines spins before it sleeps (libgomp's
+``GOMP_SPINCOUNT``), unless the environment sets ``OMP_WAIT_POLICY`` or ``GOMP_SPINCOUNT``.
+The threads meet twice per body step (~0.3 ms of line work, ~0.06 ms of body work between):
+sleeping threads (``OMP_WAIT_POLICY=PASSIVE``) wake too late and made two threads no faster
+than one on an idle machine; endless spinning (``ACTIVE``) makes a loaded machine up to 10 times
+slower; a bounded spin covers the body work and then sleeps (benchmarks/RESULTS.md, "FE lines
+in threads on an idle machine")."""
 
 
 @contextmanager
 def numba_threads(n: int):
     """numba's thread count ``n`` inside the block (of this thread), the previous one after it;
     nothing for one thread (the serial kernels do not use the pool).  Before numba starts its
-    threads (the first call in a process), the environment gets :data:`OMP_WAIT_POLICY`
+    threads (the first call in a process), the environment gets :data:`GOMP_SPINCOUNT`
     unless it chooses a wait policy itself."""
     n = int(n)
     if n <= 1:
@@ -448,7 +449,7 @@ def numba_threads(n: int):
 
     import numba
     if "OMP_WAIT_POLICY" not in os.environ and "GOMP_SPINCOUNT" not in os.environ:
-        os.environ["OMP_WAIT_POLICY"] = OMP_WAIT_POLICY  # read when the OpenMP library loads
+        os.environ["GOMP_SPINCOUNT"] = GOMP_SPINCOUNT  # read when the OpenMP library loads
     before = numba.get_num_threads()
     numba.set_num_threads(min(n, int(numba.config.NUMBA_NUM_THREADS)))
     try:

@@ -150,6 +150,17 @@ def add_line_wrench(i, arm, forces, Q):
     Q[5] += arm[i, 0] * forces[i, 1] - arm[i, 1] * forces[i, 0]
 
 
+@njit(cache=True, inline="always")
+def _accept_line(ln):
+    now = ln.now
+    tr = ln.trial
+    now.r[:, :] = tr.r
+    now.v[:, :] = tr.v
+    now.a[:, :] = tr.a
+    now.f[:, :] = tr.f
+    now.fs[:, :] = tr.fs
+
+
 @njit(cache=True)
 def body_accept(on, lines):
     """Commit the trial state of every line with ``on[i]`` (the copies of
@@ -209,7 +220,10 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
     forces, the wrench ``body.Q``, the counters and the failure report are done after the
     threads, in the line order.  When several lines fail, the lowest index is reported (the
     serial loop stops there); the lines after it were advanced too (their trial states, scratch
-    until accepted, differ from a serial run's; the counters, forces and ``Q`` do not)."""
+    until accepted, differ from a serial run's; the counters, forces and ``Q`` do not).  Each
+    thread accepts every line it advanced without failure (the trial state copied into the
+    accepted one, as :func:`body_accept`), so after a failure other lines may have been
+    accepted: the coupled run stops there anyway."""
     fair_b, R, rf_all, vf_all, arm, Q, forces, on, fail, counters = body
     rotation_matrix_into(pose[3], pose[4], pose[5], R)
     for k in range(6):
@@ -231,6 +245,8 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
                 st_i[1] = 0.0
                 status[i] = ga_advance(t1, dt, nsub, max_split, rf_all[i], vf_all[i], ln.now,
                                        ln.trial, ln.step, ln.par, ln.work)
+                if status[i] >= 0:
+                    _accept_line(ln)
     for i in range(nl):
         if not on[i]:
             for c in range(3):
@@ -252,14 +268,20 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
 
 
 def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-    """:func:`body_advance` (``mode`` a :class:`SerialLines`) or
-    :func:`body_advance_parallel` (a :class:`ParallelLines`).  Compiled, the choice is made on
+    """Advance and accept the lines of a body: :func:`body_advance` then :func:`body_accept`
+    (``mode`` a :class:`SerialLines`), or :func:`body_advance_parallel`, whose threads accept
+    the lines they advance (a :class:`ParallelLines`: a line's state stays in the cache of the
+    core that advances it; accepting all lines on the main thread made two threads slower than
+    one).  A failing advance returns its status with the lines not (all) accepted.  Compiled, the choice is made on
     the type of ``mode`` (:func:`_advance_lines_typed`): a kernel compiled for serial lines
     neither contains nor compiles the parallel one."""
     if isinstance(mode, ParallelLines):
         return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
                                      mode.status, mode.threads)
-    return body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
+    st = body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
+    if st >= 0:
+        body_accept(body.on, lines)
+    return st
 
 
 @overload(advance_lines)
@@ -271,5 +293,8 @@ def _advance_lines_typed(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
         return parallel
 
     def serial(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-        return body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
+        st = body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
+        if st >= 0:
+            body_accept(body.on, lines)
+        return st
     return serial
