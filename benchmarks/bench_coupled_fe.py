@@ -57,6 +57,9 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-qs", action="store_true")
     ap.add_argument("--threads", type=int, nargs="+", default=[1])
+    ap.add_argument("--catenary", choices=("exact", "predictor"), default="exact",
+                    help="solver: {catenary: ...} of the body side (the FE lines' catenaries "
+                    "in the RK4 stages)")
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     import numba
@@ -126,7 +129,7 @@ def main() -> None:
         w0 = time.perf_counter()
         c0 = time.process_time()
         ds = simulate(built, seed=args.seed, duration=args.duration, dt=dt,
-                      solver=SolverSpec(threads=th))
+                      solver=SolverSpec(threads=th, catenary=args.catenary))
         wall = time.perf_counter() - w0
         cpu = time.process_time() - c0
         loop = ds.attrs["run_time_s"]
@@ -146,7 +149,8 @@ def main() -> None:
         n_steps = ds.time.size - 1
         newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
         i = int(np.argmax(tfe))
-        print(f"FE  dt {dt:g} newton {nw} threads {ds.attrs.get('fe_threads', 1)}: "
+        print(f"FE  dt {dt:g} newton {nw} catenary {args.catenary} threads "
+              f"{ds.attrs.get('fe_threads', 1)}: "
               f"loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
               f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
               f"per wall s; {newton:.2f} Newton iterations per line step, "
