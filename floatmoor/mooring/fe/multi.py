@@ -152,6 +152,7 @@ def add_line_wrench(i, arm, forces, Q):
 
 @njit(cache=True, inline="always")
 def _accept_line(ln):
+    """Commit the trial state of one line (the copies of :meth:`FELine.accept`)."""
     now = ln.now
     tr = ln.trial
     now.r[:, :] = tr.r
@@ -166,16 +167,8 @@ def body_accept(on, lines):
     """Commit the trial state of every line with ``on[i]`` (the copies of
     :meth:`FELine.accept`); released lines keep their state."""
     for i in range(len(lines)):
-        if not on[i]:
-            continue
-        ln = lines[i]
-        now = ln.now
-        tr = ln.trial
-        now.r[:, :] = tr.r
-        now.v[:, :] = tr.v
-        now.a[:, :] = tr.a
-        now.f[:, :] = tr.f
-        now.fs[:, :] = tr.fs
+        if on[i]:
+            _accept_line(lines[i])
 
 
 # -- threads ----------------------------------------------------------------------------------
