@@ -23,8 +23,9 @@ every line's maximum and its time.
 {threads: N}``), the runs interleaved with the Newton modes; the time loop is printed as wall
 and CPU seconds of the process (all its threads), and every threaded run is checked bit for bit
 against the one-thread run of the same mode (``identical``).  The OpenMP wait policy is
-floatmoor's (a bounded spin, ``GOMP_SPINCOUNT`` 100000) unless ``OMP_WAIT_POLICY`` or
-``GOMP_SPINCOUNT`` is set in the environment.
+floatmoor's (a bounded spin, ``GOMP_SPINCOUNT`` 100000, on idle cores; passive otherwise:
+``fe_coupling.wait_policy``) unless ``OMP_WAIT_POLICY`` or ``GOMP_SPINCOUNT`` is set in the
+environment.
 """
 
 from __future__ import annotations

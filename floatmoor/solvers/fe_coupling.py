@@ -427,20 +427,54 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
 
 GOMP_SPINCOUNT = "100000"
 """How long a waiting OpenMP thread of the FE lines spins before it sleeps (libgomp's
-``GOMP_SPINCOUNT``), unless the environment sets ``OMP_WAIT_POLICY`` or ``GOMP_SPINCOUNT``.
-The threads meet twice per body step (~0.3 ms of line work, ~0.06 ms of body work between):
-sleeping threads (``OMP_WAIT_POLICY=PASSIVE``) wake too late and made two threads no faster
-than one on an idle machine; endless spinning (``ACTIVE``) makes a loaded machine up to 10 times
-slower; a bounded spin covers the body work and then sleeps (benchmarks/RESULTS.md, "FE lines
-in threads on an idle machine")."""
+``GOMP_SPINCOUNT``) when the cores are idle.  The threads meet twice per body step (~0.3 ms
+of line work, ~0.06 ms of body work between): sleeping threads (``OMP_WAIT_POLICY=PASSIVE``)
+wake too late and made two threads no faster than one on an idle machine, while a bounded
+spin covers the body work (2 threads 1.57x faster than one); but with other processes busy on
+the cores a spinning thread holds a core its partner needs (one 900 s run 8x slower than with
+one thread), so there the threads sleep (benchmarks/RESULTS.md, "FE lines in threads on an
+idle machine")."""
+
+
+def idle_cores(sample: float = 0.1) -> float | None:
+    """Idle cores of the machine over ``sample`` seconds (from ``/proc/stat``: idle and iowait
+    time over all time, times the cores), or None where that cannot be read."""
+    import os
+    import time
+
+    def read():
+        with open("/proc/stat") as f:
+            v = [float(x) for x in f.readline().split()[1:]]
+        return sum(v), v[3] + (v[4] if len(v) > 4 else 0.0)
+
+    try:
+        t0, i0 = read()
+        time.sleep(sample)
+        t1, i1 = read()
+    except (OSError, ValueError, IndexError):
+        return None
+    if t1 <= t0:
+        return None
+    return (i1 - i0) / (t1 - t0) * (os.cpu_count() or 1)
+
+
+def wait_policy(n: int, idle: float | None) -> tuple[str, str]:
+    """The OpenMP setting for ``n`` threads with ``idle`` cores free (None: unknown):
+    ``("GOMP_SPINCOUNT", GOMP_SPINCOUNT)`` when the threads find idle cores (all but a quarter
+    of a core), else ``("OMP_WAIT_POLICY", "PASSIVE")``."""
+    if idle is not None and idle >= n - 0.25:
+        return "GOMP_SPINCOUNT", GOMP_SPINCOUNT
+    return "OMP_WAIT_POLICY", "PASSIVE"
 
 
 @contextmanager
 def numba_threads(n: int):
     """numba's thread count ``n`` inside the block (of this thread), the previous one after it;
     nothing for one thread (the serial kernels do not use the pool).  Before numba starts its
-    threads (the first call in a process), the environment gets :data:`GOMP_SPINCOUNT`
-    unless it chooses a wait policy itself."""
+    threads (the first call in a process), unless the environment chooses a wait policy itself
+    (``OMP_WAIT_POLICY`` or ``GOMP_SPINCOUNT``), it gets the one of :func:`wait_policy` for the
+    cores idle at that moment (:func:`idle_cores`, 0.1 s; decided once per process: libgomp
+    reads it when it loads)."""
     n = int(n)
     if n <= 1:
         yield
@@ -449,7 +483,8 @@ def numba_threads(n: int):
 
     import numba
     if "OMP_WAIT_POLICY" not in os.environ and "GOMP_SPINCOUNT" not in os.environ:
-        os.environ["GOMP_SPINCOUNT"] = GOMP_SPINCOUNT  # read when the OpenMP library loads
+        key, value = wait_policy(n, idle_cores())
+        os.environ[key] = value
     before = numba.get_num_threads()
     numba.set_num_threads(min(n, int(numba.config.NUMBA_NUM_THREADS)))
     try:
