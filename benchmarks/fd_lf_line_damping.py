@@ -46,29 +46,12 @@ SCENE = ROOT / "scenes" / "floatel_100yr_fe.yaml"
 
 
 def td_impedance(line, lf, wf, duration, settle, dt):
-    """TD dynamic stiffness and damping along x (N/m, N s/m) under ``lf`` (+ ``wf``)."""
-    from floatmoor.mooring.fe.prescribed import run_prescribed
-    r0 = line.r.copy()
-    line.start()
-
-    def motion(t):
-        d, v = lf(t)
-        if wf is not None:
-            d2, v2 = wf(t)
-            return d + d2, v + v2
-        return d, v
-
+    """TD dynamic stiffness and damping along x (N/m, N s/m) under ``lf`` (+ ``wf``), and the
+    CPU seconds of the run (:func:`floatmoor.mooring.fe.prescribed.forced_oscillation_impedance`)."""
+    from floatmoor.mooring.fe.prescribed import forced_oscillation_impedance
     c0 = time.process_time()
-    ds = run_prescribed(line, motion, settle + duration, dt)
-    cpu = time.process_time() - c0
-    line.r[:] = r0
-    t = ds.time.values
-    keep = t > settle + 1e-9
-    F = ds.fairlead_force.values[keep, 0]
-    F = F - F.mean()
-    xv = np.array([lf(tt) for tt in t[keep]])
-    x, v = xv[:, 0, 0], xv[:, 1, 0]
-    return -np.mean(F * x) / np.mean(x * x), -np.mean(F * v) / np.mean(v * v), cpu
+    K, B = forced_oscillation_impedance(line, lf, duration, settle, dt, wf=wf)
+    return K, B, time.process_time() - c0
 
 
 def mean_drag(built, r) -> None:

@@ -22,7 +22,7 @@ from . import kernels as K
 from .line import FELine
 
 __all__ = ["HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
-           "quasi_static_tension", "daf", "decoupled_analysis"]
+           "quasi_static_tension", "daf", "decoupled_analysis", "forced_oscillation_impedance"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -256,6 +256,35 @@ def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si,
                 snaps_t[si, j] = w.tens[j]
             si += 1
     return n, 0
+
+
+def forced_oscillation_impedance(line: FELine, lf, duration: float, settle: float, dt: float,
+                                 wf=None) -> tuple[float, float]:
+    """Time-domain dynamic stiffness and damping of a line along x (N/m, N s/m) under the
+    prescribed periodic motion ``lf`` (a function of time returning displacement and velocity,
+    (2, 3) or equivalent; plus ``wf`` of the same form, e.g. a wave-frequency motion):
+    ``K = -<F x> / <x^2>``, ``B = -<F v> / <v^2>`` over ``duration`` after ``settle`` (x, v the
+    motion ``lf`` along x; F the fairlead force along x minus its mean).  The line is started
+    from its present state and its node positions are put back afterwards."""
+    line.start()
+    r0 = line.r.copy()
+
+    def motion(t):
+        d, v = lf(t)
+        if wf is not None:
+            d2, v2 = wf(t)
+            return d + d2, v + v2
+        return d, v
+
+    ds = run_prescribed(line, motion, settle + duration, dt)
+    line.r[:] = r0
+    t = ds.time.values
+    keep = t > settle + 1e-9
+    F = ds.fairlead_force.values[keep, 0]
+    F = F - F.mean()
+    xv = np.array([lf(tt) for tt in t[keep]])
+    x, v = xv[:, 0, 0], xv[:, 1, 0]
+    return -np.mean(F * x) / np.mean(x * x), -np.mean(F * v) / np.mean(v * v)
 
 
 def quasi_static_tension(line: FELine, motion, times) -> np.ndarray:

@@ -26,7 +26,7 @@ import pytest
 from floatmoor.mooring.fe import FELine
 from floatmoor.mooring.fe.fd_td_compare import periodic_realisation
 from floatmoor.mooring.fe.frequency_damping import fairlead_impedance, harmonic_band
-from floatmoor.mooring.fe.prescribed import run_prescribed
+from floatmoor.mooring.fe.prescribed import forced_oscillation_impedance
 
 from .conftest import oc3_spec
 
@@ -47,28 +47,8 @@ def band_realisation(lo, hi, sigma, duration, seed, settle):
 
 def td_impedance(line, lf, duration, settle, dt=0.2, wf=None):
     """Time-domain dynamic stiffness and damping along x under the prescribed LF motion ``lf``
-    (plus ``wf``): ``K = -<F x> / <x^2>``, ``B = -<F v> / <v^2>`` over one period of the
-    periodic motion after ``settle`` (x, v the LF motion along x; F the fairlead force along x
-    minus its mean)."""
-    line.start()
-    r0 = line.r.copy()
-
-    def motion(t):
-        d, v = lf(t)
-        if wf is not None:
-            d2, v2 = wf(t)
-            return d + d2, v + v2
-        return d, v
-
-    ds = run_prescribed(line, motion, settle + duration, dt)
-    line.r[:] = r0
-    t = ds.time.values
-    keep = t > settle + 1e-9
-    F = ds.fairlead_force.values[keep, 0]
-    F = F - F.mean()
-    xv = np.array([lf(tt) for tt in t[keep]])
-    x, v = xv[:, 0, 0], xv[:, 1, 0]
-    return -np.mean(F * x) / np.mean(x * x), -np.mean(F * v) / np.mean(v * v)
+    (plus ``wf``): :func:`floatmoor.mooring.fe.prescribed.forced_oscillation_impedance`."""
+    return forced_oscillation_impedance(line, lf, duration, settle, dt, wf=wf)
 
 
 def fd_band_average(imp):
