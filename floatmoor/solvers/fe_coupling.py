@@ -82,7 +82,6 @@ from numba import njit
 
 from ..core.errors import NumericalError, SceneError
 from ..core.frames import rotation_matrix_into
-from ..mooring.fe import kernels as K
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import (
@@ -91,6 +90,7 @@ from ..mooring.fe.multi import (
     advance_lines,
     line_list,
     lines_mode,
+    record_lines,
 )
 from ..mooring.system import system_force_kernel
 from .td_kernel import (
@@ -230,9 +230,13 @@ def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, exter
 
 
 @njit(cache=True)
-def _record_fe(n, fe, on, lines, rec, t_fair, t_anchor):
+def _record_fe(n, fe, on, t_fair, t_anchor):
+    """Row ``n`` of the outputs of the FE lines from the channels of their accepted states,
+    ``fe.mode.recs`` (:func:`~floatmoor.mooring.fe.multi.record_lines`, written where each
+    line was accepted)."""
     fe_index = fe.index
     fe_out = fe.records
+    recs = fe.mode.recs
     for i in range(fe_index.shape[0]):
         j = fe_index[i]
         if not on[i]:  # released line: zero tensions, grounded length not modelled
@@ -242,8 +246,7 @@ def _record_fe(n, fe, on, lines, rec, t_fair, t_anchor):
             fe_out[1, n, j] = np.nan
             fe_out[2, n, j] = 0.0
             continue
-        ln = lines[i]
-        K.record_into(ln.now.r, ln.now.f, ln.work.tens, ln.par.S[K.S_ZC], ln.par.s_nodes, rec)
+        rec = recs[i]
         t_fair[n, j] = math.sqrt(rec[0] ** 2 + rec[1] ** 2 + rec[2] ** 2)
         t_anchor[n, j] = math.sqrt(rec[3] ** 2 + rec[4] ** 2 + rec[5] ** 2)
         fe_out[0, n, j] = rec[6]
@@ -314,10 +317,10 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
     warm_fe = fe.warm
     Q = fe_body.Q
     n_fe = fe_index.shape[0]
-    rec = np.zeros(13)
     prate = np.zeros(6)
     vel = np.zeros(6)
     fq = np.zeros(6)
+    record_lines(fe_body.on, fe_lines, fe.mode.recs)
     for n in range(n_steps + 1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
         _release_failed(n * dt, fe, fail_time, fe_body)
@@ -336,7 +339,7 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
         if status[0] != STATUS_OK:
             return
         # row n: the FE tensions at t_n replace the catenary's for the FE lines
-        _record_fe(n, fe, fe_body.on, fe_lines, rec, t_fair, t_anchor)
+        _record_fe(n, fe, fe_body.on, t_fair, t_anchor)
         for i in range(n_fe):
             j = fe_index[i]
             if t_fair[n, j] > tension_guard * mbs[j]:

@@ -26,11 +26,16 @@ from numba import njit, prange
 from numba.extending import overload
 
 from ...core.frames import rotation_matrix_into
-from .kernels import ga_advance
+from .kernels import S_ZC, ga_advance, record_into
 
 __all__ = ["FEBody", "new_body", "line_list", "body_advance", "body_accept", "add_line_wrench",
            "SerialLines", "ParallelLines", "lines_mode", "advance_lines",
-           "body_advance_parallel"]
+           "body_advance_parallel", "record_lines", "REC_STRIDE"]
+
+REC_STRIDE = 16
+"""Columns of a row of the mode bundles' ``recs``: the 13 channels of
+:func:`~.kernels.record_into`, padded to two 64-byte cache lines so that two threads writing
+neighbouring rows do not share a cache line."""
 
 
 class FEBody(NamedTuple):
@@ -171,6 +176,24 @@ def body_accept(on, lines):
             _accept_line(lines[i])
 
 
+@njit(cache=True, inline="always")
+def _record_line(ln, out):
+    """The output channels of a line's accepted state into ``out`` (13 or more,
+    :func:`~.kernels.record_into`; the element tensions are those of the last force
+    evaluation, the accepted state's)."""
+    record_into(ln.now.r, ln.now.f, ln.work.tens, ln.par.S[S_ZC], ln.par.s_nodes, out)
+
+
+@njit(cache=True)
+def record_lines(on, lines, recs):
+    """``recs[i]`` the output channels of the accepted state of every line with ``on[i]``
+    (:func:`~.kernels.record_into`): the record of the start state, before the first
+    :func:`advance_lines`, which then writes them for every step."""
+    for i in range(len(lines)):
+        if on[i]:
+            _record_line(lines[i], recs[i])
+
+
 # -- threads ----------------------------------------------------------------------------------
 class SerialLines(NamedTuple):
     """Mode bundle of :func:`advance_lines`: the lines one after the other
@@ -180,6 +203,9 @@ class SerialLines(NamedTuple):
     """(n,) int64 (unused here: the fields of :class:`ParallelLines`)."""
     threads: int
     """1."""
+    recs: np.ndarray
+    """(n, :data:`REC_STRIDE`) the output channels of each line's accepted state
+    (:func:`~.kernels.record_into`, first 13 columns; out, written at every accept)."""
 
 
 class ParallelLines(NamedTuple):
@@ -190,20 +216,48 @@ class ParallelLines(NamedTuple):
     """(n,) int64 status of each line's last advance (out)."""
     threads: int
     """Threads (numba's thread count must be set to it around the kernel call)."""
+    recs: np.ndarray
+    """(n, :data:`REC_STRIDE`) the output channels of each line's accepted state, written by
+    the thread that accepted it (out; as :class:`SerialLines`)."""
 
 
 def lines_mode(n_lines: int, threads: int):
     """The mode bundle for ``n_lines`` lines advanced with ``threads`` threads: serial for one
     thread (or one line), parallel otherwise."""
     status = np.zeros(max(int(n_lines), 1), np.int64)
+    recs = np.zeros((max(int(n_lines), 1), REC_STRIDE))
     nt = min(int(threads), int(n_lines))
     if nt > 1:
-        return ParallelLines(status=status, threads=nt)
-    return SerialLines(status=status, threads=1)
+        return ParallelLines(status=status, threads=nt, recs=recs)
+    return SerialLines(status=status, threads=1, recs=recs)
+
+
+@njit(cache=True)
+def _advance_accept_line(t1, dt, nsub, max_split, rf, vf, ln, rec):
+    """One line's part of :func:`body_advance_parallel`: its trial advance
+    (:func:`~.kernels.ga_advance`, counters in ``ln.work.stats``), and when it succeeds its
+    accept and the output channels of the accepted state into ``rec``.  Returns the advance's
+    status.
+
+    A separate (not inlined) function on purpose: with the advance and the accept inlined into
+    the ``prange`` body, the parallel kernel compiled in a process that had not compiled the
+    serial one first lost the accepts (the lines never moved: a 60 s coupled run with two
+    threads gave a maximum tension of 1666 kN against 2809 kN; reproduced from an empty cache,
+    and ``tests/solvers/test_fe_threads.py`` checks it in a new process).  numba's parfor
+    passes now see only this call."""
+    st_i = ln.work.stats
+    st_i[0] = 0.0
+    st_i[1] = 0.0
+    st = ga_advance(t1, dt, nsub, max_split, rf, vf, ln.now, ln.trial, ln.step, ln.par, ln.work)
+    if st >= 0:
+        _accept_line(ln)
+        _record_line(ln, rec)
+    return st
 
 
 @njit(cache=True, parallel=True)
-def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, status, threads):
+def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, status, threads,
+                          recs):
     """:func:`body_advance` with the lines advanced in threads: ``numba.prange`` over
     ``threads`` slots, slot ``k`` advancing lines ``k, k + threads, ...`` (run it with numba's
     thread count ``threads``); ``status`` (n,) int64 scratch, each line's advance status.
@@ -216,7 +270,10 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
     until accepted, differ from a serial run's; the counters, forces and ``Q`` do not).  Each
     thread accepts every line it advanced without failure (the trial state copied into the
     accepted one, as :func:`body_accept`), so after a failure other lines may have been
-    accepted: the coupled run stops there anyway."""
+    accepted: the coupled run stops there anyway.  The same thread writes the output channels
+    of the accepted state into ``recs[i]`` (:func:`record_lines`): the main thread then reads
+    13 numbers of a line instead of its node arrays (reading those moved half of every line's
+    state between the cores at every step)."""
     fair_b, R, rf_all, vf_all, arm, Q, forces, on, fail, counters = body
     rotation_matrix_into(pose[3], pose[4], pose[5], R)
     for k in range(6):
@@ -232,14 +289,8 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
         for i in range(np.int64(k), nl, nt):
             status[i] = 0
             if on[i]:
-                ln = lines[i]
-                st_i = ln.work.stats
-                st_i[0] = 0.0
-                st_i[1] = 0.0
-                status[i] = ga_advance(t1, dt, nsub, max_split, rf_all[i], vf_all[i], ln.now,
-                                       ln.trial, ln.step, ln.par, ln.work)
-                if status[i] >= 0:
-                    _accept_line(ln)
+                status[i] = _advance_accept_line(t1, dt, nsub, max_split, rf_all[i], vf_all[i],
+                                                 lines[i], recs[i])
     for i in range(nl):
         if not on[i]:
             for c in range(3):
@@ -261,7 +312,8 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
 
 
 def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-    """Advance and accept the lines of a body: :func:`body_advance` then :func:`body_accept`
+    """Advance and accept the lines of a body and record their accepted states into
+    ``mode.recs``: :func:`body_advance`, :func:`body_accept` and :func:`record_lines`
     (``mode`` a :class:`SerialLines`), or :func:`body_advance_parallel`, whose threads accept
     the lines they advance (a :class:`ParallelLines`: a line's state stays in the cache of the
     core that advances it; accepting all lines on the main thread made two threads slower than
@@ -270,10 +322,11 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     neither contains nor compiles the parallel one."""
     if isinstance(mode, ParallelLines):
         return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
-                                     mode.status, mode.threads)
+                                     mode.status, mode.threads, mode.recs)
     st = body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
     if st >= 0:
         body_accept(body.on, lines)
+        record_lines(body.on, lines, mode.recs)
     return st
 
 
@@ -282,12 +335,13 @@ def _advance_lines_typed(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     if getattr(mode, "instance_class", None) is ParallelLines:
         def parallel(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
             return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
-                                         mode.status, mode.threads)
+                                         mode.status, mode.threads, mode.recs)
         return parallel
 
     def serial(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
         st = body_advance(t1, dt, nsub, max_split, pose, vel, body, lines)
         if st >= 0:
             body_accept(body.on, lines)
+            record_lines(body.on, lines, mode.recs)
         return st
     return serial
