@@ -233,11 +233,12 @@ def lines_mode(n_lines: int, threads: int):
 
 
 @njit(cache=True)
-def _advance_accept_line(t1, dt, nsub, max_split, rf, vf, ln, rec):
-    """One line's part of :func:`body_advance_parallel`: its trial advance
-    (:func:`~.kernels.ga_advance`, counters in ``ln.work.stats``), and when it succeeds its
-    accept and the output channels of the accepted state into ``rec``.  Returns the advance's
-    status.
+def _advance_accept_line(t1, dt, nsub, max_split, rf_all, vf_all, lines, i, recs):
+    """Line ``i``'s part of :func:`body_advance_parallel`: its trial advance
+    (:func:`~.kernels.ga_advance` with the fairlead ``rf_all[i]``, ``vf_all[i]``, counters in
+    the line's ``work.stats``), and when it succeeds its accept and the output channels of the
+    accepted state into ``recs[i]``.  Returns the advance's status.  (The line goes by its
+    index: the line's bundle of ~50 arrays as an argument cost more than the call.)
 
     A separate (not inlined) function on purpose: with the advance and the accept inlined into
     the ``prange`` body, the parallel kernel compiled in a process that had not compiled the
@@ -245,13 +246,15 @@ def _advance_accept_line(t1, dt, nsub, max_split, rf, vf, ln, rec):
     threads gave a maximum tension of 1666 kN against 2809 kN; reproduced from an empty cache,
     and ``tests/solvers/test_fe_threads.py`` checks it in a new process).  numba's parfor
     passes now see only this call."""
+    ln = lines[i]
     st_i = ln.work.stats
     st_i[0] = 0.0
     st_i[1] = 0.0
-    st = ga_advance(t1, dt, nsub, max_split, rf, vf, ln.now, ln.trial, ln.step, ln.par, ln.work)
+    st = ga_advance(t1, dt, nsub, max_split, rf_all[i], vf_all[i], ln.now, ln.trial, ln.step,
+                    ln.par, ln.work)
     if st >= 0:
         _accept_line(ln)
-        _record_line(ln, rec)
+        _record_line(ln, recs[i])
     return st
 
 
@@ -289,8 +292,8 @@ def body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines, statu
         for i in range(np.int64(k), nl, nt):
             status[i] = 0
             if on[i]:
-                status[i] = _advance_accept_line(t1, dt, nsub, max_split, rf_all[i], vf_all[i],
-                                                 lines[i], recs[i])
+                status[i] = _advance_accept_line(t1, dt, nsub, max_split, rf_all, vf_all, lines,
+                                                 i, recs)
     for i in range(nl):
         if not on[i]:
             for c in range(3):
