@@ -28,14 +28,14 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", default=None, metavar="FILE", help="save a plot (png/pdf/svg)")
     p.add_argument("--solver", default=None, metavar="KEY=VALUE[,KEY=VALUE]",
                    help="also run with these solver options, e.g. "
-                        "catenary=predictor,memory=state_space")
+                        "catenary=predictor,memory=state_space or fe_stages=linear")
 
 
 def parse_solver_option(text: str):
     """``catenary=predictor,memory=state_space`` -> SolverSpec (UsageError when malformed)."""
     from ..cli import UsageError
-    from ..io.solver_section import CATENARY_MODES, MEMORY_MODES, SolverSpec
-    choices = {"catenary": CATENARY_MODES, "memory": MEMORY_MODES}
+    from ..io.solver_section import CATENARY_MODES, FE_STAGE_MODES, MEMORY_MODES, SolverSpec
+    choices = {"catenary": CATENARY_MODES, "memory": MEMORY_MODES, "fe_stages": FE_STAGE_MODES}
     kw = {}
     for item in text.split(","):
         key, _, value = item.partition("=")

@@ -6,6 +6,7 @@ solver:
   memory: state_space      # convolution (default) | state_space
   memory_fit_tol: 0.01     # relative L2 error of the state-space fits (default 0.01)
   threads: 2               # threads for the finite-element lines: 1 (default) | N | auto
+  fe_stages: linear        # coupled FE lines in the RK4 stages: catenary (default) | linear
 ```
 
 ``catenary``: ``exact`` solves every quasi-static line at every RK4 stage by Newton's method to
@@ -22,6 +23,17 @@ error, :mod:`floatmoor.hydro.memory_fit`; the fit errors are the attribute
 with ``memory_fit_tol: 0.001`` (0.6 s more setup); the storm's peaks move by 0.03-0.1 %, the
 order of the time-step error at dt 0.1 s (benchmarks/RESULTS.md).
 ``floatmoor convergence --solver`` reports the differences against run time.
+
+``fe_stages`` (runs with finite-element lines coupled to the body,
+:mod:`floatmoor.solvers.fe_coupling`): over a body step the FE lines' force is their accepted
+force at the step start plus the change of their elastic catenary from the step start to each
+RK4 stage.  ``catenary`` solves those catenaries at every stage (4 solves per line and step);
+``linear`` takes the change from the catenaries' 6x6 stiffness at the step start (one solve
+with stiffness per line and step; the change over a stage is a fraction of a metre, so the
+dropped term is of second order in it).  On the flagship FE storm the body side of a step
+went from about 55 to 17 us with ``linear``, and the maximum tension moved by
+0.03-0.1 % against ``catenary`` (benchmarks/RESULTS.md, test
+``tests/solvers/test_fe_stages.py``).  Without FE lines the option changes nothing.
 
 ``threads``: the finite-element lines of the body are advanced in that many threads
 (:func:`floatmoor.mooring.fe.multi.body_advance_parallel`); the results are bit for bit those of
@@ -46,14 +58,15 @@ from ..core.config import Node
 from ..core.errors import SceneError
 
 __all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES",
-           "MEMORY_MODES", "catenary_tol", "THREADS_AUTO", "parse_threads", "available_threads",
+           "MEMORY_MODES", "FE_STAGE_MODES", "fe_stages", "catenary_tol", "THREADS_AUTO", "parse_threads", "available_threads",
            "run_threads", "with_thread_cap", "worker_thread_cap"]
 
-SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads")
+SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads", "fe_stages")
 THREADS_AUTO = "auto"
 THREADS_EXPECTED = "a positive integer or auto"
 CATENARY_MODES = ("exact", "predictor")
 MEMORY_MODES = ("convolution", "state_space")
+FE_STAGE_MODES = ("catenary", "linear")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -65,16 +78,20 @@ class SolverSpec:
     memory_fit_tol: float = 0.01
     threads: int | str = 1
     """Threads for the FE lines: a positive integer or ``"auto"`` (:func:`run_threads`)."""
+    fe_stages: str = "catenary"
+    """The coupled FE lines' force over the RK4 stages: ``catenary`` or ``linear``."""
     file: object = field(default=None, compare=False)
 
     @property
     def exact(self) -> bool:
         """True when every option is the exact path."""
-        return self.catenary == "exact" and self.memory == "convolution"
+        return (self.catenary == "exact" and self.memory == "convolution"
+                and self.fe_stages == "catenary")
 
     def describe(self) -> str:
         fit = (f" (fit {self.memory_fit_tol:g})" if self.memory == "state_space" else "")
-        return f"catenary {self.catenary}, memory {self.memory}{fit}"
+        fe = ", FE stages linear" if self.fe_stages == "linear" else ""
+        return f"catenary {self.catenary}, memory {self.memory}{fit}{fe}"
 
     def describe_threads(self) -> str:
         """``""`` for one thread, else e.g. ``"threads 2"``."""
@@ -91,6 +108,7 @@ def parse_solver(node: Node) -> SolverSpec:
                                                 lt=1.0),
                       threads=parse_threads(node.raw("threads", d.threads), file=node.file,
                                             key=node.key("threads")),
+                      fe_stages=node.str("fe_stages", d.fe_stages, choices=FE_STAGE_MODES),
                       file=node.file)
 
 
@@ -144,6 +162,11 @@ def with_thread_cap(spec: SolverSpec | None, cap: int, threads=None) -> SolverSp
         return None
     n = min(run_threads(spec), max(1, int(cap)))
     return spec if n == spec.threads else dataclasses.replace(spec, threads=n)
+
+
+def fe_stages(spec: SolverSpec | None) -> str:
+    """The coupled FE lines' stage model of ``spec`` (``catenary`` without a spec)."""
+    return spec.fe_stages if spec is not None else "catenary"
 
 
 def catenary_tol(spec: SolverSpec | None) -> float:

@@ -103,7 +103,8 @@ from .td_kernel import (
     td_steps,
 )
 
-__all__ = ["FECoupling", "FERun", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS"]
+__all__ = ["FECoupling", "FERun", "setup", "run", "td_fe_kernel", "STATUS_FE", "FE_RECORDS",
+           "pose_stiffness_into"]
 
 STATUS_FE = 5
 """Status code of :func:`td_fe_kernel` when a FE line step failed (status[2] the FE line,
@@ -134,6 +135,11 @@ class FERun(NamedTuple):
     """:class:`~floatmoor.mooring.fe.multi.SerialLines` or
     :class:`~floatmoor.mooring.fe.multi.ParallelLines`: the lines advanced one after the
     other or in threads (:func:`~floatmoor.mooring.fe.multi.advance_lines`; bit-identical)."""
+    linear: bool
+    """``solver: {fe_stages: linear}``: the FE lines' catenaries left out of the RK4 stages,
+    their stage variation linearised at the step start (module docstring)."""
+    kfe: np.ndarray
+    """(6, 6) scratch: the catenary stiffness of the FE lines at the step start."""
 
 
 @dataclass(kw_only=True)
@@ -283,6 +289,33 @@ def _release_failed(t, fe, fail_time, body):
 
 
 @njit(cache=True)
+def pose_stiffness_into(K, x, out):
+    """``out`` (6, 6) = dQ/dx at the pose ``x``, the derivative of the mooring force and
+    moment ``Q`` (earth axes, about the displaced reference point) with respect to the pose
+    [x, y, z, roll, pitch, yaw], from the catenary stiffness ``K`` = -dQ/d[dt, theta] of
+    :func:`~floatmoor.mooring.system.system_force_kernel` (small rotations ``theta`` in earth
+    axes): ``theta = T(x) d[roll, pitch, yaw]`` with the Euler-rate matrix ``T`` of the
+    angular velocity used for the fairleads (module docstring), so ``out = -K diag(I, T)``."""
+    cph = math.cos(x[4])
+    sph = math.sin(x[4])
+    cps = math.cos(x[5])
+    sps = math.sin(x[5])
+    # T: rows the earth axes, columns d roll, d pitch, d yaw
+    t00 = cps * cph
+    t01 = -sps
+    t10 = sps * cph
+    t11 = cps
+    t20 = -sph
+    for i in range(6):
+        out[i, 0] = -K[i, 0]
+        out[i, 1] = -K[i, 1]
+        out[i, 2] = -K[i, 2]
+        out[i, 3] = -(K[i, 3] * t00 + K[i, 4] * t10 + K[i, 5] * t20)
+        out[i, 4] = -(K[i, 3] * t01 + K[i, 4] * t11)
+        out[i, 5] = -K[i, 5]
+
+
+@njit(cache=True)
 def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
     """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring).
 
@@ -320,6 +353,7 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
     prate = np.zeros(6)
     vel = np.zeros(6)
     fq = np.zeros(6)
+    linear = fe.linear
     record_lines(fe_body.on, fe_lines, fe.mode.recs)
     for n in range(n_steps + 1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
@@ -328,13 +362,20 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
         cat = lines.cat
         bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
                                   cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
-                                  active_fe, warm_fe, False, state.work, state.rot,
-                                  state.line_out, fq, state.stiff)
+                                  active_fe, warm_fe, linear, state.work, state.rot,
+                                  state.line_out, fq, fe.kfe)
         if bad >= 0:
             set_status(status, STATUS_CATENARY, n, bad)
             return
-        for k in range(6):
-            mcorr[k] = Q[k] - fq[k]
+        if linear:
+            # stages: F_QS,others(x_s) + F_FE(t_n) + dF_QS,FE/dx (x_s - x_n)
+            pose_stiffness_into(fe.kfe, x, state.mlin)
+            for k in range(6):
+                mcorr[k] = Q[k]
+                state.mref[k] = x[k]
+        else:
+            for k in range(6):
+                mcorr[k] = Q[k] - fq[k]
         td_steps(n, n + 1, body, terms, lines, state, out)
         if status[0] != STATUS_OK:
             return
@@ -369,14 +410,17 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
             return
 
 
-def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1):
+def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1,
+        fe_stages: str = "catenary"):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
     ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
     the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
     n+1, n_lines))``; the FE channels are NaN for quasi-static lines.  ``threads`` > 1:
     the lines advance in that many threads (numba's count set for the kernel and restored
     after it; bit-identical results, :func:`floatmoor.mooring.fe.multi.body_advance_parallel`);
-    1: the serial kernel.
+    1: the serial kernel.  ``fe_stages`` ``"linear"``: the FE lines' catenaries left out of the
+    RK4 stages, their stage variation linearised at the step start (``solver: {fe_stages:
+    linear}``, module docstring); ``"catenary"`` the exact scheme.
 
     Raises
     ------
@@ -410,7 +454,13 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
     on = np.ones(nf, np.bool_)
     fm.counters = np.zeros((nf, 2))
     out = out._replace(status=status)
-    st = new_run_state(body, terms, moor, out, has_mcorr=True)
+    linear = fe_stages == "linear"
+    if linear:
+        # the body side's stages solve the catenaries of the other (quasi-static) lines only
+        active = moor.active.copy()
+        active[c.index] = False
+        moor = moor._replace(active=active)
+    st = new_run_state(body, terms, moor, out, has_mcorr=True, has_mlin=linear)
     fe_body = FEBody(fair_b=np.ascontiguousarray(fm.fairleads_body), R=np.zeros((3, 3)),
                      rf=np.zeros((nf, 3)), vf=np.zeros((nf, 3)), arm=arm, Q=Q, forces=forces,
                      on=on, fail=np.zeros(1, np.int64), counters=fm.counters)
@@ -418,7 +468,7 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                warm=np.zeros((n_lines, 2)), nsub=int(c.substeps),
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan),
-               mode=lines_mode(nf, threads))
+               mode=lines_mode(nf, threads), linear=linear, kfe=np.zeros((6, 6)))
     with numba_threads(fe.mode.threads):
         td_fe_kernel(body, terms, moor, st, out, fe, fe_body, line_list(lines))
     fm.on[:] = on

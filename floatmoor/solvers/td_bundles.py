@@ -82,7 +82,9 @@ class State(NamedTuple):
     State carried from step to step: pose ``x`` and yaw-frame velocity ``v`` (6,), ``hist``
     (6, 2 n_k) ring buffer of step velocities (stored twice), ``s0``, ``s1`` (n_pairs,)
     convolution sums S_n, S_{n+1}; ``mcorr`` (6,) added to the mooring force when
-    ``has_mcorr`` (coupled FE lines).  Work: ``parts`` (n_terms, 6) force of every term,
+    ``has_mcorr`` (coupled FE lines), and with ``has_mlin`` also ``mlin @ (x - mref)``
+    (``mlin`` (6, 6), ``mref`` (6,): the linearised stage variation of the FE lines' force,
+    ``solver: {fe_stages: linear}``).  Work: ``parts`` (n_terms, 6) force of every term,
     ``f`` (6,) their sum; ``work``, ``rot``, ``line_out``, ``fm``, ``stiff`` (catenaries),
     ``coef``, ``sl_sc`` (flow and strip kernels), ``xs``, ``vs`` (stage state), ``mom``, ``g``
     (6,), ``q``, ``a`` (4, 6) the RK4 stage rates."""
@@ -94,6 +96,9 @@ class State(NamedTuple):
     s1: np.ndarray
     mcorr: np.ndarray
     has_mcorr: bool
+    mlin: np.ndarray
+    mref: np.ndarray
+    has_mlin: bool
     parts: np.ndarray
     work: np.ndarray
     rot: np.ndarray
@@ -136,10 +141,11 @@ def no_lines() -> Lines:
 
 
 def new_state(n_terms: int, n_lines: int, n_pairs: int, n_k: int, *,
-              has_mcorr: bool = False) -> State:
+              has_mcorr: bool = False, has_mlin: bool = False) -> State:
     """Zeroed :class:`State` (allocated once per run, outside the step loop)."""
     return State(np.zeros(6), np.zeros(6), np.zeros((6, 2 * n_k)), np.zeros(n_pairs),
-                 np.zeros(n_pairs), np.zeros(6), bool(has_mcorr), np.zeros((n_terms, 6)),
+                 np.zeros(n_pairs), np.zeros(6), bool(has_mcorr), np.zeros((6, 6)), np.zeros(6),
+                 bool(has_mlin), np.zeros((n_terms, 6)),
                  np.zeros(64), np.zeros((3, 3)), np.zeros((n_lines, OUT_SIZE)), np.zeros(6),
                  np.zeros((6, 6)), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6),
                  np.zeros(6), np.zeros(6), np.zeros(6), np.zeros((4, 6)), np.zeros((4, 6)))

@@ -109,7 +109,8 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
     fraction c, pose ``x`` and yaw-frame velocity ``v``: the kinds in the order of
     :data:`floatmoor.forces.terms.KINDS`, each over its terms.  ``st.mcorr`` is added to the
     mooring force when ``st.has_mcorr`` (the dynamic part of coupled FE lines,
-    :mod:`floatmoor.solvers.fe_coupling`).  Returns -1, or the index of a line whose catenary
+    :mod:`floatmoor.solvers.fe_coupling`), and with ``st.has_mlin`` also
+    ``st.mlin @ (x - st.mref)`` (their linearised stage variation, ``fe_stages: linear``).  Returns -1, or the index of a line whose catenary
     failed.  ``stage`` the RK4 stage (0-3): with the predictor-corrector catenaries
     (:class:`~.td_bundles.PredictorLines`) stage 2 takes the predictor alone (its pose is within millimetres
     of stage 1's, :func:`floatmoor.mooring.catenary_step.system_force_step_kernel`)."""
@@ -141,6 +142,14 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
         if st.has_mcorr:
             for i in range(6):
                 parts[r, i] += st.mcorr[i]
+            if st.has_mlin:
+                mlin = st.mlin
+                mref = st.mref
+                for i in range(6):
+                    s = 0.0
+                    for k in range(6):
+                        s += mlin[i, k] * (x[k] - mref[k])
+                    parts[r, i] += s
         r += 1
     # damping on the yaw-frame velocities: linear, then quadratic
     dl = terms.damping.matrix
@@ -521,11 +530,13 @@ def start_state(x0, v0, x, v, hist):
         hist[k, n_k] = v[k]
 
 
-def new_run_state(body, terms, lines, out, *, has_mcorr: bool = False):
+def new_run_state(body, terms, lines, out, *, has_mcorr: bool = False,
+                  has_mlin: bool = False):
     """The :class:`~.td_bundles.State` of a run, at the start state of ``body``."""
     mem = terms.memory
     st = new_state(out.parts.shape[1], lines.cat.anchors.shape[0], mem.i.shape[0],
-                   max(1, mem.kernel.shape[1]), has_mcorr=has_mcorr)
+                   max(1, mem.kernel.shape[1]), has_mcorr=has_mcorr,
+                   has_mlin=has_mlin)
     start_state(body.x0, body.v0, st.x, st.v, st.hist)
     mem.ss_y[...] = 0.0  # the state-space memory starts at rest, like the history
     return st
