@@ -19,6 +19,9 @@ start), ``code=2`` (a raw ``kernels.NW_*`` code of the iteration, here the predi
 e.g. ``--newton exact exact:tol=1e-8 exact:x0=1e-6 exact:code=2 modified``; ``--per-line`` prints
 every line's maximum and its time.
 
+``--fe-stages catenary linear``: the scene option ``solver: {fe_stages: ...}``, interleaved
+with the other options (the first one is the reference of the comparison lines).
+
 ``--threads 1 2``: the FE lines advanced in that many threads (scene option ``solver:
 {threads: N}``), the runs interleaved with the Newton modes; the time loop is printed as wall
 and CPU seconds of the process (all its threads), and every threaded run is checked bit for bit
@@ -58,6 +61,10 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-qs", action="store_true")
     ap.add_argument("--threads", type=int, nargs="+", default=[1])
+    ap.add_argument("--fe-stages", nargs="+", default=["catenary"],
+                    choices=("catenary", "linear"),
+                    help="solver: {fe_stages: ...}: the FE lines' catenaries at every RK4 stage "
+                    "(catenary) or their stiffness at the step start (linear); interleaved")
     ap.add_argument("--catenary", choices=("exact", "predictor"), default="exact",
                     help="solver: {catenary: ...} of the body side (the FE lines' catenaries "
                     "in the RK4 stages)")
@@ -123,19 +130,19 @@ def main() -> None:
               f"(line {ds.line.values[int(np.argmax(qs[dt]))]}); load {_load()}")
     first = {}
     single = {}
-    runs = [(dt, nw, th) for dt in args.dt for _ in range(args.repeat) for nw in args.newton
-            for th in args.threads]
-    for dt, nw, th in runs:
+    runs = [(dt, nw, fes, th) for dt in args.dt for _ in range(args.repeat)
+            for nw in args.newton for fes in args.fe_stages for th in args.threads]
+    for dt, nw, fes, th in runs:
         built = fe_scene(nw)
         w0 = time.perf_counter()
         c0 = time.process_time()
         ds = simulate(built, seed=args.seed, duration=args.duration, dt=dt,
-                      solver=SolverSpec(threads=th, catenary=args.catenary))
+                      solver=SolverSpec(threads=th, catenary=args.catenary, fe_stages=fes))
         wall = time.perf_counter() - w0
         cpu = time.process_time() - c0
         loop = ds.attrs["run_time_s"]
         if len(args.threads) > 1:
-            key = (dt, nw)
+            key = (dt, nw, fes)
             if th == args.threads[0]:
                 single.setdefault(key, ds)
             elif key in single:
@@ -150,7 +157,7 @@ def main() -> None:
         n_steps = ds.time.size - 1
         newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
         i = int(np.argmax(tfe))
-        print(f"FE  dt {dt:g} newton {nw} catenary {args.catenary} threads "
+        print(f"FE  dt {dt:g} newton {nw} catenary {args.catenary} fe_stages {fes} threads "
               f"{ds.attrs.get('fe_threads', 1)}: "
               f"loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
               f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
@@ -171,7 +178,8 @@ def main() -> None:
                 zip(tfe, ds.line_tension.values[sel].argmax(axis=0))))
         if dt in first:
             f0 = first[dt]
-            print(f"    against newton {args.newton[0]}: max fairlead tension "
+            print(f"    against newton {args.newton[0]}, fe_stages {args.fe_stages[0]}: max "
+                  f"fairlead tension "
                   f"{(tfe.max() / f0.max() - 1) * 100:+.4f} %, per line max "
                   f"{np.abs(tfe / f0 - 1).max() * 100:.4f} % at most (line "
                   f"{ds.line.values[int(np.argmax(np.abs(tfe / f0 - 1)))]})")

@@ -30,10 +30,12 @@ force at the step start plus the change of their elastic catenary from the step 
 RK4 stage.  ``catenary`` solves those catenaries at every stage (4 solves per line and step);
 ``linear`` takes the change from the catenaries' 6x6 stiffness at the step start (one solve
 with stiffness per line and step; the change over a stage is a fraction of a metre, so the
-dropped term is of second order in it).  On the flagship FE storm the body side of a step
-went from about 55 to 17 us with ``linear``, and the maximum tension moved by
-0.03-0.1 % against ``catenary`` (benchmarks/RESULTS.md, test
-``tests/solvers/test_fe_stages.py``).  Without FE lines the option changes nothing.
+dropped term is of second order in it).  On the 3-hour flagship FE storm (12 lines x 50
+elements, dt 0.1 s, two threads) the loop went from 23.3 to 20.2 s (20.9 to 18.0 s with
+``finite_element: {newton: fast}``); the maximum fairlead tension moved by 0.0003 % and each
+line's maximum by at most 0.004 % (benchmarks/RESULTS.md); in 240 s test storms the tensions
+stay within 1 % of the exact path's own time-step error (``tests/solvers/test_fe_stages.py``).
+Without FE lines the option changes nothing.
 
 ``threads``: the finite-element lines of the body are advanced in that many threads
 (:func:`floatmoor.mooring.fe.multi.body_advance_parallel`); the results are bit for bit those of

@@ -32,6 +32,13 @@ gives an error of first order in dt in the dynamic part only (measured: tests an
 benchmarks/RESULTS.md); a predictor-corrector (a second FE advance per step) was not used
 because the FE lines are >90 % of the run time.
 
+Opt-in ``solver: {fe_stages: linear}``: F_QS,FE(x_s) - F_QS,FE(x_n) is taken as
+(dQ/dx)(x_n) (x_s - x_n), the catenaries' 6x6 stiffness at the step start turned into pose
+coordinates (:func:`pose_stiffness_into`), so the stages solve no catenary of the FE lines (one
+solve with stiffness per line and step instead of five solves); the dropped term is of second
+order in the stage displacement (a fraction of a metre).  Stage 1 (x_s = x_n) gets the same
+force up to round-off.
+
 Start: the body at the static equilibrium of the quasi-static model (as for quasi-static
 lines), the FE lines in their own static equilibrium with friction at that pose
 (:meth:`FEMooring.solve_static`), at rest.  The small static difference FE vs catenary (0.02 %
