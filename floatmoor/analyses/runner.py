@@ -100,9 +100,14 @@ def seed_file(out_dir: Path, scene_name: str, seed: int) -> Path:
 
 
 def _ignore_sigint() -> None:
-    """Worker initializer: the parent alone handles Ctrl-C (it then stops the workers)."""
+    """Worker initializer: the parent alone handles Ctrl-C (it then stops the workers), and
+    SIGTERM ends a worker at once.  A forked worker inherits the parent's SIGTERM handler of
+    :func:`_interrupts_as_keyboard_interrupt` (raise KeyboardInterrupt); a worker stopped by
+    ``terminate()`` then sometimes printed the KeyboardInterrupt's traceback (seen once in a
+    full test run, ``tests/test_run_interrupt.py``), depending on where the signal found it."""
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def _worker_context():
