@@ -60,8 +60,9 @@ from ..core.config import Node
 from ..core.errors import SceneError
 
 __all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES",
-           "MEMORY_MODES", "FE_STAGE_MODES", "fe_stages", "catenary_tol", "THREADS_AUTO", "parse_threads", "available_threads",
-           "run_threads", "with_thread_cap", "worker_thread_cap"]
+           "MEMORY_MODES", "FE_STAGE_MODES", "fe_stages", "catenary_tol", "THREADS_AUTO",
+           "parse_threads", "available_threads", "run_threads", "with_thread_cap",
+           "worker_thread_cap"]
 
 SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads", "fe_stages")
 THREADS_AUTO = "auto"
