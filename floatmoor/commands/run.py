@@ -68,7 +68,9 @@ def summary_table(files, n_lines: int = 3) -> str:
     if not rows:
         return "no finished seeds"
     lines_keys = [k for k in rows if k != "offset (m)"]
-    lines_keys.sort(key=lambda k: -np.mean([r[2] for r in rows[k]]))
+    # by the max as printed (0.1 kN), lines equal to it in the scene's order: mirror-image
+    # lines differ only by round-off, which must not decide the order of the table
+    lines_keys.sort(key=lambda k: -round(float(np.mean([r[2] for r in rows[k]])), 1))
     keys = ["offset (m)"] + lines_keys[:n_lines]
     n = len(files)
     out = [f"statistics over {n} seed{'s' if n != 1 else ''} (after the transient)",
