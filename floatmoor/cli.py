@@ -10,6 +10,7 @@
 ``floatmoor report RESULTS_DIR``      Gumbel statistics and DNV-OS-E301 checks (:mod:`floatmoor.commands.report`)
 ``floatmoor import FORMAT FILE``     MoorDyn, MAP++ or OpenFAST model -> floatmoor files (:mod:`floatmoor.commands.import_`)
 ``floatmoor export moordyn FILE``    mooring -> MoorDyn v2 input file (:mod:`floatmoor.commands.export`)
+``floatmoor compile SCENE.yaml ...``  the scenes' storm kernels compiled ahead (:mod:`floatmoor.commands.compile`)
 
 Exit status: 0 success (``report``: 1 when a line fails its design check), 2 a mistake in an input file (:class:`~floatmoor.SceneError`, printed
 as ``floatmoor: error: <message>`` without a traceback) or on the command line, 3 a numerical
@@ -207,6 +208,7 @@ COMMANDS: list[Command | tuple[str, str]] = [
     ("import", "floatmoor.commands.import_"),
     ("export", "floatmoor.commands.export"),
     ("campaign", "floatmoor.commands.campaign"),
+    ("compile", "floatmoor.commands.compile"),
 ]
 """The subcommands, in the order ``--help`` lists them: a :class:`Command`, or
 ``(name, module)`` for a module following the :mod:`floatmoor.commands` convention."""
