@@ -357,7 +357,10 @@ def line_forces(r, v, fs, par, want_jac, cK, cC, f, w):
         lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]`` the
         upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
     """
-    _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, False)
+    # the flags as plain booleans: numba types a constant argument True / False as a literal
+    # and compiles the large force kernel once per literal value (three times over in a coupled
+    # FE storm's first run, 3-8 s each); callers pass bool(...) for the same reason
+    _line_forces(r, v, fs, par, bool(want_jac), cK, cC, f, w, bool(False))  # noqa: UP018
 
 
 @njit(cache=True)
@@ -1291,7 +1294,8 @@ def static_newton(r, v0, fs, par, f, w, max_step=0.0):
     for i in range(n):
         lam_min = max(lam_min, abs(P[i, NP_W]))
     lam_min /= max(E[0, EL_L0], 1e-12)
-    line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
+    jac = bool(True)  # noqa: UP018 (a plain boolean, not a literal: see line_forces)
+    line_forces(r, v0, fs, par, jac, 1.0, 0.0, f, w)
     res2 = _res2(f, n)
     lam = 0.0
     it = 0
@@ -1311,7 +1315,7 @@ def static_newton(r, v0, fs, par, f, w, max_step=0.0):
         if bad >= 0:
             if lam == 0.0:
                 lam = lam_min
-                line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
+                line_forces(r, v0, fs, par, jac, 1.0, 0.0, f, w)
                 continue
             info[2] = bad
             return -2
@@ -1320,7 +1324,7 @@ def static_newton(r, v0, fs, par, f, w, max_step=0.0):
         for i in range(n):
             for a in range(3):
                 rtry[i, a] = r[i, a] + (dx[i, a] if 0 < i < n - 1 else 0.0)
-        line_forces(rtry, v0, fs, par, True, 1.0, 0.0, f, w)
+        line_forces(rtry, v0, fs, par, jac, 1.0, 0.0, f, w)
         r2 = _res2(f, n)
         if r2 < res2 or _max_res(f, n) < tol:
             for i in range(n):
@@ -1332,13 +1336,13 @@ def static_newton(r, v0, fs, par, f, w, max_step=0.0):
                 radius *= 2.0
         elif trust:
             radius = 0.25 * min(radius, _max_move(dx, n))
-            line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
+            line_forces(r, v0, fs, par, jac, 1.0, 0.0, f, w)
         else:
             lam = lam_min if lam == 0.0 else 10.0 * lam
             if lam > 1e30:
                 break
-            line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
-    line_forces(r, v0, fs, par, True, 1.0, 0.0, f, w)
+            line_forces(r, v0, fs, par, jac, 1.0, 0.0, f, w)
+    line_forces(r, v0, fs, par, jac, 1.0, 0.0, f, w)
     info[0] = it
     info[1] = _max_res(f, n)
     worst = 1
@@ -1559,7 +1563,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
                 v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
         # (with no stiff element no element is managed by the estimate: use_act False skips
         # the per-element test, same bits)
-        _line_forces(r1, v1, fs, par, fresh, cK, cC, f1, w, nstiff > 0)
+        _line_forces(r1, v1, fs, par, bool(fresh), cK, cC, f1, w, nstiff > 0)
         # largest push of an element held as a bar in compression (the converged state must
         # not rely on it: the cable law has no compression)
         fbar = 0.0
@@ -1704,7 +1708,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     # Converged on the residual, the state is the last iterate's (the same a1, so the same
     # r1 and v1 to the bit) and f1, w.tens, w.q are already its forces: not evaluated again.
     if not by_res:
-        _line_forces(r1, v1, fs, par, False, cK, cC, f1, w, nstiff > 0)
+        _line_forces(r1, v1, fs, par, bool(False), cK, cC, f1, w, nstiff > 0)  # noqa: UP018
     for j in range(n - 1):
         if act[j] > 0.0 and tens[j] < 0.0:
             tens[j] = 0.0
@@ -1733,7 +1737,7 @@ def explicit_step(t1, dt, rf1, vf1, s, par, w):
     n = r.shape[0]
     node_mass(r, P, w.q, w.Mb)
     friction_decide(r, v, par.fric, fs, S[S_ZC])
-    line_forces(r, v, fs, par, False, 0.0, 0.0, f, w)
+    line_forces(r, v, fs, par, bool(False), 0.0, 0.0, f, w)  # noqa: UP018
     for i in range(1, n - 1):
         if not _inv3(w.Mb[i], W[i]):
             return i

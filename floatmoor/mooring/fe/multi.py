@@ -179,11 +179,16 @@ def _accept_line(ln):
     """Commit the trial state of one line (the copies of :meth:`FELine.accept`)."""
     now = ln.now
     tr = ln.trial
-    now.r[:, :] = tr.r
-    now.v[:, :] = tr.v
-    now.a[:, :] = tr.a
-    now.f[:, :] = tr.f
-    now.fs[:, :] = tr.fs
+    # element by element: a slice assignment compiles numba's shape-mismatch error message
+    # (string formatting, about 3 s of a coupled FE storm's first run)
+    for i in range(tr.r.shape[0]):
+        for k in range(3):
+            now.r[i, k] = tr.r[i, k]
+            now.v[i, k] = tr.v[i, k]
+            now.a[i, k] = tr.a[i, k]
+            now.f[i, k] = tr.f[i, k]
+        for k in range(tr.fs.shape[1]):
+            now.fs[i, k] = tr.fs[i, k]
 
 
 @njit(cache=True)
