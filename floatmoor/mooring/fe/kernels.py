@@ -1720,6 +1720,23 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     return it
 
 
+@njit(cache=True, inline="always")
+def accept_trial(ln):
+    """Commit the trial state of the line bundle ``ln`` (``ln.trial`` -> ``ln.now``: the copies
+    of :meth:`FELine.accept`).  Element by element: a slice assignment compiles numba's
+    shape-mismatch error message (string formatting, about 3 s of a first run)."""
+    now = ln.now
+    tr = ln.trial
+    for i in range(tr.r.shape[0]):
+        for k in range(3):
+            now.r[i, k] = tr.r[i, k]
+            now.v[i, k] = tr.v[i, k]
+            now.a[i, k] = tr.a[i, k]
+            now.f[i, k] = tr.f[i, k]
+        for k in range(tr.fs.shape[1]):
+            now.fs[i, k] = tr.fs[i, k]
+
+
 @njit(cache=True)
 def explicit_step(t1, dt, rf1, vf1, s, par, w):
     """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the

@@ -27,7 +27,7 @@ from numba.extending import overload
 from numba.typed import List
 
 from ...core.frames import rotation_matrix_into
-from .kernels import S_ZC, ga_advance, record_into
+from .kernels import S_ZC, accept_trial, ga_advance, record_into
 
 __all__ = ["FEBody", "new_body", "line_list", "body_advance", "body_accept", "add_line_wrench",
            "SerialLines", "ParallelLines", "lines_mode", "advance_lines",
@@ -174,30 +174,13 @@ def add_line_wrench(i, arm, forces, Q):
     Q[5] += arm[i, 0] * forces[i, 1] - arm[i, 1] * forces[i, 0]
 
 
-@njit(cache=True, inline="always")
-def _accept_line(ln):
-    """Commit the trial state of one line (the copies of :meth:`FELine.accept`)."""
-    now = ln.now
-    tr = ln.trial
-    # element by element: a slice assignment compiles numba's shape-mismatch error message
-    # (string formatting, about 3 s of a coupled FE storm's first run)
-    for i in range(tr.r.shape[0]):
-        for k in range(3):
-            now.r[i, k] = tr.r[i, k]
-            now.v[i, k] = tr.v[i, k]
-            now.a[i, k] = tr.a[i, k]
-            now.f[i, k] = tr.f[i, k]
-        for k in range(tr.fs.shape[1]):
-            now.fs[i, k] = tr.fs[i, k]
-
-
 @njit(cache=True)
 def body_accept(on, lines):
     """Commit the trial state of every line with ``on[i]`` (the copies of
     :meth:`FELine.accept`); released lines keep their state."""
     for i in range(len(lines)):
         if on[i]:
-            _accept_line(lines[i])
+            accept_trial(lines[i])
 
 
 @njit(cache=True, inline="always")
@@ -277,7 +260,7 @@ def _advance_accept_line(t1, dt, nsub, max_split, rf_all, vf_all, lines, i, recs
     st = ga_advance(t1, dt, nsub, max_split, rf_all[i], vf_all[i], ln.now, ln.trial, ln.step,
                     ln.par, ln.work)
     if st >= 0:
-        _accept_line(ln)
+        accept_trial(ln)
         _record_line(ln, recs[i])
     return st
 

@@ -231,16 +231,7 @@ def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si,
         counts[1] += w.stats[1]
         if st < 0:
             return k, st
-        # element loops, not slice copies: a slice copy compiles numba's shape-mismatch error
-        # path (string formatting), ~3 s of the cold compile
-        for i in range(now.r.shape[0]):
-            for c in range(3):
-                now.r[i, c] = tr.r[i, c]
-                now.v[i, c] = tr.v[i, c]
-                now.a[i, c] = tr.a[i, c]
-                now.f[i, c] = tr.f[i, c]
-            for c in range(now.fs.shape[1]):
-                now.fs[i, c] = tr.fs[i, c]
+        K.accept_trial(ln)
         if k % record_every == 0:
             kr = k // record_every
             times[kr] = t
