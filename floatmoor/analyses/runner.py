@@ -152,25 +152,18 @@ def _ready_listener(ready):
     """numba event listener of the lead worker: sets ``ready`` when the outermost compilation
     (numba's compiler lock released: the compiled kernels are in the cache) leaves a time loop
     kernel with a compiled signature."""
-    from numba.core import event
+    from ..core.compile_events import outermost_listener
 
-    class ReadyWhenTimeLoopCompiled(event.Listener):
-        def __init__(self):
-            self.depth = 0
+    def check(ev):
+        if ready.is_set():
+            return
+        for mod, name in _TIME_LOOPS:
+            kernel = getattr(sys.modules.get(mod), name, None)
+            if kernel is not None and kernel.signatures:
+                ready.set()
+                return
 
-        def on_start(self, ev):
-            self.depth += 1
-
-        def on_end(self, ev):
-            self.depth -= 1
-            if self.depth == 0 and not ready.is_set():
-                for mod, name in _TIME_LOOPS:
-                    kernel = getattr(sys.modules.get(mod), name, None)
-                    if kernel is not None and kernel.signatures:
-                        ready.set()
-                        return
-
-    return ReadyWhenTimeLoopCompiled()
+    return outermost_listener(check)
 
 
 def _compile_role():

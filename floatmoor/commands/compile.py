@@ -35,25 +35,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _compile_counter():
-    """A numba event listener counting the outermost compilations (a kernel compiled for a
-    caller is part of its caller's compilation) and the list it counts into."""
+    """The list of the outermost compilations of this process from now on (a kernel compiled
+    for a caller is part of its caller's compilation), by function name."""
     from numba.core import event
 
+    from ..core.compile_events import outermost_listener
+
     done: list[str] = []
-
-    class Counter(event.Listener):
-        def __init__(self):
-            self.depth = 0
-
-        def on_start(self, ev):
-            self.depth += 1
-
-        def on_end(self, ev):
-            self.depth -= 1
-            if self.depth == 0:
-                done.append(ev.data["dispatcher"].py_func.__qualname__)
-
-    event.register("numba:compile", Counter())
+    event.register("numba:compile", outermost_listener(
+        lambda ev: done.append(ev.data["dispatcher"].py_func.__qualname__)))
     return done
 
 
