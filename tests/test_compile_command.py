@@ -2,13 +2,12 @@
 
 The slow test runs the command in a fresh process with an empty numba cache on the flagship's
 quasi-static and finite-element scenes, then, in new processes, checks that a coupled FE storm
-compiles nothing (numba's compile events, recorded as in tests/test_first_run.py) and that the
+compiles nothing (numba's compile events, recorded by tests/test_first_run.py's helper) and that the
 command finds nothing left to compile.  Before the FE lines' typed list was built by cached
 kernels, every new process compiled numba's own list helpers (``_make_list``, ``_append``)
 before its first FE storm: this test fails on that.
 """
 
-import json
 import os
 import subprocess
 import sys
@@ -17,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from floatmoor.cli import main
+from tests.test_first_run import _run
 
 ROOT = Path(__file__).resolve().parents[1]
 QS = "scenes/floatel_100yr.yaml"
@@ -37,16 +37,8 @@ def _floatmoor(args, cache):
     return out.stdout
 
 
-RECORDED_FE_STORM = """
-import json, warnings
-from numba.core import event
-compiled = []
-class Listener(event.Listener):
-    def on_start(self, ev):
-        pass
-    def on_end(self, ev):
-        compiled.append(ev.data["dispatcher"].py_func.__qualname__)
-event.register("numba:compile", Listener())
+FE_STORM = """
+import warnings
 from floatmoor.analyses.simulate import simulate
 warnings.simplefilter("ignore")
 simulate("scenes/floatel_100yr_fe.yaml", duration=60.0, transient=0.0)
@@ -56,14 +48,12 @@ print(json.dumps(compiled))
 
 @pytest.mark.slow  # reason: compiles the QS and FE storm kernels from an empty cache (~1.5 min)
 def test_compile_then_storms_compile_nothing(tmp_path):
-    cache = tmp_path / "numba_cache"
+    cache = tmp_path / "numba_cache"  # the folder tests/test_first_run.py::_run uses
     first = _floatmoor(["compile", QS, FE], cache)
     assert f"{QS}: " in first and "kernels compiled in" in first, first
     assert f"{FE}: " in first
-    out = subprocess.run([sys.executable, "-c", RECORDED_FE_STORM], env=_env(cache), cwd=ROOT,
-                         capture_output=True, text=True, timeout=1200)
-    assert out.returncode == 0, out.stderr[-3000:]
-    assert json.loads(out.stdout.strip().splitlines()[-1]) == []
+    # a new process on the same cache, numba's compile events recorded
+    assert _run(FE_STORM, tmp_path) == []
     again = _floatmoor(["compile", QS, FE], cache)
     assert again.count("nothing to compile (loaded from the cache)") == 2, again
 

@@ -93,8 +93,8 @@ def line_list(lines):
     """Numba typed list of the :attr:`FELine.bundle` of started ``lines`` (references).
 
     Built by two cached kernels: ``List()`` and ``append`` called from Python compile numba's
-    own list helpers, which numba does not cache, again in every process (about 2-3 s before
-    each FE storm of a seed worker, measured with ``floatmoor compile``)."""
+    own list helpers, which numba does not cache, again in every process (0.5-1.2 s before
+    each process's first coupled FE storm, benchmarks/RESULTS.md)."""
     lines = list(lines)
     if not lines:
         return List()
