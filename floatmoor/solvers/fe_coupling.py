@@ -554,18 +554,15 @@ def numba_threads(n: int):
 
 
 def raise_fe_status(c: FECoupling, status) -> None:
-    """NumericalError for a failed FE step (status 5), naming time, line, node and remedy."""
+    """NumericalError for a failed FE step (status 5), naming time, line, node and remedy
+    (:meth:`FELine.step_error`, with the coupled run's remedy for a failed Newton iteration)."""
     if int(status[0]) != STATUS_FE:
         return
     ln = c.mooring.lines[int(status[2])]
     code = int(status[3])
-    msg = {-1: f"no Newton convergence in {ln.maxit} iterations",
-           -2: "singular iteration matrix", -3: "NaN in the line state"}.get(
-        code, f"line step failed (code {code})")
-    t_fail, node = ln.failure
-    raise NumericalError(
-        f"FE line coupled to the body: {msg}", time=t_fail,
-        where=f"line {ln.spec.name!r}, node {node} of {ln.n_nodes - 1}",
-        remedy=f"reduce dt or set mooring.finite_element.dt (line steps per body step; the "
-               f"step was already halved {FELine.MAX_SPLIT} times), add elements, or check "
-               "for a slack line hit by a snap load")
+    remedy = None
+    if code in (-1, -2, -3):
+        remedy = (f"reduce dt or set mooring.finite_element.dt (line steps per body step; the "
+                  f"step was already halved {FELine.MAX_SPLIT} times), add elements, or check "
+                  "for a slack line hit by a snap load")
+    raise ln.step_error(code, remedy=remedy, coupled=True)

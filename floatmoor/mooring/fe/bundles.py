@@ -21,6 +21,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+N_AU = 12
+"""Length of :attr:`LineWork.audit` (the columns are ``kernels.AU_*``)."""
+
 __all__ = ["LineParams", "LineState", "LineWork", "LineBundle", "new_state", "new_work"]
 
 
@@ -114,6 +117,9 @@ class LineWork(NamedTuple):
     """(2,) Newton iterations and step halvings of the last advance."""
     el: np.ndarray
     """(n-1, 4) element unit directions and lengths (m) of the last force evaluation."""
+    audit: np.ndarray
+    """(``kernels.N_AU``,) energy audit and self-check of the run (cumulative since
+    :meth:`FELine.start`, not reset per call; columns ``kernels.AU_*``)."""
 
 
 class LineBundle(NamedTuple):
@@ -143,4 +149,4 @@ def new_work(n: int) -> LineWork:
                     BX=np.zeros((7, n, 3, 3)), R=z3(), W=np.zeros((n, 3, 3)), Y=z3(),
                     T1=np.zeros((3, 3)), dx=z3(), rtry=z3(), rf=np.zeros(3), vf=np.zeros(3),
                     info=np.zeros(3), stats=np.zeros(2),
-                    el=np.zeros((n - 1, 4)))
+                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU))

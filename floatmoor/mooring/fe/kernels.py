@@ -73,6 +73,27 @@ NEWTON_THETA = 0.25
 NW_KEEP = 1
 NW_PREDICT = 2
 NW_QSTOP = 4
+# Energy audit of the generalised-alpha steps (ga_advance, line_energy).  Columns of
+# ``LineWork.audit`` (cumulative since FELine.start): steps halved because they created energy;
+# accepted steps that still created energy at the smallest step, the energy they created (J),
+# the largest such creation over the step's energy budget, its time (s) and element; the
+# largest seabed penetration over its bound (PEN_WEIGHTS), its time and node; the most
+# negative element tension (N: an element pushing), its time and element.
+AU_SPLITS, AU_NBAD, AU_EBAD, AU_WORST, AU_TWORST, AU_EWORST, AU_PEN, AU_TPEN, AU_NPEN, \
+    AU_TMIN, AU_TTMIN, AU_ETMIN = range(12)
+AUDIT_REL = 0.01
+"""A step may create at most this fraction of the line's energy budget (kinetic plus elastic
+energy, the larger of the step's two ends) ..."""
+AUDIT_FLOOR = 1e-3
+"""... or, when that is smaller, the work of lifting the line's submerged weight by this many
+metres (1 mm: 1.8 kJ for a 2650 m chain-polyester-chain line, 0.6 kJ for the OC3 line)."""
+AUDIT_HARD = 0.25
+"""A step at the smallest sub-step that creates more than this fraction of the energy budget
+stops the run (status -4): the line's answer is no longer bounded by its energy."""
+PEN_WEIGHTS = 100.0
+"""Seabed bound: no node deeper below the seabed than where its contact spring carries this
+many times the node's submerged weight (nor than four contact-smoothing depths, two nominal
+diameters, when that is deeper); deeper stops the run (status -5)."""
 
 
 @njit(cache=True)
@@ -1398,6 +1419,141 @@ def _max_res(f, n):
 
 
 # --------------------------------------------------------------------------------------------
+# energy audit
+# --------------------------------------------------------------------------------------------
+@njit(cache=True)
+def _elastic_energy(eps, c1, c2, c3, e0, L0):
+    """Elastic energy (J) of an element of unstretched length ``L0`` at strain ``eps``: the
+    integral of :func:`_tension` (zero in compression, the cubic transition below ``e0``, the
+    polynomial law above)."""
+    if eps <= 0.0:
+        return 0.0
+    T0 = c1 * e0 + c2 * e0 * e0 + c3 * e0 * e0 * e0
+    D0 = c1 + 2.0 * c2 * e0 + 3.0 * c3 * e0 * e0
+    B = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
+    A = (T0 - B * e0 * e0 * e0) / (e0 * e0)
+    if eps < e0:
+        return L0 * (A * eps ** 3 / 3.0 + B * eps ** 4 / 4.0)
+    return L0 * (A * e0 ** 3 / 3.0 + B * e0 ** 4 / 4.0
+                 + c1 * (eps * eps - e0 * e0) / 2.0 + c2 * (eps ** 3 - e0 ** 3) / 3.0
+                 + c3 * (eps ** 4 - e0 ** 4) / 4.0)
+
+
+@njit(cache=True)
+def _largest(x):
+    """Index of the largest entry of ``x``."""
+    k = 0
+    for j in range(1, x.shape[0]):
+        if x[j] > x[k]:
+            k = j
+    return k
+
+
+@njit(cache=True)
+def line_energy(r, v, f, P, E, S, el, q, geom):
+    """Mechanical energy of a line state and the power put into it, for the energy audit of
+    the time steps (:func:`ga_advance`).
+
+    ``E_m = sum_i (1/2 v_i^T M_i v_i + w_i z_i + U_s,i) + sum_j U_j`` over the free nodes ``i``
+    (mass with added mass ``M_i`` as in :func:`node_mass`, submerged weight ``w_i``, seabed
+    spring energy ``U_s``) and the elements ``j`` of the polynomial law (energy ``U_j`` of
+    :func:`_elastic_energy`) that are not stiff (:func:`_stiff`: the strain of a practically
+    inextensible element is known only to the Newton tolerance over its length, 5e-8 for
+    1 um on 18 m, which is 2e7 N at EA = 3.84e14 N: its tension is no measure of stored
+    energy, and it stores none to speak of).  Everything else is an external force on the audited system:
+    ``P = sum_i (f_i + w_i e_z - N_i e_z) . v_i + sum_j T_j dl_j/dt`` (``f`` the total nodal
+    force of the state, ``N_i`` the seabed spring force, ``T_j`` the elastic tension of a
+    polynomial element; plus the internal damping force of the fairlead's element times the
+    fairlead velocity) is the power of the fairlead, the drag (with current and waves),
+    the seabed damping and friction, the internal damping and the forces of the fibre and
+    stiff elements and of bending, so ``dE_m/dt = P`` holds exactly for the time-continuous line.  A time step that
+    creates energy, ``E_m(t1) - E_m(t0) - dt (P(t0) + P(t1)) / 2`` positive beyond the
+    trapezoidal rule's error, is wrong: the generalised-alpha scheme dissipates energy in the
+    linear regime, but its unconditional stability is a linear result (Chung & Hulbert 1993)
+    that does not carry over to nonlinear problems; with elements switching between slack and
+    taut within a step longer than their axial period (a grounded chain pushed slack by the
+    current and snapped taut again), steps gain energy and the line blows up: 12 MN along a
+    slack Floatel-like line whose fairlead never passed 4 MN (docs/FE_LINES.md).
+
+    ``el`` (n-1, 4), ``q`` (n, 3): element directions and lengths and node tangents of the
+    state; ``geom`` True computes them from ``r`` (overwriting both), False takes them as they
+    are (from the state's force evaluation).  Returns ``(E_m, P, budget, wsum, pen, ipen)``:
+    ``budget`` the kinetic plus elastic energy (J), ``wsum`` the summed absolute submerged
+    weight of the free nodes (N), ``pen`` the largest seabed penetration over its bound
+    (:data:`PEN_WEIGHTS`) and ``ipen`` its node.
+    """
+    n = r.shape[0]
+    if geom:
+        for j in range(n - 1):
+            dx = r[j + 1, 0] - r[j, 0]
+            dy = r[j + 1, 1] - r[j, 1]
+            dz = r[j + 1, 2] - r[j, 2]
+            ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+            el[j, 0] = dx / ll
+            el[j, 1] = dy / ll
+            el[j, 2] = dz / ll
+            el[j, 3] = ll
+        _tangents_from(el, q)
+    ue = 0.0
+    pw = 0.0
+    for j in range(n - 1):
+        if E[j, EL_LAW] != 0.0 or _stiff(P, E, j):
+            continue
+        L0 = E[j, EL_L0]
+        eps = el[j, 3] / L0 - 1.0
+        if eps <= 0.0:
+            continue
+        c1 = E[j, EL_C1]
+        e0 = max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / c1
+        T, _ = _tension(eps, c1, E[j, EL_C2], E[j, EL_C3], e0)
+        ue += _elastic_energy(eps, c1, E[j, EL_C2], E[j, EL_C3], e0, L0)
+        ldot = (el[j, 0] * (v[j + 1, 0] - v[j, 0]) + el[j, 1] * (v[j + 1, 1] - v[j, 1])
+                + el[j, 2] * (v[j + 1, 2] - v[j, 2]))
+        pw += T * ldot
+        if j == n - 2 and E[j, EL_B] != 0.0:
+            # the internal damping force of the fairlead's element works at the fairlead
+            xs = eps / e0
+            sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
+            Td = E[j, EL_B] * sm * ldot / L0
+            pw += Td * (el[j, 0] * v[j + 1, 0] + el[j, 1] * v[j + 1, 1] + el[j, 2] * v[j + 1, 2])
+    zc = S[S_ZC]
+    ke = 0.0
+    eg = 0.0
+    wsum = 0.0
+    pen_max = 0.0
+    ipen = 0
+    for i in range(1, n - 1):
+        vx = v[i, 0]
+        vy = v[i, 1]
+        vz = v[i, 2]
+        vv = vx * vx + vy * vy + vz * vz
+        vq = vx * q[i, 0] + vy * q[i, 1] + vz * q[i, 2]
+        ke += 0.5 * ((P[i, NP_MASS] + P[i, NP_MAC]) * vv + P[i, NP_MAN] * (vv - vq * vq)
+                     + P[i, NP_MAT] * vq * vq)
+        w = P[i, NP_W]
+        wsum += abs(w)
+        eg += w * r[i, 2]
+        pw += f[i, 0] * vx + f[i, 1] * vy + f[i, 2] * vz + w * vz
+        pen = zc - r[i, 2]
+        ks = P[i, NP_KS]
+        if pen > 0.0 and ks > 0.0:
+            dpen = max(0.5 * max(w, 1e-12) / ks, S[S_DC])
+            if pen < dpen:
+                x = pen / dpen
+                gp = pen * x * (2.0 - x)
+                eg += ks * (2.0 * pen ** 3 / (3.0 * dpen) - pen ** 4 / (4.0 * dpen * dpen))
+            else:
+                gp = pen
+                eg += ks * (5.0 * dpen * dpen / 12.0 + 0.5 * (pen * pen - dpen * dpen))
+            pw -= ks * gp * vz
+            lim = max(PEN_WEIGHTS * max(w, 0.0) / ks, 4.0 * S[S_DC])
+            if pen / lim > pen_max:
+                pen_max = pen / lim
+                ipen = i
+    return ke + ue + eg, pw, ke + ue, wsum, pen_max, ipen
+
+
+# --------------------------------------------------------------------------------------------
 # dynamics
 # --------------------------------------------------------------------------------------------
 @njit(cache=True)
@@ -1838,8 +1994,19 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     compiled entry point, so a separate ``ga_advance`` under a step loop costs one more pass
     over :func:`gen_alpha_step` (~3 s of cold compile); the arithmetic is the same.
 
-    Returns 0, or the failing status of :func:`gen_alpha_step` with ``w.info[0]`` the time (s)
-    and ``w.info[1]`` the node.
+    Energy audit: every sub-step's energy balance (:func:`line_energy`) is checked; a sub-step
+    that creates more than :data:`AUDIT_REL` of the line's energy budget (or the floor
+    :data:`AUDIT_FLOOR`) is halved like a failed one (``w.stats[1]``, ``w.audit[AU_SPLITS]``);
+    at the smallest sub-step it is accepted and recorded in ``w.audit`` (count, energy, worst
+    ratio, its time and element), unless it created more than :data:`AUDIT_HARD` of the
+    budget (status -4).  The audit reads the states only: a run whose steps create no energy
+    is bit for bit the run without it.  Also recorded per accepted sub-step: the deepest
+    seabed penetration over its bound (status -5 beyond it, :data:`PEN_WEIGHTS`) and the most
+    negative element tension.
+
+    Returns 0, or the failing status of :func:`gen_alpha_step` (-1, -2, -3) or of the audit
+    (-4 energy, -5 seabed) with ``w.info[0]`` the time (s) and ``w.info[1]`` the node (-4: the
+    element of the largest tension).
     """
     s0 = LineState(*now)
     s1 = LineState(*trial)
@@ -1853,11 +2020,16 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     vf = lw.vf
     info = lw.info
     stats = lw.stats
+    au = lw.audit
     fric = lp.fric
     P = lp.P
+    E = lp.E
     S = lp.S
     q = lw.q
     n = r.shape[0]
+    # energy of the accepted state: the start of the first sub-step (line_energy)
+    en0, pw0, bud0, wsum, _, _ = line_energy(r, v, fn, P, E, S, lw.el, q, True)
+    efloor = AUDIT_FLOOR * wsum
     # the trial state starts as the accepted one: its friction state is copied (a step
     # updates it), the first sub-step reads the nodes straight from the accepted state (s01:
     # the same values, no copy) and every completed sub-step writes its result into the trial
@@ -1899,6 +2071,47 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
             info[0] = tk
             info[2] = it
             return it
+        # energy audit: a step may not create energy (line_energy); one that does is halved,
+        # and at the smallest sub-step it is recorded (or stops the run beyond AUDIT_HARD)
+        en1, pw1, bud1, _, pen, ipen = line_energy(rB, vB, fA, P, E, S, lw.el, q, False)
+        created = en1 - en0 - 0.5 * sz * hmin * (pw0 + pw1)
+        budget = max(bud0, bud1)
+        if created > max(AUDIT_REL * budget, efloor):
+            if sz > 1:
+                sz //= 2
+                stats[1] += 1
+                au[AU_SPLITS] += 1
+                continue
+            ratio = created / max(budget, efloor)
+            au[AU_NBAD] += 1
+            au[AU_EBAD] += created
+            jw = _largest(lw.tens)
+            if ratio > au[AU_WORST]:
+                au[AU_WORST] = ratio
+                au[AU_TWORST] = tk
+                au[AU_EWORST] = jw
+            if ratio > AUDIT_HARD:
+                info[0] = tk
+                info[1] = jw
+                info[2] = -4
+                return -4
+        if pen > au[AU_PEN]:
+            au[AU_PEN] = pen
+            au[AU_TPEN] = tk
+            au[AU_NPEN] = ipen
+            if pen > 1.0:
+                info[0] = tk
+                info[1] = ipen
+                info[2] = -5
+                return -5
+        for j in range(n - 1):
+            if lw.tens[j] < au[AU_TMIN]:
+                au[AU_TMIN] = lw.tens[j]
+                au[AU_TTMIN] = tk
+                au[AU_ETMIN] = j
+        en0 = en1
+        pw0 = pw1
+        bud0 = bud1
         stats[0] += it
         for i in range(n):
             for k in range(3):

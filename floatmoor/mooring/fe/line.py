@@ -517,6 +517,7 @@ class FELine:
         self._started = True
         self.newton_iterations = 0
         self.substeps_taken = 0
+        self.work.audit[:] = 0.0
 
     def _fibre_damping(self):
         """Internal damping ``-zeta`` of the fibre elements from the stiffness they have at the
@@ -717,9 +718,34 @@ class FELine:
         """Time (s) and node of the last failed step (kernel ``info``)."""
         return float(self.work.info[0]), int(self.work.info[1])
 
-    def step_error(self, code: int, *, remedy: str | None = None) -> NumericalError:
+    def step_error(self, code: int, *, remedy: str | None = None,
+                   coupled: bool = False) -> NumericalError:
         """The NumericalError of a failed generalised-alpha advance with status ``code`` (-1
         no convergence, -2 singular iteration matrix, -3 NaN), at :attr:`failure`."""
+        t, node = self.failure
+        au = self.work.audit
+        head = "FE line coupled to the body" if coupled else "FE line"
+        name = repr(self.spec.name) if coupled else self.spec.name
+        if code == -4:
+            j = int(node)
+            msg = (f"the time step created energy: {au[K.AU_WORST]:.3g} of the line's kinetic "
+                   f"and elastic energy in one step of {self.MAX_SPLIT} halvings (bound "
+                   f"{K.AUDIT_HARD:g}), largest tension at s = {self.arc_length(j):.1f} m from "
+                   f"the anchor (element {j})")
+            return NumericalError(f"{head}: {msg}", time=t, where=f"line {name}",
+                                  remedy=remedy or (
+                                      "add axial damping (finite_element: internal_damping: "
+                                      "-0.5, half the critical damping of an element) or "
+                                      "seabed friction, reduce finite_element.dt, or use "
+                                      "fewer, longer elements"))
+        if code == -5:
+            msg = (f"node {int(node)} (s = {self.s_nodes[int(node)]:.1f} m from the anchor) "
+                   f"went {self._penetration(int(node)):.3g} m below the seabed, deeper than "
+                   f"the contact law allows (where its spring carries {K.PEN_WEIGHTS:g} times "
+                   "the node's submerged weight)")
+            return NumericalError(f"{head}: {msg}", time=t, where=f"line {name}",
+                                  remedy=remedy or "reduce dt or raise the seabed stiffness "
+                                                   "(finite_element: seabed: stiffness)")
         msg = {-1: f"no Newton convergence in {self.maxit} iterations",
                -2: "singular iteration matrix", -3: "NaN in the line state"}.get(
             code, f"line step failed (code {code})")
@@ -731,8 +757,39 @@ class FELine:
                            " N: lower rho_inf (e.g. 0.5: more damping of the touchdown "
                            "impacts of a practically inextensible line) or set "
                            "axial_stiffness_limit (e.g. 3.84e11 N)")
-        t, node = self.failure
-        return self._error(t, node, msg, remedy)
+        return NumericalError(f"{head}: {msg}", time=t,
+                              where=f"line {name}, node {node} of {self.n_nodes - 1}",
+                              remedy=remedy)
+
+    def arc_length(self, element: int) -> float:
+        """Unstretched arc length (m) of the middle of ``element`` from the anchor."""
+        return 0.5 * float(self.s_nodes[element] + self.s_nodes[element + 1])
+
+    def _penetration(self, node: int) -> float:
+        """Depth (m) of ``node`` below the seabed in the trial or accepted state."""
+        r = self._trial_state.r if self._trial else self.r
+        return float(self.S[K.S_ZC] - r[node, 2])
+
+    @property
+    def audit(self) -> dict:
+        """The self-check of the dynamics since :meth:`start` (kernels ``AU_*``): steps halved
+        because they created energy, steps that still did at the smallest sub-step (count,
+        energy J, the largest over the energy budget, its time s and arc length m), the deepest
+        seabed penetration over its bound (its time and arc length), and the most negative
+        element tension (N, an element pushing; 0 when none)."""
+        au = self.work.audit
+        return {"energy_halvings": int(au[K.AU_SPLITS]),
+                "energy_unresolved_steps": int(au[K.AU_NBAD]),
+                "energy_unresolved_j": float(au[K.AU_EBAD]),
+                "energy_worst_ratio": float(au[K.AU_WORST]),
+                "energy_worst_time": float(au[K.AU_TWORST]),
+                "energy_worst_arc_length": self.arc_length(int(au[K.AU_EWORST])),
+                "seabed_penetration_ratio": float(au[K.AU_PEN]),
+                "seabed_penetration_time": float(au[K.AU_TPEN]),
+                "seabed_penetration_arc_length": float(self.s_nodes[int(au[K.AU_NPEN])]),
+                "min_element_tension": float(au[K.AU_TMIN]),
+                "min_element_tension_time": float(au[K.AU_TTMIN]),
+                "min_element_tension_arc_length": self.arc_length(int(au[K.AU_ETMIN]))}
 
     def _error(self, t, node, what, remedy):
         return NumericalError(f"FE line: {what}", time=t,
