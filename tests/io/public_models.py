@@ -119,3 +119,52 @@ def lay_out(name: str, folder) -> Path:
             dest.parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(src, dest)
     return folder / model["fst"]
+
+
+def natural_periods(built, pose_stiffness=None):
+    """Undamped natural periods (s) of a built scene's six rigid-body modes, in DOF order
+    (each mode assigned to the DOF that dominates its shape): the eigenvalues of
+    K - w^2 (M + A(w)), with the database's added mass A at each mode's own frequency (fixed
+    point), K the vessel's total restoring plus ``pose_stiffness`` (the mooring's 6x6
+    stiffness at the equilibrium)."""
+    import numpy as np
+    import scipy.linalg
+
+    v = built.vessel
+    K = np.asarray(v.total_restoring, float).copy()
+    if pose_stiffness is not None:
+        K = K + np.asarray(pose_stiffness, float)
+    K = 0.5 * (K + K.T)
+    M = np.asarray(v.mass_matrix, float)
+    db = v.database
+    omega = db["omega"].values
+    A = db["added_mass"].values  # (omega, radiating, influenced)
+
+    def added(w):
+        if w <= omega[0]:
+            return A[0]
+        if w >= omega[-1]:
+            return A[-1]
+        k = np.searchsorted(omega, w)
+        t = (w - omega[k - 1]) / (omega[k] - omega[k - 1])
+        return (1 - t) * A[k - 1] + t * A[k]
+
+    periods = np.zeros(6)
+    # start every DOF at 0.05 rad/s, iterate the eigenproblem at each mode's frequency
+    w_dof = np.full(6, 0.3)
+    for _ in range(30):
+        new = np.zeros(6)
+        for dof in range(6):
+            Mt = M + added(w_dof[dof])
+            Mt = 0.5 * (Mt + Mt.T)
+            lam, vec = scipy.linalg.eigh(K, Mt)
+            # the mode in which ``dof`` dominates (kinetic-energy share)
+            share = np.abs(vec) * np.sqrt(np.abs(np.diag(Mt)))[:, None]
+            share = share / share.sum(axis=0)
+            j = int(np.argmax(share[dof]))
+            new[dof] = np.sqrt(max(lam[j], 0.0))
+        if np.allclose(new, w_dof, rtol=1e-6):
+            break
+        w_dof = new
+    periods = 2 * np.pi / w_dof
+    return periods
