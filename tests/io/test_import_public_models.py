@@ -199,12 +199,17 @@ def test_mooring_statics_against_moorpy(imported, name, tmp_path):
         warnings.simplefilter("ignore", FloatmoorWarning)
         system = read_model(md, water_depth=site.water_depth, water_density=site.water_density,
                             gravity=site.gravity, warn=False).system
+    is_moordyn = "MoorDyn" in res.files["mooring"].read_text().split("\n")[0]
     for offset in ([0.0, 0.0, 0.0], [10.0, 0.0, 0.0]):
         ref = _moorpy_tensions(md, site.water_depth, site.water_density, site.gravity, offset)
         pose = np.array(offset + [0.0, 0.0, 0.0])
         got = system.tensions(pose)["fairlead_tension"].values
         np.testing.assert_allclose(np.sort(got), np.sort(ref), rtol=1e-3)
-    if "MoorDyn" in res.files["mooring"].read_text().split("\n")[0]:
+        # the scene's own mooring (MAP++ for OC3, barge and TLP: the MAP++ and MoorDyn files of
+        # a case round the anchor and fairlead coordinates differently, 0.13 % at most)
+        scene = built.mooring.tensions(pose)["fairlead_tension"].values
+        np.testing.assert_allclose(np.sort(scene), np.sort(ref), rtol=1e-3 if is_moordyn else 2e-3)
+    if is_moordyn:
         np.testing.assert_allclose(built.mooring.tensions(np.zeros(6))["fairlead_tension"].values,
                                    system.tensions(np.zeros(6))["fairlead_tension"].values,
                                    rtol=1e-12)

@@ -3,11 +3,12 @@
 
 Mapped: ``WaveMod 2`` (JONSWAP or Pierson-Moskowitz spectrum) with ``WaveHs``, ``WaveTp``,
 ``WavePkShp`` (``DEFAULT``: the IEC 61400-3 rule, floatmoor's ``gamma: null`` rule, the same
-formula), ``WaveDir`` and ``WaveNDAmp``; spreading (not mapped: HydroDyn's
-``COS2S`` is cos^2s(theta - mean), floatmoor's cos2s is cos^2s((theta - mean)/2)).  Refused at import: a sea state that cannot exist for the
-wave model that uses it (``WaveHs <= 0``, ``WaveTp <= 0``, ``WavePkShp`` outside 1-7).  Listed
-as not mapped: other wave models (regular, white noise, user or external), the seeds, the
-frequency cut-offs, the second-order wave kinematics and the current.
+formula), ``WaveDir`` and ``WaveNDAmp``.  Refused at import: a sea state that cannot exist for
+the wave model that uses it (``WaveHs <= 0``, ``WaveTp <= 0``, ``WavePkShp`` outside 1-7).
+Listed as not mapped: other wave models (regular, white noise, user or external), the
+directional spreading (HydroDyn's ``COS2S`` is cos^2s(theta - mean), floatmoor's cos2s is
+cos^2s((theta - mean)/2)), the seeds, the frequency cut-offs, the second-order wave kinematics
+and the current.
 """
 
 from __future__ import annotations
@@ -127,8 +128,9 @@ def water_values(f: InputFile, fst: InputFile, ed: InputFile, notes, unmapped):
                              f"{fst.path.name}", SceneError.MISSING)
         if own is not None and drv is not None and not math.isclose(own, drv, rel_tol=1e-9):
             unmapped.append((f.path, f.line(key), key, f"{key} {own:g} here, {drv:g} in "
-                             f"{fst.path.name} (MoorDyn/MAP++ take the driver's)",
-                             f"the scene's site uses {own:g} ({f.path.name})"))
+                             f"{fst.path.name} (OpenFAST gives MoorDyn and MAP++ the driver's "
+                             f"value unless their own options set it)",
+                             f"the scene's site and mooring use {own:g} ({f.path.name})"))
         return own if own is not None else drv
     rho = pick("WtrDens", "water density")
     depth = pick("WtrDpth", "water depth")
