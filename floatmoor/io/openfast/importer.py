@@ -137,7 +137,7 @@ def _elastodyn_unmapped(ed: InputFile, unmapped):
              "a locked rotor (no gyroscopic moments)")
 
 
-def _potential_flow(hd: InputFile, fst: InputFile, hydro_key_file):
+def _potential_flow(hd: InputFile):
     """Refuse a HydroDyn file without a single WAMIT body."""
     pot = hd.int("PotMod")
     if pot != 1:
@@ -254,7 +254,7 @@ def _hydrodyn_unmapped(hd: InputFile, unmapped, root):
 
 def _vessel_yaml(fst, ed, hd, root, ulen, rho, g, ref, items, B, Bq, C, budget):
     plat = items[0]
-    pm = [it for it in items[1:]]
+    pm = items[1:]
 
     def row3(v):
         return "[" + ", ".join(_fmt(x) for x in v) + "]"
@@ -314,7 +314,7 @@ def import_openfast(fst, out_dir, *, model: str = "quasi-static", hydrodyn=None,
         notes.append(f"HydroDyn file {hd_path.name} given instead of the driver's HydroFile "
                      f"{fstf.text('HydroFile')} ({fstf.where('HydroFile')})")
     hd = InputFile(hd_path, schemas.HYDRODYN, "HydroDyn")
-    _potential_flow(hd, fstf, hydrodyn)
+    _potential_flow(hd)
     ss = None
     use_ss = fstf.int("CompSeaSt", 0) == 1 or (not hd.has("WaveMod") and fstf.has("SeaStFile"))
     if use_ss:
