@@ -21,6 +21,11 @@ A vessel file ``vessels/<name>/vessel.yaml`` (all SI; angles only in keys ending
       reference_height: 10.0         # m above the water line where U is taken (wind only)
     current_coefficients: {heading_deg: [...], surge: [...], ...}   # same, U = current speed
     fairleads: {FL1: [x, y, z], ...} # m, body frame (optional)
+    mass_budget: ...                 # optional, written by `floatmoor import openfast`: the
+                                     # masses as imported (items, total_mass, centre_of_gravity,
+                                     # inertia_cg) against buoyancy, weight and mooring pull at
+                                     # zero pose; refused when the masses above no longer sum to
+                                     # total_mass (a stale budget)
     slender_elements: ...            # reserved for a later issue: kept as raw data
 
 DOFs missing from a coefficient table are zero.  Headings must be increasing; the table is
@@ -39,6 +44,7 @@ Derived quantities
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -52,8 +58,8 @@ from ..core.dofs import DOF_NAMES
 from ..core.errors import SceneError
 from .database import load_database
 
-__all__ = ["Vessel", "CoefficientTable", "load_vessel", "rigid_body_mass_matrix",
-           "gravity_stiffness"]
+__all__ = ["Vessel", "CoefficientTable", "MassBudgetRecord", "load_vessel",
+           "rigid_body_mass_matrix", "gravity_stiffness"]
 
 
 def _skew(r):
@@ -130,12 +136,68 @@ class Vessel:
     fairleads: dict = field(default_factory=dict)
     slender_elements: Any = None
     description: str = ""
+    mass_budget: Any = None
 
 
 _MATRIX_KEYS = ("linear_damping", "quadratic_damping", "additional_stiffness")
 _ALLOWED = {"name", "description", "database", "reference_point", "mass", "centre_of_gravity",
             "inertia_cg", "point_masses", *_MATRIX_KEYS, "wind_coefficients",
-            "current_coefficients", "fairleads", "slender_elements", "notes"}
+            "current_coefficients", "fairleads", "slender_elements", "notes", "mass_budget"}
+_BUDGET_KEYS = {"items", "total_mass", "centre_of_gravity", "inertia_cg", "displaced_volume",
+                "water_density", "gravity", "buoyancy", "weight", "mooring_vertical",
+                "preload_vertical", "imbalance", "imbalance_fraction", "closes", "notes"}
+
+
+@dataclass(frozen=True, kw_only=True)
+class MassBudgetRecord:
+    """The ``mass_budget`` section of a vessel file (written by ``floatmoor import openfast``):
+    the masses as imported and their hydrostatic balance at zero pose (SI units)."""
+
+    items: tuple            # (name, mass kg, position (3,) m)
+    total_mass: float
+    centre_of_gravity: np.ndarray
+    displaced_volume: float
+    water_density: float
+    gravity: float
+    mooring_vertical: float
+    preload_vertical: float
+    imbalance: float
+    imbalance_fraction: float
+    closes: bool
+
+
+def _mass_budget(node: Node, m_tot: float, cog_tot: np.ndarray) -> MassBudgetRecord:
+    """Read ``mass_budget`` and check it against the vessel's masses: a budget whose total
+    mass or centre of gravity no longer matches them is stale and refused."""
+    b = node.child("mass_budget")
+    b.reject_unknown(_BUDGET_KEYS)
+    items = []
+    for it in b.item_nodes("items", []):
+        it.reject_unknown({"name", "mass", "position"})
+        items.append((it.str("name"), it.float("mass", gt=0.0, unit="kg"),
+                      it.array("position", shape=(3,), unit="m")))
+    total = b.float("total_mass", gt=0.0, unit="kg")
+    cog = b.array("centre_of_gravity", shape=(3,), unit="m")
+    if items and not math.isclose(sum(m for _n, m, _p in items), total, rel_tol=1e-9):
+        raise b.error("total_mass", f"the sum of the budget's items "
+                      f"({sum(m for _n, m, _p in items):.10g} kg)", total)
+    if not (math.isclose(total, m_tot, rel_tol=1e-9)
+            and np.allclose(cog, cog_tot, rtol=0.0, atol=1e-6)):
+        raise b.error("total_mass", f"the mass of the vessel's masses ({m_tot:.10g} kg, centre "
+                      f"of gravity {[round(float(c), 6) for c in cog_tot]} m): the budget is "
+                      f"stale", f"{total:.10g} kg at {[round(float(c), 6) for c in cog]} m",
+                      "the masses were edited after the import: update or delete the "
+                      "mass_budget section with them")
+    return MassBudgetRecord(
+        items=tuple(items), total_mass=total, centre_of_gravity=cog,
+        displaced_volume=b.float("displaced_volume", gt=0.0, unit="m^3"),
+        water_density=b.float("water_density", gt=0.0, unit="kg/m^3"),
+        gravity=b.float("gravity", gt=0.0, unit="m/s^2"),
+        mooring_vertical=b.float("mooring_vertical", 0.0, unit="N"),
+        preload_vertical=b.float("preload_vertical", 0.0, unit="N"),
+        imbalance=b.float("imbalance", unit="N"),
+        imbalance_fraction=b.float("imbalance_fraction"),
+        closes=b.bool("closes"))
 
 
 def _inertia(node: Node, key: str) -> np.ndarray:
@@ -223,6 +285,7 @@ def load_vessel(path) -> Vessel:
     name = node.str("name", path.parent.name)
     ref = node.array("reference_point", np.zeros(3), shape=(3,), unit="m")
     m_tot, cog_tot, I_tot = _mass_properties(node)
+    budget = _mass_budget(node, m_tot, cog_tot) if "mass_budget" in node else None
     mats = {}
     for key in _MATRIX_KEYS:
         M = node.array(key, np.zeros((6, 6)), shape=(6, 6))
@@ -259,4 +322,4 @@ def load_vessel(path) -> Vessel:
         gravity_stiffness=C_grav, total_restoring=C_hyd + C_grav + mats["additional_stiffness"],
         database=db, database_path=db_path, wind_coefficients=wind, current_coefficients=cur,
         fairleads=fair, slender_elements=node.raw("slender_elements", None),
-        description=node.str("description", ""))
+        description=node.str("description", ""), mass_budget=budget)

@@ -3,9 +3,11 @@
 Expected values: the hand-written OC3 files (vessels/oc3_hywind/vessel.yaml, mooring.yaml and
 scenes/oc3_hywind.yaml), made from the same OpenFAST files plus the tower and rotor masses of
 the public OC3 definition.  The OpenFAST files in vessels/oc3_hywind/source/ do not include the
-tower and blade files, so the import lists those masses as not mapped; the free-decay test adds
-them to the imported vessel exactly as the hand-written vessel has them, and then the heave and
-pitch free-decay periods must be those of the hand-written scene.
+tower and blade files, so the import lists those masses as not mapped and its mass budget does
+not close; the free-decay test adds them to the imported vessel exactly as the hand-written
+vessel has them, and then the heave and pitch free-decay periods must be those of the
+hand-written scene.  The complete public models (with their tower and blade files) are tested in
+test_import_public_models.py.
 """
 
 from __future__ import annotations
@@ -40,9 +42,19 @@ def test_files_and_what_was_not_mapped(imported):
     res, msgs = imported
     assert set(res.files) == {"vessel", "database", "mooring", "scene"}
     text = "\n".join(msgs)
-    assert "TwrFile NRELOffshrBsline5MW_OC3Hywind_ElastoDyn_Tower.dat not found" in text
-    assert "blade file NRELOffshrBsline5MW_Blade.dat not found" in text
+    # by file and line (ElastoDyn line 116 TwrFile, line 89 BldFile(1))
+    assert ("NRELOffshrBsline5MW_OC3Hywind_ElastoDyn.dat:116 TwrFile: tower file "
+            "NRELOffshrBsline5MW_OC3Hywind_ElastoDyn_Tower.dat not found") in text
+    assert "ElastoDyn.dat:89 BldFile(1): blade file NRELOffshrBsline5MW_Blade.dat not found" in text
     assert "Morison members" in text and "MBS" in text
+    # the mass budget does not close and names what is missing: the tower and the blades
+    assert not res.budget.closes
+    # (tower 249,718 kg + blades 52,610 kg) / (rho V = 1025 x 8029.21 m^3), plus the +0.0074 %
+    # of the complete model (test_import_public_models.py)
+    assert res.budget.fraction == pytest.approx((249718.0 + 52609.8) / (1025 * 8029.21)
+                                                + 7.4e-5, rel=1e-3)
+    warning = next(m for m in msgs if "mass budget does not close" in m)
+    assert "the tower" in warning and "the blades" in warning
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FloatmoorWarning)  # a 60 s analysis (the .fst TMax)
         scene = floatmoor.load_scene(res.files["scene"])
@@ -79,6 +91,7 @@ def _with_missing_masses(res, tmp_path):
               "inertia_cg": (np.array(rotor["inertia_cg"]) - np.array(hub["inertia_cg"])).tolist()}
     nac["inertia_cg"] = np.diag(nac_ref["inertia_cg"]).tolist()  # the hand-written yaw value
     ves["point_masses"] += [tower, blades]
+    del ves["mass_budget"]  # the masses are edited: the import's budget no longer applies
     ves["database"] = str(res.files["database"])
     path = tmp_path / "vessel.yaml"
     path.write_text(yaml.safe_dump(ves))
@@ -151,8 +164,8 @@ def test_oc4_import_moordyn_mooring_and_what_is_missing(tmp_path):
         md = moordyn.read(ROOT / "vessels/oc4_semi/source/"
                           "NRELOffshrBsline5MW_OC4DeepCwindSemi_MoorDyn.dat")
     text = next(str(x.message) for x in w if "not mapped to floatmoor" in str(x.message))
-    assert "marin_semi.3 not found" in text and "filled members (2 fill groups" in text
-    assert "environment" not in res.files["scene"].read_text()
+    assert "WAMIT marin_semi.3 not found" in text
+    assert "\nenvironment:" not in res.files["scene"].read_text()
     from floatmoor.core.config import Node
     from floatmoor.io.mooring_section import parse_mooring
 
@@ -161,6 +174,9 @@ def test_oc4_import_moordyn_mooring_and_what_is_missing(tmp_path):
                                   md.tensions()["fairlead_tension"].values)
     ves = yaml.safe_load(res.files["vessel"].read_text())
     assert ves["mass"] == 3852180.0  # ElastoDyn PtfmMass (without the ballast)
+    # the ballast water of HydroDyn's two fill groups is in the vessel as point masses
+    fills = [p for p in ves["point_masses"] if p["name"].startswith("fill_group")]
+    assert len(fills) == 2
 
 
 def test_tower_and_blades_from_elastodyn_files(tmp_path):
@@ -191,7 +207,9 @@ def test_tower_and_blades_from_elastodyn_files(tmp_path):
     tilt = np.radians(-5.0)
     a = np.array([np.cos(tilt), 0.0, np.sin(tilt)])
     rotor = a @ (np.array(pm["blades"]["inertia_cg"]) + np.array(pm["hub"]["inertia_cg"])) @ a
-    assert rotor == pytest.approx(38677040.613, rel=1e-6)
+    # the hub carries GenIner (534.116 kg m^2 about the shaft), which the summary's rotor
+    # inertia does not include
+    assert rotor - 534.116 == pytest.approx(38677040.613, rel=1e-6)
     # the blades' centre of mass is on the shaft, upwind of the apex (coned upwind)
     c = np.array(pm["blades"]["position"]) - np.array(pm["hub"]["position"])
     assert np.linalg.norm(np.cross(c, a)) < 1e-9 and c @ a < 0
