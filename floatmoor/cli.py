@@ -81,6 +81,9 @@ def _check_arguments(p: argparse.ArgumentParser) -> None:
                    help="validate the scene and its environment only; do not read the vessel "
                         "file, its hydrodynamic database and the mooring, and print no "
                         "hydrodynamic consistency report")
+    p.add_argument("--no-symmetry", action="store_true",
+                   help="skip the symmetry check (a short run comparing the tensions of lines "
+                        "that are mirror images about the environment's heading)")
 
 
 def _check_run(args: argparse.Namespace) -> int:
@@ -101,8 +104,42 @@ def _check_run(args: argparse.Namespace) -> int:
             if unknown:
                 print(f"design checks (report, DNV-OS-E301, campaign, fatigue) refused until "
                       f"the MBS is set: {unknown}")
+            if not args.no_symmetry:
+                _symmetry_report(built)
     print(f"{args.scene}: OK")
     return EXIT_OK
+
+
+def _symmetry_report(built) -> None:
+    """Mirror-image lines of a symmetric scene against a short run
+    (:func:`floatmoor.analyses.symmetry.symmetry_check`): a line printed, a FloatmoorWarning
+    when they are not mirror images in the results."""
+    from .analyses.symmetry import SYMMETRY_RTOL, mirror_pairs, symmetry_plane
+
+    if built.mooring is None:
+        return
+    h = symmetry_plane(built.scene.environment)
+    if h is None or not mirror_pairs(built.mooring, h):
+        print("symmetry: no mirror-image lines about the environment's heading (not checked)")
+        return
+    from .analyses.symmetry import symmetry_check
+    print("symmetry: mirror-image lines found; comparing their tensions over a short run "
+          "(compiling the time loop once if needed) ...", flush=True)
+    res = symmetry_check(built)
+    pairs = ", ".join(f"{a}/{b}" for a, b in res["pairs"])
+    worst = max(res["differences"])
+    if res["ok"]:
+        print(f"symmetry: {pairs} mirror images about the {res['plane_deg']:g} deg plane; "
+              f"tensions equal within {worst:.1e} of the largest over {res['duration']:g} s: OK")
+        return
+    bad = ", ".join(f"{a}/{b} {d:.2e}" for (a, b), d in zip(res["pairs"], res["differences"])
+                    if d > SYMMETRY_RTOL)
+    warnings.warn(f"symmetry: lines that are mirror images about the {res['plane_deg']:g} deg "
+                  f"plane of the environment differ in a {res['duration']:g} s run by more than "
+                  f"{SYMMETRY_RTOL:g} of the largest tension ({bad}): the vessel database, mass "
+                  "or damping, a coordinate, or the solution breaks the symmetry",
+                  FloatmoorWarning, stacklevel=2)
+    print(f"symmetry: NOT mirror images in the results ({bad}; see the warning)")
 
 
 def _read_references(scene) -> list[str]:

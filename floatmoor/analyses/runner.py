@@ -191,6 +191,17 @@ def _compile_role():
     return None, None
 
 
+def _storm_progress(seed: int):
+    """Progress of one storm with finite-element lines: a line on stderr per 5 % of the
+    simulated time, naming the seed (several workers interleave their lines)."""
+    t0 = time.perf_counter()
+
+    def report(t, t_end):
+        print(f"  seed {seed}: {100.0 * t / t_end:3.0f} % ({t:.0f} of {t_end:.0f} s simulated, "
+              f"{time.perf_counter() - t0:.0f} s)", file=sys.stderr, flush=True)
+    return report
+
+
 def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
              fingerprint: str = "", threads=None, thread_cap: int = 1) -> SeedOutcome:
     """Worker: simulate one seed and write it (temp file + rename); ``threads`` (None: the
@@ -216,7 +227,8 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("ignore")
             warnings.simplefilter("always", FloatmoorWarning)
-            ds = simulate(scene, seed=seed, solver=solver, **overrides)
+            ds = simulate(scene, seed=seed, solver=solver, progress=_storm_progress(seed),
+                          **overrides)
         messages = tuple(dict.fromkeys(str(w.message) for w in caught
                                        if issubclass(w.category, FloatmoorWarning)))
         if fingerprint:

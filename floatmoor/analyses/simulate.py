@@ -59,7 +59,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
              dt: float | None = None, ramp: float | None = None, transient: float | None = None,
              forces=None, record_forces: bool | None = None, models=None, waves=None,
              start_pose=None, start_velocity=None, fibre_stiffness=None,
-             solver=None) -> xr.Dataset:
+             solver=None, progress=None) -> xr.Dataset:
     """Simulate one realisation of a scene in the time domain.
 
     Parameters
@@ -89,6 +89,10 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     solver : :class:`floatmoor.io.solver_section.SolverSpec`, optional
         Options of the time loop (default: the scene's ``solver`` section, if any, else the
         exact path); attribute ``solver``.
+    progress : callable, optional
+        Called with the simulated time and the end time (s) every 5 % of a storm with
+        finite-element lines (their storms take tens of seconds; quasi-static storms do not
+        call it).
 
     Notes
     -----
@@ -160,7 +164,8 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
         solver = getattr(sc, "solver", None)
     a = assemble(built, seed=int(seed), dt=dt, duration=duration, ramp=ramp, options=forces,
                  models=models, waves=waves, start_pose=start_pose, solver=solver)
-    r = integrate(a, record_forces=record_forces, built=built, v0=start_velocity)
+    r = integrate(a, record_forces=record_forces, built=built, v0=start_velocity,
+                  progress=progress)
     setup = _time.perf_counter() - t_all - r.wall_time
     ds = result_dataset(r, built, seed=int(seed), dt=dt, duration=a.n_steps * dt, ramp=ramp,
                         transient=transient)
@@ -214,6 +219,42 @@ def _relative_velocity_note(r) -> str:
             "low-frequency velocity, Wang (2016) eq. 2.24, 2.26)")
 
 
+def _fe_selfcheck(r, built, transient: float) -> dict:
+    """Self-check variables (``selfcheck_*`` over ``line``, NaN / "-" for quasi-static lines;
+    :mod:`floatmoor.mooring.fe.selfcheck`) of the coupled FE lines over the statistics window,
+    with a FloatmoorWarning for a line that breaks a warning-level bound."""
+    from ..core.frames import rotation_matrix_into
+    from ..mooring.fe.selfcheck import line_selfcheck, selfcheck_variables, warn_broken
+
+    sel = r.time >= transient
+    if not np.any(sel):
+        sel = np.ones(r.time.size, bool)
+    R = np.zeros((3, 3))
+    rot = np.empty((r.time.size, 3, 3))
+    for k, p in enumerate(r.motion):
+        rotation_matrix_into(p[3], p[4], p[5], R)
+        rot[k] = R
+    dt = float(r.time[1] - r.time[0]) if r.time.size > 1 else 1.0
+    fe = dict(zip(r.fe_lines, r.fe_objects))
+    names = list(r.line_names)
+    checks = []
+    for j, name in enumerate(names):
+        ln = fe.get(name)
+        if ln is None:
+            checks.append(None)
+            continue
+        rb = np.asarray(built.mooring.lines[j].fairlead, float)
+        rf = r.motion[:, :3] + rot @ rb
+        speed = np.linalg.norm(np.diff(rf, axis=0), axis=1) / dt
+        checks.append(line_selfcheck(
+            ln, fairlead_tension=r.line_tension[sel, j],
+            max_tension=r.fe_records["max_tension_along_line"][sel, j],
+            fairlead_height=float(rf[sel, 2].max() - ln.r[0, 2]),
+            fairlead_speed=float(speed.max())))
+    warn_broken(names, checks, stacklevel=4)
+    return selfcheck_variables(checks)
+
+
 def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: float,
                    transient: float) -> xr.Dataset:
     """The :class:`~floatmoor.solvers.time_domain.TimeDomainResult` as an xarray Dataset."""
@@ -255,6 +296,7 @@ def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: flo
                                           "(finite-element lines)")}
             for k, (unit, ln) in desc.items():
                 data[k] = (("time", "line"), r.fe_records[k], {"units": unit, "long_name": ln})
+            data.update(_fe_selfcheck(r, built, transient))
     if r.wave_elevation is not None:
         data["wave_elevation"] = (("time",), r.wave_elevation,
                                   {"units": "m", "long_name": "undisturbed wave elevation at the "

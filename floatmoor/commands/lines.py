@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 
 from .argtypes import nonnegative_float, positive_float
@@ -169,21 +170,39 @@ def _load_motion(path: Path, duration):
 
 
 def format_table(res) -> str:
-    """The per-line table of :func:`floatmoor.mooring.fe.decoupled.run_decoupled` results."""
+    """The per-line table of :func:`floatmoor.mooring.fe.decoupled.run_decoupled` results,
+    with each line's self-check (``ok``, or ``FAILED`` and the bounds it breaks below)."""
+    import numpy as np
+
     head = (f"{'line':<10}{'FE mean':>10}{'FE std':>9}{'FE max':>10}{'QS mean':>10}"
             f"{'QS std':>9}{'QS max':>10}{'DAF':>7}{'T max along':>13}{'at s':>8}"
-            f"{'grounded length':>18}")
+            f"{'grounded length':>18}{'check':>8}")
     units = (f"{'':<10}{'kN':>10}{'kN':>9}{'kN':>10}{'kN':>10}{'kN':>9}{'kN':>10}{'-':>7}"
-             f"{'kN':>13}{'m':>8}{'m':>18}")
+             f"{'kN':>13}{'m':>8}{'m':>18}{'':>8}")
     rows = [head, units]
+    notes = []
     for i, n in enumerate(res["line"].values):
         g = lambda k, i=i: float(res[k].values[i])  # noqa: E731
+        chk = str(res["selfcheck"].values[i]) if "selfcheck" in res else "-"
+        if chk not in ("ok", "-"):
+            notes.append(f"  {n}: {chk}")
         rows.append(f"{str(n):<10}{g('fe_mean') / 1e3:10.1f}{g('fe_std') / 1e3:9.2f}"
                     f"{g('fe_max') / 1e3:10.1f}{g('qs_mean') / 1e3:10.1f}"
                     f"{g('qs_std') / 1e3:9.2f}{g('qs_max') / 1e3:10.1f}{g('daf'):7.3f}"
                     f"{g('max_tension_along_line') / 1e3:13.1f}"
                     f"{g('max_tension_arc_length'):8.1f}"
-                    f"{g('grounded_length_min'):9.1f} -{g('grounded_length_max'):7.1f}")
+                    f"{g('grounded_length_min'):9.1f} -{g('grounded_length_max'):7.1f}"
+                    f"{'ok' if chk in ('ok', '-') else 'FAILED':>8}")
+    if "selfcheck" in res:
+        if notes:
+            rows.append("self-check FAILED (these tensions break a bound a correct solution "
+                        "keeps; do not use them):")
+            rows.extend(notes)
+        else:
+            halv = int(np.nansum(res["selfcheck_energy_halvings"].values))
+            rows.append("self-check: ok (tension along each line within its fairlead tension "
+                        "plus weight, friction and drag; no step created energy"
+                        + (f", {halv} step(s) halved to keep it so" if halv else "") + ")")
     return "\n".join(rows)
 
 
@@ -260,9 +279,13 @@ def run(args: argparse.Namespace) -> int:
     inputs = scene_line_inputs(scene, system)
     print(f"scene: {scene.name}  [{scene.file}]")
     print(f"driving: {source}; {span:g} s at {t[1] - t[0]:g} s, statistics after {discard:g} s")
+
+    def progress(text):
+        print(text, file=sys.stderr, flush=True)
     try:
         res = run_decoupled(system, t, poses, options=options, lines=names, discard=discard,
-                            substeps=args.substeps, reference_tension=ref, **inputs)
+                            substeps=args.substeps, reference_tension=ref, progress=progress,
+                            **inputs)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     print(f"FE lines: {options.integrator}, {res.attrs['substeps']} step(s) per sample, "

@@ -362,6 +362,20 @@ class MooringSystem:
 
     remove_lines = without_lines
 
+    def only_lines(self, names: Iterable[str]) -> MooringSystem:
+        """A copy with only the named lines (in this system's order), e.g. to run or export one
+        line on its own."""
+        names = [names] if isinstance(names, str) else list(names)
+        for nme in names:
+            if nme not in self.names:
+                raise KeyError(f"unknown line {nme!r}; lines: {', '.join(self.names)}")
+        return MooringSystem([ln for ln in self.lines if ln.name in names],
+                             water_depth=self.water_depth, water_density=self.water_density,
+                             gravity=self.gravity, source=self.source,
+                             failed=tuple(f for f in self.failed if f in names),
+                             line_models=self.line_models, line_types=self.line_types,
+                             fibre_time_constant=self.fibre_time_constant)
+
     def with_dynamic_ea(self) -> MooringSystem:
         """A copy whose segments use their dynamic axial stiffness (``ea_dynamic``, e.g. for
         polyester) instead of the static one; segments without one keep ``ea``."""

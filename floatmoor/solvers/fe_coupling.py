@@ -323,8 +323,11 @@ def pose_stiffness_into(K, x, out):
 
 
 @njit(cache=True)
-def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
-    """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring).
+def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
+    """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring),
+    body steps ``n0`` to ``n1 - 1`` (the whole run: 0 to ``body.n_steps + 1``; :func:`run`
+    calls it in pieces to report progress, each piece continuing from the state the last
+    one left: the same arithmetic as one call).
 
     Body side: the bundles of :func:`floatmoor.solvers.td_kernel.td_steps` (``body``,
     ``terms``, ``lines``, ``state`` at the start state with ``has_mcorr``, ``out`` with
@@ -350,8 +353,9 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
     t_fair = out.t_fair
     t_anchor = out.t_anchor
     status = out.status
-    for k in range(status.shape[0]):
-        status[k] = 0
+    if n0 == 0:
+        for k in range(status.shape[0]):
+            status[k] = 0
     fe_index = fe.index
     active_fe = fe.active
     warm_fe = fe.warm
@@ -361,8 +365,9 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
     vel = np.zeros(6)
     fq = np.zeros(6)
     linear = fe.linear
-    record_lines(fe_body.on, fe_lines, fe.mode.recs)
-    for n in range(n_steps + 1):
+    if n0 == 0:
+        record_lines(fe_body.on, fe_lines, fe.mode.recs)
+    for n in range(n0, n1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
         _release_failed(n * dt, fe, fail_time, fe_body)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
@@ -418,7 +423,7 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines):
 
 
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1,
-        fe_stages: str = "catenary"):
+        fe_stages: str = "catenary", progress=None):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
     ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
     the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
@@ -427,7 +432,9 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
     after it; bit-identical results, :func:`floatmoor.mooring.fe.multi.body_advance_parallel`);
     1: the serial kernel.  ``fe_stages`` ``"linear"``: the FE lines' catenaries left out of the
     RK4 stages, their stage variation linearised at the step start (``solver: {fe_stages:
-    linear}``, module docstring); ``"catenary"`` the exact scheme.
+    linear}``, module docstring); ``"catenary"`` the exact scheme.  ``progress``: called with the
+    simulated time (s) and the run's end time after every :data:`PROGRESS_PIECES` th of the
+    run (the kernel runs in that many pieces; the same numbers as one piece).
 
     Raises
     ------
@@ -476,13 +483,28 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan),
                mode=lines_mode(nf, threads), linear=linear, kfe=np.zeros((6, 6)))
+    fl = line_list(lines)
+    n_total = n_steps + 1
+    pieces = PROGRESS_PIECES if progress is not None else 1
     with numba_threads(fe.mode.threads):
-        td_fe_kernel(body, terms, moor, st, out, fe, fe_body, line_list(lines))
+        for p in range(pieces):
+            n0 = n_total * p // pieces
+            n1 = n_total * (p + 1) // pieces
+            if n1 > n0:
+                td_fe_kernel(body, terms, moor, st, out, fe, fe_body, fl, n0, n1)
+            if status[0] != 0:
+                break
+            if progress is not None:
+                progress(min(n1, n_steps) * body.dt, n_steps * body.dt)
     fm.on[:] = on
     t_end = int(status[1]) * body.dt
     for ln in lines:
         ln.set_time(t_end)
     return status, fe.records
+
+
+PROGRESS_PIECES = 20
+"""Pieces a coupled FE storm runs in when progress is reported (a line per 5 % of the run)."""
 
 
 GOMP_SPINCOUNT = "100000"

@@ -142,6 +142,9 @@ class TimeDomainResult:
     fe_records: dict | None = None
     """FE channels (n, n_lines), NaN for quasi-static lines: ``max_tension_along_line``,
     ``grounded_length``, ``touchdown_tension`` (N, m, N); None without FE lines."""
+    fe_objects: list = field(default_factory=list)
+    """The :class:`~floatmoor.mooring.fe.line.FELine` of each FE line after the run (their
+    energy audit and parameters, for the self-check of the results)."""
 
 
 def default_models(built, options=None) -> list[str]:
@@ -388,8 +391,10 @@ def kernel_bundles(a: Assembly, *, record_forces: bool = False, v0=None,
 
 
 def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guard: float = 10.0,
-              built=None) -> TimeDomainResult:
-    """Run the time loop of an :class:`Assembly`.
+              built=None, progress=None) -> TimeDomainResult:
+    """Run the time loop of an :class:`Assembly`.  ``progress``: called with the simulated
+    time and the end time (s) every 5 % of a run with finite-element lines (quasi-static runs
+    take seconds and do not call it).
 
     Raises
     ------
@@ -424,7 +429,8 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
         from .fe_coupling import run as fe_run
         threads = run_threads(a.solver)
         fe_status, fe_out = fe_run(a.fe, body, terms, lines, out, x0=x0, n_lines=n_lines,
-                                   threads=threads, fe_stages=fe_stages(a.solver))
+                                   threads=threads, fe_stages=fe_stages(a.solver),
+                                   progress=progress)
         raise_fe_status(a.fe, fe_status)
         status[:] = fe_status[:3]
         fe_records = dict(zip(FE_RECORDS, fe_out))
@@ -456,7 +462,8 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
                                   "wf_velocity_removed": bool(asm.has_wf_velocity),
                                   "wave_heading_yaw": a.wave_yaw, **fe_info},
                             fe_lines=[] if a.fe is None else list(a.fe.names),
-                            fe_records=fe_records)
+                            fe_records=fe_records,
+                            fe_objects=[] if a.fe is None else list(a.fe.mooring.lines))
 
 
 def _raise_on_status(status, dt, line_names, mbs, tension_guard, guard):

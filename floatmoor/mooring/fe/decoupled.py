@@ -22,6 +22,7 @@ from .from_system import spec_from_linedef
 from .line import FELine
 from .options import FEOptions
 from .prescribed import daf, fairlead_track_from_body, quasi_static_tension, run_prescribed
+from .selfcheck import line_selfcheck, selfcheck_variables, warn_broken
 
 __all__ = ["run_decoupled", "harmonic_poses"]
 
@@ -79,7 +80,8 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
         Fairlead tension of the floater run (quasi-static, N), stored as ``run_tension`` to
         compare with the quasi-static tension recomputed here along the fairlead track.
     progress : callable, optional
-        Called with the line name before each line.
+        Called with a line of text before each line ("line k of n: NAME") and every 5 % of
+        its simulated time.
     current : dict, optional
         ``current_z``, ``current_speed``, ``current_heading`` of every line (m, m/s, rad;
         :class:`FELineSpec`; default no current), as :meth:`FEMooring.from_system` takes them.
@@ -95,8 +97,10 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
         ``max_tension`` (along the line), ``grounded_length``, ``touchdown_x/y``
         (and ``run_tension``); per line the statistics over the window ``fe_mean, fe_std,
         fe_max, qs_mean, qs_std, qs_max, daf, max_tension_along_line,
-        max_tension_arc_length, grounded_length_min, grounded_length_max, wall_time``; all
-        with ``units``.
+        max_tension_arc_length, grounded_length_min, grounded_length_max, wall_time`` and the
+        self-check (``selfcheck`` ok or the broken bounds, ``selfcheck_*`` numbers:
+        :mod:`.selfcheck`); all with ``units``.  A line that breaks a warning-level bound of the
+        self-check raises a FloatmoorWarning.
 
     Raises
     ------
@@ -123,9 +127,10 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
     stats = {k: [] for k in ("fe_mean", "fe_std", "fe_max", "qs_mean", "qs_std", "qs_max",
                              "daf", "tmax_line", "tmax_s", "lg_min", "lg_max", "wall",
                              "n_elements", "newton")}
-    for name in names:
+    checks = []
+    for il, name in enumerate(names):
         if progress is not None:
-            progress(name)
+            progress(f"line {il + 1} of {len(names)}: {name}")
         w0 = _time.perf_counter()
         ld = system.lines[system.names.index(name)]
         spec = spec_from_linedef(ld, water_depth=system.water_depth, pose=poses[0],
@@ -140,8 +145,14 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
                                  where=exc.where, remedy=exc.remedy) from None
         line.start(t0=0.0, **options.start_kw())
         track = fairlead_track_from_body(t - t[0], poses, ld.fairlead)
+        step_progress = None
+        if progress is not None:
+            def step_progress(tt, t_end, name=name, w0=w0):
+                progress(f"  {name}: {100.0 * tt / t_end:3.0f} % ({tt:.0f} of {t_end:.0f} s, "
+                         f"{_time.perf_counter() - w0:.0f} s)")
         try:
-            ds = run_prescribed(line, track, t[-1] - t[0], dt, substeps=nsub)
+            ds = run_prescribed(line, track, t[-1] - t[0], dt, substeps=nsub,
+                                progress=step_progress)
         except NumericalError as exc:
             raise NumericalError(exc.what, time=None if exc.time is None
                                  else float(exc.time + t[0]),
@@ -171,6 +182,11 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
         el = int(ds.max_tension_element.values[window][k])
         stats["tmax_line"].append(tm[k])
         stats["tmax_s"].append(0.5 * (line.s_nodes[el] + line.s_nodes[el + 1]))
+        fz = line.r[-1, 2] - track.xyz[-1, 2] + track.xyz[window, 2]   # fairlead z (earth)
+        speed = np.linalg.norm(np.diff(track.xyz, axis=0), axis=1) / dt
+        checks.append(line_selfcheck(line, fairlead_tension=fe, max_tension=tm,
+                                     fairlead_height=float(fz.max() - line.r[0, 2]),
+                                     fairlead_speed=float(speed.max())))
         lg = ds.grounded_length.values[window]
         stats["lg_min"].append(lg.min())
         stats["lg_max"].append(lg.max())
@@ -220,6 +236,8 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
     for k, (unit, ln) in desc.items():
         data[out_names.get(k, k)] = ("line", np.array(stats[k]),
                                      {"units": unit, "long_name": ln})
+    data.update(selfcheck_variables(checks))
+    warn_broken(names, checks)
     if reference_tension is not None:
         data["run_tension"] = (LT, np.array([np.asarray(reference_tension[n], float)
                                              for n in names]),

@@ -739,10 +739,13 @@ class FELine:
                                       "seabed friction, reduce finite_element.dt, or use "
                                       "fewer, longer elements"))
         if code == -5:
-            msg = (f"node {int(node)} (s = {self.s_nodes[int(node)]:.1f} m from the anchor) "
-                   f"went {self._penetration(int(node)):.3g} m below the seabed, deeper than "
-                   f"the contact law allows (where its spring carries {K.PEN_WEIGHTS:g} times "
-                   "the node's submerged weight)")
+            i = int(node)
+            lim = max(K.PEN_WEIGHTS * max(self.P[i, K.NP_W], 0.0) / self.P[i, K.NP_KS],
+                      K.PEN_FLOOR)
+            msg = (f"node {i} (s = {self.s_nodes[i]:.1f} m from the anchor) went "
+                   f"{au[K.AU_PEN] * lim:.3g} m below the seabed, deeper than the contact law "
+                   f"allows ({lim:.3g} m: where its spring carries {K.PEN_WEIGHTS:g} times the "
+                   f"node's submerged weight, at least {K.PEN_FLOOR:g} m)")
             return NumericalError(f"{head}: {msg}", time=t, where=f"line {name}",
                                   remedy=remedy or "reduce dt or raise the seabed stiffness "
                                                    "(finite_element: seabed: stiffness)")
@@ -764,11 +767,6 @@ class FELine:
     def arc_length(self, element: int) -> float:
         """Unstretched arc length (m) of the middle of ``element`` from the anchor."""
         return 0.5 * float(self.s_nodes[element] + self.s_nodes[element + 1])
-
-    def _penetration(self, node: int) -> float:
-        """Depth (m) of ``node`` below the seabed in the trial or accepted state."""
-        r = self._trial_state.r if self._trial else self.r
-        return float(self.S[K.S_ZC] - r[node, 2])
 
     @property
     def audit(self) -> dict:

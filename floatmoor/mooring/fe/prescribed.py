@@ -95,7 +95,8 @@ def fairlead_track_from_body(t, poses, fairlead_body, reference_pose=None) -> Ti
 
 
 def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: int = 1,
-                   snapshot_times=(), record_every: int = 1, track_nodes=()) -> xr.Dataset:
+                   snapshot_times=(), record_every: int = 1, track_nodes=(),
+                   progress=None) -> xr.Dataset:
     """Run a FE line with the fairlead following ``motion`` (a callable ``t -> (disp, vel)``,
     displacement about the static fairlead position, m and m/s).
 
@@ -106,6 +107,8 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     ``grounded_length`` and profile snapshots ``profile_position`` (snapshot, node, axis),
     ``profile_tension`` (snapshot, element) at the steps nearest to ``snapshot_times``, and
     ``node_position`` (time, tracked_node, axis) of the nodes in ``track_nodes``.
+    ``progress``: called with the simulated time and ``t_end`` (s, from the start) every 5 %
+    of the run (the steps then run in 20 pieces: the same numbers as one).
     """
     n = int(round(t_end / dt))
     r0 = line.r[-1].copy()
@@ -139,9 +142,19 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
             rf[k] = r0 + d
             vf[k] = v
         counts = np.zeros(2)
-        k, st = _run_steps(t0, dt, n, int(substeps), line.MAX_SPLIT, rf, vf, record_every,
-                           snap_steps, si, tracked, b, times, recs, snaps_r, snaps_t, pos_tr,
-                           counts)
+        pieces = PROGRESS_PIECES if progress is not None else 1
+        k, st = 0, 0
+        for p in range(pieces):
+            k0 = n * p // pieces + 1
+            k1 = n * (p + 1) // pieces
+            if k1 >= k0:
+                k, st, si = _run_steps(t0, dt, k0, k1, int(substeps), line.MAX_SPLIT, rf, vf,
+                                       record_every, snap_steps, si, tracked, b, times, recs,
+                                       snaps_r, snaps_t, pos_tr, counts)
+            if st < 0:
+                break
+            if progress is not None:
+                progress(k1 * dt, n * dt)
         line.newton_iterations += int(counts[0])
         line.substeps_taken += int(counts[1])
         line.set_time(t0 + (k if st == 0 else k - 1) * dt)
@@ -208,21 +221,26 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
     return ds
 
 
+PROGRESS_PIECES = 20
+"""Pieces a prescribed-motion run is split into when progress is reported (a line per 5 %)."""
+
+
 @njit(cache=True)
-def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si, tracked, ln,
-               times, recs, snaps_r, snaps_t, pos_tr, counts):
-    """Steps 1 .. n of :func:`run_prescribed` for a line without wave kinematics: advance
+def _run_steps(t0, dt, k0, k1, nsub, max_split, rf, vf, record_every, snap_steps, si, tracked,
+               ln, times, recs, snaps_r, snaps_t, pos_tr, counts):
+    """Steps ``k0 .. k1`` of :func:`run_prescribed` for a line without wave kinematics: advance
     (:func:`kernels.ga_advance`) to ``t0 + k dt`` with the fairlead at ``rf[k]`` moving with
     ``vf[k]``, accept, record every ``record_every`` steps (``times``, ``recs`` rows of
     :func:`kernels.record_into`, ``pos_tr`` of the ``tracked`` nodes) and the snapshots at
-    ``snap_steps[si:]``.  ``counts`` += Newton iterations and halvings.  Returns ``(k, 0)``
-    after the last step or ``(k, status)`` of the step ``k`` that failed (not accepted)."""
+    ``snap_steps[si:]``.  ``counts`` += Newton iterations and halvings.  Returns ``(k, 0, si)``
+    after the last step or ``(k, status, si)`` of the step ``k`` that failed (not accepted),
+    ``si`` the next snapshot."""
     now = ln.now
     tr = ln.trial
     w = ln.work
     zc = ln.par.S[K.S_ZC]
     s_nodes = ln.par.s_nodes
-    for k in range(1, n + 1):
+    for k in range(k0, k1 + 1):
         t = t0 + k * dt
         w.stats[0] = 0.0
         w.stats[1] = 0.0
@@ -230,7 +248,7 @@ def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si,
         counts[0] += w.stats[0]
         counts[1] += w.stats[1]
         if st < 0:
-            return k, st
+            return k, st, si
         K.accept_trial(ln)
         if k % record_every == 0:
             kr = k // record_every
@@ -246,7 +264,7 @@ def _run_steps(t0, dt, n, nsub, max_split, rf, vf, record_every, snap_steps, si,
             for j in range(w.tens.shape[0]):
                 snaps_t[si, j] = w.tens[j]
             si += 1
-    return n, 0
+    return k1, 0, si
 
 
 def forced_oscillation_impedance(line: FELine, lf, duration: float, settle: float, dt: float,
