@@ -277,3 +277,50 @@ def test_a_short_line_lifts_its_anchor(short_oc3, tmp_path, capsys):
     code, out, _ = run_report([short_oc3, "--out", tmp_path / "r2"], capsys)
     assert verdict_rows(out)[("ULS", "anchor uplift")] == "PASS"
     assert "pile, no limit" in out
+
+
+def test_offset_limits_and_points(short_oc3, tmp_path, capsys):
+    """Scene limits (they change no analysis: the seeds are reused): a radial offset limit
+    below the characteristic offset fails, a per-direction one above it passes; a point on the
+    body is reported with its characteristic excursions, and fails its limit.  By hand: the
+    per-seed maxima of hypot(surge, sway) over the window, their Gumbel 90 % value (scipy),
+    over the limit; the point's earth position x + Rz(yaw) Ry(pitch) Rx(roll) r."""
+    scene = short_oc3.parent / "scene.yaml"
+    scene.write_text(scene.read_text() + (
+        "limits:\n"
+        "  offset:\n"
+        "    - {name: riser, max: 1.0}\n"
+        "    - {name: watch, directions_deg: [0, 90, 180, 270], max: [50, 60, 50, 60]}\n"
+        "  points:\n"
+        "    - {name: deck_edge, position: [10.0, 0.0, 20.0], max_horizontal: 0.5}\n"))
+    code, out, _ = run_report([short_oc3, "--out", tmp_path / "r"], capsys)
+    assert code == 1
+    assert verdict_rows(out)[("ULS", "offsets")] == "FAIL"
+    assert "FAIL: offset riser, point deck_edge" in out
+    off_max, pt_max = [], []
+    r = np.array([10.0, 0.0, 20.0])
+    for f in sorted(short_oc3.glob("*.nc")):
+        with xr.open_dataset(f) as ds:
+            sel = ds["time"].values >= ds.attrs["transient"] - 1e-9
+            m = ds["motion"].values[sel]
+        off_max.append(np.hypot(m[:, 0], m[:, 1]).max())
+        h = []
+        for x in m:
+            cr, sr, cp, sp, cy, sy = (np.cos(x[3]), np.sin(x[3]), np.cos(x[4]), np.sin(x[4]),
+                                      np.cos(x[5]), np.sin(x[5]))
+            Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+            Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+            Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+            d = x[:3] + Rz @ Ry @ Rx @ r - r
+            h.append(np.hypot(d[0], d[1]))
+        pt_max.append(max(h))
+    p90 = stats.gumbel_r.ppf(0.9, *stats.gumbel_r.fit(np.array(off_max)))
+    ph = stats.gumbel_r.ppf(0.9, *stats.gumbel_r.fit(np.array(pt_max)))
+    with xr.open_dataset(tmp_path / "r" / "summary.nc") as nc:
+        ratio = nc["offsets_uls_ratio_c"].values
+        assert ratio[0] == pytest.approx(p90 / 1.0, rel=2e-4)       # radial 1 m
+        assert ratio[1] < 0.1 and bool(nc["offsets_uls_passed"].values[1])
+        assert float(nc["points_uls_horizontal_c"].values[0]) == pytest.approx(ph, rel=2e-4)
+        assert not bool(nc["points_uls_passed"].values[0])
+    html = (tmp_path / "r" / "report.html").read_text()
+    assert 'id="offset_limits_uls"' in html and 'id="points_uls"' in html

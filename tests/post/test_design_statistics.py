@@ -107,8 +107,8 @@ def test_a_changed_mooring_is_refused(storm, tmp_path):
     text = text.replace("{type: floatel_chain_84, length: 1200.0}",
                         "{type: floatel_chain_84, length: 1195.0}")
     (tmp_path / "mooring.yaml").write_text(text)
-    from floatmoor.io.mooring_section import parse_mooring
     from floatmoor.core.config import Node
+    from floatmoor.io.mooring_section import parse_mooring
     m = parse_mooring(Node.load(tmp_path / "mooring.yaml"), water_depth=150.0)
     with pytest.raises(SceneError, match="changed since the run"):
         seed_design_statistics(ds, m, start=200.0)
