@@ -723,8 +723,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
               for ls in checks["limit_state"].values]
     if capacities is not None:
         tables.append(capacity_table(capacities))
-    for ls, anc in other["anchors"].items():
-        tables.append(anchor_table(anc, ls))
+    for ls, anchors_ds in other["anchors"].items():
+        tables.append(anchor_table(anchors_ds, ls))
     for ls, res in other["offsets"].items():
         tables += offset_tables(res, ls)
     for ls, fib in other["fibre"].items():
@@ -841,8 +841,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     if capacities is not None:
         for name, var in capacities.data_vars.items():
             nc[f"capacity_{name}"] = var.rename({"line": "line"})
-    for ls, anc in other["anchors"].items():
-        for name, var in anc.data_vars.items():
+    for ls, anchors_ds in other["anchors"].items():
+        for name, var in anchors_ds.data_vars.items():
             nc[f"anchor_{ls.lower()}_{name}"] = var.astype(np.int8) if var.dtype == bool else var
     for ls, fib in other["fibre"].items():
         if fib is None:

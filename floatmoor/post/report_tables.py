@@ -218,33 +218,33 @@ def capacity_table(cap):
                   "S_C EOL [kN]"], rows, highlight=hl, text_cols=(2, 3, 4))
 
 
-def anchor_table(anc, ls):
+def anchor_table(anchors_ds, ls):
     rows, hl = [], []
-    u = np.where(anc["checked"].values, anc["uplift_c"].values, np.nan)
+    u = np.where(anchors_ds["checked"].values, anchors_ds["uplift_c"].values, np.nan)
     if not (np.nan_to_num(u) > 0).any():          # no uplift: the largest design load governs
-        u = np.where(anc["checked"].values, anc["design_load"].values, np.nan)
+        u = np.where(anchors_ds["checked"].values, anchors_ds["design_load"].values, np.nan)
     jg = int(np.nanargmax(u)) if np.isfinite(u).any() else -1
-    for j, line in enumerate(anc["line"].values):
-        if not bool(anc["checked"].values[j]):
+    for j, line in enumerate(anchors_ds["line"].values):
+        if not bool(anchors_ds["checked"].values[j]):
             rows.append([str(line)] + [""] * 14 + ["failed line", ""])
             hl.append(False)
             continue
-        lim = float(anc["uplift_limit"].values[j])
-        up_ok = bool(anc["uplift_passed"].values[j])
-        load = ("PASS" if bool(anc["load_passed"].values[j]) else "FAIL") if bool(
-            anc["load_checked"].values[j]) else "NOT CHECKED"
+        lim = float(anchors_ds["uplift_limit"].values[j])
+        up_ok = bool(anchors_ds["uplift_passed"].values[j])
+        load = ("PASS" if bool(anchors_ds["load_passed"].values[j]) else "FAIL") if bool(
+            anchors_ds["load_checked"].values[j]) else "NOT CHECKED"
         rows.append([str(line),
-                     str(anc["anchor_type"].values[j]) + ("" if bool(
-                         anc["anchor_type_given"].values[j]) else " (assumed)"),
-                     fmt(anc["t_c_mean"].values[j] * KN), fmt(anc["t_c"].values[j] * KN),
-                     fmt(anc["gamma_mean"].values[j], 2), fmt(anc["gamma_dyn"].values[j], 2),
-                     fmt(anc["design_load"].values[j] * KN),
-                     fmt(anc["capacity"].values[j] * KN), fmt(anc["resistance_factor"].values[j], 2),
-                     fmt(anc["utilisation"].values[j], 3),
-                     fmt(anc["h_c"].values[j] * KN), fmt(anc["v_c"].values[j] * KN),
-                     fmt(anc["uplift_c"].values[j], 2),
+                     str(anchors_ds["anchor_type"].values[j]) + ("" if bool(
+                         anchors_ds["anchor_type_given"].values[j]) else " (assumed)"),
+                     fmt(anchors_ds["t_c_mean"].values[j] * KN), fmt(anchors_ds["t_c"].values[j] * KN),
+                     fmt(anchors_ds["gamma_mean"].values[j], 2), fmt(anchors_ds["gamma_dyn"].values[j], 2),
+                     fmt(anchors_ds["design_load"].values[j] * KN),
+                     fmt(anchors_ds["capacity"].values[j] * KN), fmt(anchors_ds["resistance_factor"].values[j], 2),
+                     fmt(anchors_ds["utilisation"].values[j], 3),
+                     fmt(anchors_ds["h_c"].values[j] * KN), fmt(anchors_ds["v_c"].values[j] * KN),
+                     fmt(anchors_ds["uplift_c"].values[j], 2),
                      "none" if not np.isfinite(lim) else fmt(lim, 1),
-                     fmt(anc["grounded_length_at_max_offset"].values[j], 0),
+                     fmt(anchors_ds["grounded_length_at_max_offset"].values[j], 0),
                      "PASS" if up_ok else "FAIL", load])
         hl.append(j == jg)
     caption = (f"{ls} anchors: anchor tension at the anchor (characteristic from the seeds as "
