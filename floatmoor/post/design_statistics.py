@@ -365,3 +365,43 @@ def seed_design_statistics(ds, mooring, *, start: float | None = None, end: floa
         out["point_up_max"] = np.maximum(d[:, :, 2].max(axis=0), 0.0)
         out["point_down_max"] = np.maximum(-d[:, :, 2].min(axis=0), 0.0)
     return out
+
+
+_STORED = {"anchor_tension_mean": ("N", "mean anchor tension"),
+           "anchor_h_max": ("N", "largest horizontal anchor force (quasi-static at the pose)"),
+           "anchor_v_max": ("N", "largest vertical (upward) anchor force (quasi-static at the "
+                            "pose)"),
+           "uplift_deg_max": ("deg", "largest line angle above the seabed at the anchor"),
+           "grounded_length_min": ("m", "smallest length of line on the seabed"),
+           "grounded_length_at_max_offset": ("m", "length of line on the seabed at the largest "
+                                             "offset"),
+           "rope_tension_min": ("N", "smallest tension of the fibre rope"),
+           "rope_seabed_length_max": ("m", "largest length of fibre rope on the seabed")}
+
+
+def add_design_statistics(out, ds, mooring, *, start, limits=None, failed=()) -> None:
+    """Add a storm's design statistics (:func:`seed_design_statistics`) to ``out`` (the stored
+    form of a campaign storm) as ``design_<name>`` variables over ``line``,
+    ``offset_limit`` and ``point``.  Never raises: a storm's result is kept when its design
+    statistics cannot be made (the attribute ``design_statistics_error`` says why, and the
+    campaign report does not check what they would have given)."""
+    try:
+        st = seed_design_statistics(ds, mooring, start=start, limits=limits, failed=failed)
+    except Exception as exc:  # noqa: BLE001 - the storm itself is good; say why, go on
+        out.attrs["design_statistics_error"] = f"{type(exc).__name__}: {exc}"
+        return
+    for k, (u, ln) in _STORED.items():
+        out[f"design_{k}"] = (("line",), np.asarray(st[k], float),
+                              {"units": u, "long_name": f"{ln} (after the transient)"})
+    if "offset_ratio_max" in st:
+        out.coords["offset_limit"] = ("offset_limit", list(st["offset_limit"]))
+        out["design_offset_ratio_max"] = (("offset_limit",), st["offset_ratio_max"],
+                                          {"units": "1", "long_name": "largest ratio of the "
+                                           "offset to the limit in its direction"})
+    if "point_horizontal_max" in st:
+        out.coords["point"] = ("point", list(st["point"]))
+        for k in ("point_horizontal_max", "point_up_max", "point_down_max"):
+            out[f"design_{k}"] = (("point",), st[k],
+                                  {"units": "m", "long_name": k.replace("_", " ")
+                                   + " excursion of the point from zero pose"})
+    out.attrs["design_statistics_states"] = int(st["n_evaluated"])

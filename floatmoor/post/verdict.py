@@ -221,9 +221,12 @@ def fibre_line(fib, ls: str) -> VerdictLine | None:
     tmin = np.where(ok, fib["t_min_c"].values, np.nan)
     k = int(np.nanargmin(tmin))
     summary = (f"smallest rope tension {tmin[k] * _KN:.0f} kN ({names[k]}); largest rope on the "
-               f"seabed {np.nanmax(np.where(ok, fib['seabed_length_c'].values, np.nan)):.0f} m; "
-               "largest rope utilisation "
-               f"{np.nanmax(np.where(ok, fib['utilisation'].values, np.nan)):.3f}")
+               f"seabed {np.nanmax(np.where(ok, fib['seabed_length_c'].values, np.nan)):.0f} m")
+    util = np.where(ok, fib["utilisation"].values, np.nan)
+    if np.isfinite(util).any():
+        summary += f"; largest rope utilisation {np.nanmax(util):.3f}"
+    else:
+        summary += "; rope strength: in the line tension check (the weakest segment)"
     if problems:
         return VerdictLine(ls, "fibre ropes", FAIL, float("nan"), problems[0].split()[0],
                            "; ".join(problems[:4]) + (f" (and {len(problems) - 4} more)"
