@@ -324,3 +324,41 @@ def test_offset_limits_and_points(short_oc3, tmp_path, capsys):
         assert not bool(nc["points_uls_passed"].values[0])
     html = (tmp_path / "r" / "report.html").read_text()
     assert 'id="offset_limits_uls"' in html and 'id="points_uls"' in html
+
+
+@pytest.mark.slow  # 3 coupled FE storms of the flagship (and the FE kernels' first compile)
+def test_coupled_finite_element_lines_get_the_dynamic_factors(tmp_path, capsys):
+    """The flagship with its 12 lines as finite-element lines coupled to the floater: the
+    report takes the dynamic-analysis factors (table 3.1, class 2: 1.4 / 2.1) and says why."""
+    fe_scene = ROOT / "scenes" / "floatel_100yr_fe.yaml"
+    seeds = _write_seeds(fe_scene, (1, 2, 3), tmp_path / "fe", duration=1500.0)
+    code, out, _ = run_report([seeds, "--out", tmp_path / "r"], capsys)
+    assert "analysis: dynamic -- 12 finite-element line(s): the line dynamics are in the " \
+           "tension" in out
+    exp = gumbel_p90(seeds)
+    with xr.open_dataset(tmp_path / "r" / "summary.nc") as nc:
+        c = nc.sel(limit_state="ULS")
+        assert set(map(str, c["analysis"].values)) == {"dynamic"}
+        for j, ln in enumerate(c["line"].values):
+            mean, p90 = exp[str(ln)]
+            assert float(c["design_tension"].values[j]) == pytest.approx(
+                1.4 * mean + 2.1 * (p90 - mean), rel=1e-5)
+    assert ("ULS", "anchor uplift") in verdict_rows(out)
+
+
+@pytest.mark.slow  # the full fatigue analysis of the flagship's scatter diagram (about 2 min)
+def test_the_fls_failing_example_exits_1(flagship, tmp_path, capsys):
+    """The example that used to print "all lines pass" and exit 0: floatmoor fatigue on the
+    flagship's scatter, then the report with --fatigue (and --fd): FLS FAIL, exit 1."""
+    fat = tmp_path / "fatigue.nc"
+    assert main(["fatigue", str(FLAGSHIP), "--scatter",
+                 str(ROOT / "metocean" / "floatel_like_scatter.yaml"), "--out", str(fat),
+                 "--quiet"]) == 0
+    fd = tmp_path / "fd.nc"
+    assert main(["fd", str(FLAGSHIP), "--out", str(fd)]) == 0
+    capsys.readouterr()
+    code, out, _ = run_report([flagship["seeds"], "--consequence-class", "2", "--fd", fd,
+                               "--fatigue", fat, "--out", tmp_path / "r"], capsys)
+    assert code == 1
+    assert verdict_rows(out)[("FLS", "fatigue")] == "FAIL"
+    assert "FLS fatigue" in out.split("verdict:")[1]

@@ -360,23 +360,23 @@ def _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design, ana
     if base is None:
         return out
     for ls in ("ULS", "ALS"):
-        anc, offs, fibs = [], [], []
+        anchor_rows, offs, fibs = [], [], []
         for i in np.nonzero((states == ls) & (n_seeds >= 3))[0]:
             stats = _design_stats(out_dir, ids[i], seeds)
             if stats is None:
                 out["missing"] += 1
                 continue
-            anc.append((ids[i], anchor_checks(stats, base["design"], design.code,
+            anchor_rows.append((ids[i], anchor_checks(stats, base["design"], design.code,
                                               limit_state=ls,
                                               consequence_class=design.consequence_class,
                                               analysis=analyses)))
             offs.append((ids[i], offset_checks(stats, base["limits"], limit_state=ls)))
             fake = xr_line_checks(stats["line"].values)
-            f = fibre_checks(stats, base["mooring"], None, design.code, fake, limit_state=ls)
+            f = fibre_checks(stats, base["mooring"], design.code, fake, limit_state=ls)
             if f is not None:
                 fibs.append((ids[i], f))
-        if anc:
-            stacked, _ = _worst(anc, "design_load")
+        if anchor_rows:
+            stacked, _ = _worst(anchor_rows, "design_load")
             up = stacked["uplift_c"].values
             load = np.where(np.isfinite(stacked["utilisation"].values),
                             stacked["utilisation"].values, stacked["design_load"].values)
@@ -384,7 +384,7 @@ def _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design, ana
                              np.nan_to_num(load, nan=-np.inf))
             idx = np.argmax(score, axis=0)
             worst = _pick(stacked, idx, "line")
-            worst["case"] = ("line", np.array([anc[int(k)][0] for k in idx]))
+            worst["case"] = ("line", np.array([anchor_rows[int(k)][0] for k in idx]))
             out["anchors"][ls] = worst
         if offs:
             res = {"offset_c": max(o["offset_c"] for _, o in offs), "offsets": None,
@@ -600,10 +600,10 @@ def _detail_tables(a) -> list:
     if a["capacities"] is not None:
         out.append(capacity_table(a["capacities"]))
     o = a["other"]
-    for ls, anc in o["anchors"].items():
-        t = anchor_table(anc, ls)
+    for ls, anchor_rows in o["anchors"].items():
+        t = anchor_table(anchor_rows, ls)
         t.header.append("case")
-        for row, cid in zip(t.rows, anc["case"].values):
+        for row, cid in zip(t.rows, anchor_rows["case"].values):
             row.append(str(cid))
         t.caption = t.caption.replace(f"{ls} anchors:", f"{ls} anchors (the worst time-domain "
                                       "case of each line, named in the last column):")

@@ -269,12 +269,12 @@ def offset_checks(stats: xr.Dataset, limits, *, limit_state: str, p: float = 0.9
     return out
 
 
-def fibre_checks(stats: xr.Dataset, mooring, capacities: xr.Dataset, code, line_checks,
-                 *, limit_state: str, p: float = 0.9) -> xr.Dataset | None:
+def fibre_checks(stats: xr.Dataset, mooring, code, line_checks, *, limit_state: str,
+                 p: float = 0.9) -> xr.Dataset | None:
     """Fibre-rope checks of every line with a fibre segment (None when no line has one).
 
-    ``capacities``: :func:`floatmoor.post.capacity.segment_capacities`; ``line_checks``: the
-    ULS/ALS line check Dataset of the same limit state (its design tension per line)."""
+    ``line_checks``: the ULS/ALS line check Dataset of the same limit state (its design tension
+    per line; NaN: the rope's strength is not checked here)."""
     from .capacity import is_fibre
     rows = []
     for j, line in enumerate(mooring.lines):

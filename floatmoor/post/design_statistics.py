@@ -79,16 +79,22 @@ def points_earth(motion, points) -> np.ndarray:
 
 
 def _peaks(x, k: int, sep: int, largest: bool = True) -> list[int]:
-    """Indices of the ``k`` largest (or smallest) values of ``x`` at least ``sep`` samples
-    apart (greedy)."""
-    x = np.asarray(x, float)
-    order = np.argsort(-x if largest else x, kind="stable")
+    """Indices of the ``k`` largest (or smallest) local extrema of ``x`` at least ``sep``
+    samples apart (greedy from the largest; the ends count as extrema)."""
+    y = np.asarray(x, float) if largest else -np.asarray(x, float)
+    y = np.where(np.isfinite(y), y, -np.inf)
+    if y.size < 3:
+        idx = np.arange(y.size)
+    else:
+        inner = np.flatnonzero((y[1:-1] >= y[:-2]) & (y[1:-1] > y[2:])) + 1
+        idx = np.concatenate([[0], inner, [y.size - 1]])
+    order = idx[np.argsort(-y[idx], kind="stable")]
     out: list[int] = []
-    taken = np.zeros(x.size, bool)
+    taken = np.zeros(y.size, bool)
     for i in order:
-        if len(out) >= k:
+        if len(out) >= k or not np.isfinite(y[i]):
             break
-        if taken[i] or not np.isfinite(x[i]):
+        if taken[i]:
             continue
         out.append(int(i))
         taken[max(0, i - sep):i + sep + 1] = True

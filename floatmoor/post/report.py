@@ -440,7 +440,7 @@ def _design_statistics(results, context, start, end, failed=()):
 
 
 def _other_checks(results, als_results, checks, context, code, cc, p, start, end):
-    """Capacities, anchors, offsets and fibre checks of both limit states."""
+    """Anchors, offsets and fibre checks of both limit states (empty without a mooring)."""
     from .design_checks import anchor_checks, fibre_checks, offset_checks
     out = {"anchors": {}, "offsets": {}, "fibre": {}, "design_stats": {}}
     if context is None or context.mooring is None:
@@ -450,10 +450,6 @@ def _other_checks(results, als_results, checks, context, code, cc, p, start, end
     if als_results is not None:
         failed = [s.strip() for s in checks.attrs.get("failed_lines", "").split(",") if s.strip()]
         sets.append(("ALS", als_results, failed))
-    cap = segment_caps = None
-    from .capacity import segment_capacities
-    segment_caps = segment_capacities(context.mooring, context.design, code)
-    cap = segment_caps
     for ls, res_set, failed in sets:
         st_start = start if start is not None else transient_of(res_set)
         stats = _design_statistics(res_set, context, st_start, end, failed)
@@ -461,7 +457,7 @@ def _other_checks(results, als_results, checks, context, code, cc, p, start, end
         out["anchors"][ls] = anchor_checks(stats, context.design, code, limit_state=ls,
                                            consequence_class=cc, analysis=analyses, p=p)
         out["offsets"][ls] = offset_checks(stats, context.limits, limit_state=ls, p=p)
-        out["fibre"][ls] = fibre_checks(stats, context.mooring, cap, code,
+        out["fibre"][ls] = fibre_checks(stats, context.mooring, code,
                                         checks.sel(limit_state=ls), limit_state=ls, p=p)
     return out
 
