@@ -41,7 +41,7 @@ pre{background:#f6f6f6;padding:0.6em;font-size:0.8em;overflow-x:auto}
 .verdict{font-size:1.3em;font-weight:bold;margin:0 0 0.4em}
 .verdict.fail{color:#b00}.verdict.pass{color:#070}
 .cols{display:flex;flex-wrap:wrap;gap:1.5em}.cols>div{flex:1 1 30em;min-width:0}
-.kv th{text-align:left;background:#f3f3f8;width:11em}.kv td{text-align:left}
+.kv{width:100%}.kv th{text-align:left;background:#f3f3f8;width:10em;white-space:normal}.kv td{text-align:left;white-space:normal;overflow-wrap:anywhere}
 ul.omit{margin:0.3em 0;padding-left:1.4em;font-size:0.9em}
 .unverified{color:#8a5a00}
 """
@@ -80,8 +80,8 @@ class Table:
 
     def html(self):
         out = [f'<table id="{self.id}"><caption>{html.escape(self.caption)}</caption><thead><tr>']
-        out += [f'<th class="{"name" if i == 0 else ""}">{html.escape(h)}</th>'
-                for i, h in enumerate(self.header)]
+        out += [f'<th class="{"name" if i == 0 or i in self.text_cols | self.wide_cols else ""}">'
+                f"{html.escape(h)}</th>" for i, h in enumerate(self.header)]
         out.append("</tr></thead><tbody>")
         for row, hl in zip(self.rows, self.highlight):
             out.append('<tr class="governing">' if hl else "<tr>")

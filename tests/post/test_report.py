@@ -186,16 +186,22 @@ def test_report_input_errors(tmp_path):
 
 @pytest.mark.slow
 def test_headless_browser_screenshot(report, tmp_path):
-    """Slow (starts a browser): Chromium renders the report to a non-empty screenshot."""
+    """Slow (starts a browser): Chromium renders the report to a non-empty screenshot, and the
+    DOM it builds has the verdict first, before the line tables."""
     exe = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome",
                                           "headless_shell") if shutil.which(n)), None)
     if exe is None:
         pytest.skip("no Chromium binary on this machine")
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+             "--no-first-run"]
     shot = tmp_path / "shot.png"
-    subprocess.run([exe, "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={shot}",
-                    "--window-size=1280,2400", report.html.as_uri()], check=True, timeout=120,
-                   capture_output=True)
+    subprocess.run([exe, *flags, f"--screenshot={shot}", "--window-size=1366,1100",
+                    report.html.as_uri()], check=True, timeout=120, capture_output=True)
     assert shot.stat().st_size > 10_000
+    dom = subprocess.run([exe, *flags, "--dump-dom", report.html.as_uri()], check=True,
+                         timeout=120, capture_output=True, text=True).stdout
+    assert dom.index('id="verdict_line"') < dom.index('id="verdict"') < dom.index(
+        'id="lines_uls"') < dom.index('id="meta"')
 
 
 def test_window_starts_at_the_transient_attribute(tmp_path):
