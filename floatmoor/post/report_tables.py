@@ -33,7 +33,7 @@ td.text{white-space:normal;min-width:6em}td.wide{white-space:normal;min-width:24
 caption{text-align:left;font-size:0.9em;color:#444;padding:0.2em 0;max-width:60em}
 tr.governing td{background:#ffe08a;font-weight:bold}
 td.fail{color:#b00;font-weight:bold}td.pass{color:#070}td.notchecked{color:#856404}
-.meta td{text-align:left}figure{display:inline-block;margin:0.5em}figcaption{font-size:0.85em}
+.meta td{text-align:left;white-space:normal}figure{display:inline-block;margin:0.5em}figcaption{font-size:0.85em}
 .note{font-size:0.85em;color:#555}
 pre{background:#f6f6f6;padding:0.6em;font-size:0.8em;overflow-x:auto}
 .summary{border:2px solid #444;border-radius:6px;padding:0.8em 1.2em;margin:1em 0;background:#fcfcfc}
