@@ -362,3 +362,28 @@ def test_the_fls_failing_example_exits_1(flagship, tmp_path, capsys):
     assert code == 1
     assert verdict_rows(out)[("FLS", "fatigue")] == "FAIL"
     assert "FLS fatigue" in out.split("verdict:")[1]
+
+
+def test_without_the_scene_file_the_scene_checks_are_not_checked(flagship, tmp_path, capsys):
+    """Results whose scene file is gone: the line tension is checked on the new line's capacity
+    (the corrosion zones need the mooring), which cannot make a PASS of a code that asks for the
+    end-of-life capacity; the checks that need the scene are NOT CHECKED; the report says why."""
+    d = tmp_path / "moved"
+    d.mkdir()
+    for f in flagship["seeds"].glob("*.nc"):
+        with xr.open_dataset(f) as ds:
+            ds = ds.load()
+        ds.attrs["scene_file"] = str(tmp_path / "gone.yaml")
+        ds.to_netcdf(d / f.name)
+    code, out, _ = run_report([d, "--out", tmp_path / "r"], capsys)
+    rows = verdict_rows(out)
+    assert rows[("ULS", "anchor uplift")] == "NOT CHECKED"
+    assert rows[("ULS", "offsets")] == "NOT CHECKED"
+    assert "gone.yaml' of the results was not found" in out
+    with xr.open_dataset(tmp_path / "r" / "summary.nc") as nc:
+        c = nc.sel(limit_state="ULS")
+        np.testing.assert_allclose(c["s_c"].values, 0.95 * 8.5e6)
+    # the new line's check is made, but the code asks for the corroded capacity: not a PASS
+    assert rows[("ULS", "line tension")] in ("NOT CHECKED", "FAIL")
+    if rows[("ULS", "line tension")] == "NOT CHECKED":
+        assert "the new line passes, but the end-of-life capacity needs the mooring file" in out

@@ -640,6 +640,10 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
         cutoff=cutoff, p=p, method=method, code=c, daf=daf, eol_mbs=eol_mbs)
     if daf_source:
         checks.attrs["daf_source"] = daf_source
+    if c.end_of_life_capacity and eol_mbs is None:
+        checks.attrs["end_of_life_missing"] = (
+            "the end-of-life capacity needs the mooring file (corrosion zones of the segments), "
+            "which was not given or found: S_C is the new line's")
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     if fd is not None:
