@@ -4,8 +4,9 @@ HTML/Markdown/CSV/netCDF report, exit status 0/1/2, ALS and FD beside TD.
 The expected numbers are recomputed here from the netCDF files independently of floatmoor.post:
 per-seed maxima over t >= the ``transient`` attribute, Gumbel fit by scipy.stats.gumbel_r.fit
 (maximum likelihood), MPM = loc, 90 % value = gumbel_r.ppf(0.9), and the DNV-OS-E301 (2008)
-design equation with the factors of Wang (2016) table 3.1 (class 2, dynamic: 1.4 / 2.1) and
-S_C = 0.95 MBS.
+design equation with the factors of Wang (2016) table 3.1 and S_C = 0.95 MBS.  The OC3 lines
+are quasi-static, so the default factors are the quasi-static ones (class 2: 2.5 on T_C); the
+line type (material user) takes no corrosion allowance, so S_C is the new line's.
 """
 
 import base64
@@ -148,7 +149,8 @@ def test_intact_report_tables_images_numbers(data, intact_report):
     for name in ("report.html", "report.md", "summary.csv", "summary.nc"):
         assert (out / name).stat().st_size > 500
     p = parse(out / "report.html")
-    assert set(p.tables) == {"meta", "lines_uls", "offsets"}
+    assert set(p.tables) == {"verdict", "governing", "environment", "analysis", "meta",
+                             "lines_uls", "capacity", "anchors_uls", "offsets", "code_values"}
     # four plots, embedded PNGs, no link to the network (nor anything external)
     assert len(p.imgs) == 4
     for img in p.imgs:
@@ -173,7 +175,7 @@ def test_intact_report_tables_images_numbers(data, intact_report):
         assert float(cells[1]) == pytest.approx(e["mean"] / 1e3, abs=0.051)
         assert float(cells[4]) == pytest.approx(e["mpm"] / 1e3, abs=0.051 + 1e-5 * e["mpm"] / 1e3)
         assert float(cells[5]) == pytest.approx(e["p90"] / 1e3, abs=0.051 + 1e-5 * e["p90"] / 1e3)
-        design = 1.4 * e["mean"] + 2.1 * (e["p90"] - e["mean"])        # table 3.1, class 2
+        design = 2.5 * e["p90"]         # table 3.1, class 2, quasi-static (quasi-static lines)
         util[line] = design / (0.95 * e["mbs"])
         assert float(cells[13]) == pytest.approx(util[line], abs=6e-4)
         assert cells[14] == "PASS"
@@ -192,8 +194,14 @@ def test_stdout_summary_and_csv(data, tmp_path, capsys):
     csv = (tmp_path / "r" / "summary.csv").read_text().strip().splitlines()
     head = csv[0].split(",")
     gov = [r.split(",")[1] for r in csv[1:] if r.split(",")[head.index("governing[1]")] == "1"]
-    assert gov and f"governing line {gov[0]}" in stdout
-    assert "PASS" in stdout and "verdict: all lines pass" in stdout
+    assert gov and f"ULS line tension   PASS        {gov[0]}:" in stdout
+    assert "analysis: quasi-static -- 3 quasi-static line(s)" in stdout
+    for check in ("ALS line tension   NOT CHECKED", "FLS fatigue        NOT CHECKED",
+                  "ULS anchor uplift  PASS", "ULS anchor load    NOT CHECKED",
+                  "ULS offsets        NOT CHECKED"):
+        assert check in stdout
+    assert "verdict: PASS for the checks made; not checked: ALS line tension, FLS fatigue" \
+        in stdout
     assert str(tmp_path / "r" / "report.html") in stdout
     for r in csv[1:]:
         v = r.split(",")
@@ -265,9 +273,10 @@ def test_als_from_a_second_results_dir(data, tmp_path, capsys):
     code, stdout, _ = run_report([data["intact"], "--als-dir", data["als"], "--out",
                                   tmp_path / "r"], capsys)
     assert code in (0, 1)
-    assert "ALS: governing line" in stdout and "failed line line1" in stdout
+    assert "ALS line tension" in stdout and "failed: line1" in stdout
+    assert "ALS anchor uplift" in stdout
     p = parse(tmp_path / "r" / "report.html")
-    assert {"lines_uls", "lines_als"} <= set(p.tables)
+    assert {"lines_uls", "lines_als", "anchors_als"} <= set(p.tables)
     rows = line_rows(p.tables["lines_als"])
     assert rows["line1"]["cells"][14] == "failed line"
     assert [r["cells"][0] for r in rows.values() if r["class"] == "governing"] != ["line1"]
@@ -361,7 +370,9 @@ def test_quasi_static_class_1_factors(data, tmp_path, capsys):
     """Wang (2016) table 3.1, consequence class 1, quasi-static: one factor 1.70 on the total."""
     code, stdout, _ = run_report([data["intact"], "--consequence-class", "1", "--analysis",
                                   "quasi-static", "--out", tmp_path / "r"], capsys)
-    assert code == 0 and "consequence class 1, quasi-static analysis" in stdout
+    assert code == 0 and "consequence class 1" in stdout
+    assert "analysis: quasi-static -- quasi-static given (--analysis quasi-static), as the " \
+        "line model gives" in stdout and "OVERRIDE" not in stdout
     exp = expected_from_files(data["intact"])
     rows = line_rows(parse(tmp_path / "r" / "report.html").tables["lines_uls"])
     for line, e in exp.items():

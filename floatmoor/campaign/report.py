@@ -16,10 +16,19 @@ matplotlib is installed), ``report.md``, ``governing.csv``, ``td_cases.csv`` and
 * Polar plots over the wave heading: utilisation per line (FD of every case, max over sea states
   and conditions of the limit state; TD points) and the maximum offset.
 
-Design options: the campaign file's consequence class and analysis type, unless the report is
-given others (``floatmoor report DIR --consequence-class N --analysis A``): then every
-utilisation is recomputed with those factors from the stored tensions and the report says so
-(the screening chose the TD cases with the campaign's factors).
+Design options: the campaign file's design code, consequence class and analysis type, unless
+the report is given others (``floatmoor report DIR --code C --consequence-class N --analysis
+A``): then every utilisation is recomputed with those factors from the stored tensions and the
+report says so (the screening chose the TD cases with the campaign's factors).  The analysis
+``auto`` follows the line model of the base scene (finite-element lines dynamic, quasi-static
+lines quasi-static), as ``floatmoor report`` does; the capacity is the end-of-life one where the
+code asks for it (:mod:`floatmoor.post.capacity`, from the base scene's mooring file).
+
+The verdict has the lines of ``floatmoor report`` (:mod:`floatmoor.post.verdict`) over the
+time-domain cases of each limit state: line tension (the governing case), anchor uplift and
+anchor load, offsets and points, fibre ropes -- from the design statistics each storm stores
+(:func:`floatmoor.post.design_statistics.add_design_statistics`), the worst case per line; the
+FLS is not part of a ULS/ALS campaign (NOT CHECKED).
 """
 
 from __future__ import annotations
@@ -32,8 +41,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..post import verdict as vd
 from . import store
-from .screening import td_case_check, utilisation
+from .screening import td_case_check
 from .seedconv import DEFAULT_TOLERANCE, METHOD, fractile_interval, seeds_needed
 
 __all__ = ["analyse", "write_report"]
@@ -41,14 +51,20 @@ __all__ = ["analyse", "write_report"]
 
 class _D:
     """Design options of the report: the campaign record's, or those given to the report
-    (``floatmoor report DIR --consequence-class N --analysis A``), which override them;
-    :attr:`source` says which, for the report text."""
+    (``floatmoor report DIR --code C --consequence-class N --analysis A``), which override
+    them; :attr:`source` says which, for the report text."""
 
-    def __init__(self, d, consequence_class=None, analysis=None):
+    def __init__(self, d, consequence_class=None, analysis=None, code=None):
+        from ..post.design_codes import load_code
         self.consequence_class = int(d["consequence_class"])
         self.analysis = d["analysis"]
         self.standard = d.get("standard", "dnv-os-e301")
         given = []
+        if code is not None and load_code(code).key != load_code(self.standard).key:
+            given.append(f"code {load_code(code).key} instead of the campaign's "
+                         f"{load_code(self.standard).key}")
+            self.standard = code
+        self.code = load_code(self.standard)
         if consequence_class is not None and int(consequence_class) != self.consequence_class:
             given.append(f"consequence class {int(consequence_class)} instead of the campaign's "
                          f"{self.consequence_class}")
@@ -64,6 +80,105 @@ class _D:
                        "of the campaign file")
 
 
+def _base(rec):
+    """The base scene's mooring, design keys, limits and line models (None when the scene is
+    not found)."""
+    from ..io.mooring_design import parse_mooring_design
+    from ..io.mooring_section import parse_mooring
+    from ..io.scene import load_scene
+    path = rec.get("base_scene")
+    if not path or not Path(path).is_file():
+        return None
+    scene = load_scene(path)
+    node = scene.mooring_node()
+    if node is None:
+        return None
+    site = scene.site
+    system = parse_mooring(node, water_depth=site.water_depth,
+                           water_density=site.water_density, gravity=site.gravity)
+    models = [system.line_models.model_of(n) if system.line_models is not None
+              else "quasi-static" for n in system.names]
+    return {"scene": scene, "mooring": system, "design": parse_mooring_design(node),
+            "limits": scene.limits, "models": models}
+
+
+def _check_case(seed_max, seed_mean, mbs, eol_mbs, ls, design, analyses, skip=()):
+    """The line check of one case from its seeds with the report's factors (per-line
+    analysis, end-of-life capacity): ``t_c``, ``t_c_mean``, ``utilisation``,
+    ``utilisation_new`` per line (NaN where not checked)."""
+    from ..post.dnv_os_e301 import line_check
+    base = td_case_check(seed_max, seed_mean, mbs, ls, design, skip)
+    out = {k: base[k] for k in ("t_c", "t_c_mean")}
+    out["utilisation"] = np.full(len(analyses), np.nan)
+    out["utilisation_new"] = np.full(len(analyses), np.nan)
+    for j, an in enumerate(analyses):
+        if not (np.isfinite(out["t_c"][j]) and np.isfinite(out["t_c_mean"][j])):
+            continue
+        r = line_check(out["t_c_mean"][j], max(out["t_c"][j], out["t_c_mean"][j]), mbs[j],
+                       limit_state=ls, consequence_class=design.consequence_class, analysis=an,
+                       code=design.code, eol_mbs=None if eol_mbs is None else eol_mbs[j])
+        out["utilisation"][j] = float(r["utilisation"])
+        out["utilisation_new"][j] = float(r["utilisation_new"])
+    return out
+
+
+def _fd_utilisation(t_static, t_max, mbs, eol_mbs, ls, design, analyses):
+    from ..post.dnv_os_e301 import line_check
+    out = np.full(len(analyses), np.nan)
+    for j, an in enumerate(analyses):
+        tm, tc = t_static[j], t_max[j]
+        if not (np.isfinite(tm) and np.isfinite(tc) and tc > 0 and tm >= 0):
+            continue
+        r = line_check(tm, max(tc, tm), mbs[j], limit_state=ls,
+                       consequence_class=design.consequence_class, analysis=an,
+                       code=design.code, eol_mbs=None if eol_mbs is None else eol_mbs[j])
+        out[j] = float(r["utilisation"])
+    return out
+
+
+def _design_stats(out_dir, case_id, seeds):
+    """The design statistics of a case's storms as the Dataset of
+    :func:`floatmoor.post.design_checks.collect` (None when a storm has none)."""
+    import xarray as xr
+    per = []
+    used = []
+    for seed in seeds:
+        p = store.storm_path(out_dir, case_id, seed)
+        if not p.is_file():
+            continue
+        with xr.open_dataset(p) as ds:
+            if "design_anchor_h_max" not in ds:
+                return None
+            d = {k[len("design_"):]: ds[k].values.copy() for k in ds.data_vars
+                 if k.startswith("design_")}
+            d["offset_max"] = float(ds["offset_max"].values)
+            d["anchor_tension_max"] = np.where(np.isfinite(d["anchor_tension_mean"]),
+                                               ds["anchor_tension_max"].values, np.nan)
+            d["line"] = [str(v) for v in ds["line"].values]
+            for c in ("offset_limit", "point"):
+                if c in ds.coords:
+                    d[c] = [str(v) for v in ds[c].values]
+        per.append(d)
+        used.append(int(seed))
+    if len(per) < 3:
+        return None
+    coords = {"seed": used, "line": per[0]["line"]}
+    line_vars = ("anchor_tension_max", "anchor_tension_mean", "anchor_h_max", "anchor_v_max",
+                 "uplift_deg_max", "grounded_length_min", "grounded_length_at_max_offset",
+                 "rope_tension_min", "rope_seabed_length_max")
+    data = {k: (("seed", "line"), np.array([q[k] for q in per], float)) for k in line_vars}
+    data["offset_max"] = (("seed",), np.array([q["offset_max"] for q in per]))
+    if "offset_limit" in per[0]:
+        coords["offset_limit"] = per[0]["offset_limit"]
+        data["offset_ratio_max"] = (("seed", "offset_limit"),
+                                    np.array([q["offset_ratio_max"] for q in per]))
+    if "point" in per[0]:
+        coords["point"] = per[0]["point"]
+        for k in ("point_horizontal_max", "point_up_max", "point_down_max"):
+            data[k] = (("seed", "point"), np.array([q[k] for q in per]))
+    return xr.Dataset(data, coords=coords)
+
+
 def _spearman(a, b) -> float:
     from scipy.stats import spearmanr
     ok = np.isfinite(a) & np.isfinite(b)
@@ -73,25 +188,39 @@ def _spearman(a, b) -> float:
 
 
 def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=None,
-            analysis=None) -> dict:
-    """The campaign report's numbers (see the module docstring).  ``consequence_class`` and
-    ``analysis`` override the campaign's design options (None: the campaign's)."""
+            analysis=None, code=None) -> dict:
+    """The campaign report's numbers (see the module docstring).  ``code``,
+    ``consequence_class`` and ``analysis`` override the campaign's design options (None: the
+    campaign's)."""
     from ..post.dnv_os_e301 import line_check
+    from ..post.report import resolve_analysis
     rec = store.read_record(out_dir)
-    design = _D(rec["design"], consequence_class, analysis)
+    design = _D(rec["design"], consequence_class, analysis, code)
     cases = rec["cases"]
     ids = [c["case"] for c in cases]
     lines = rec["lines"]
     seeds = rec["seeds"]
     states = np.array([c["limit_state"] for c in cases])
-    fd = store.load_fd_table(out_dir, ids)
     nc, nl = len(cases), len(lines)
+    base = _base(rec)
+    models = base["models"] if base is not None else ["quasi-static"] * nl
+    res_an = resolve_analysis(models, design.analysis, None, design.code)
+    analyses = res_an["analyses"]
+    capacities = eol_ratio = None
+    if base is not None:
+        from ..post.capacity import segment_capacities
+        capacities = segment_capacities(base["mooring"], base["design"], design.code)
+        if design.code.end_of_life_capacity:
+            eol_ratio = (capacities["mbs_eol_line"].values
+                         / capacities["mbs_new_line"].values)
+    fd = store.load_fd_table(out_dir, ids)
     u_fd = np.full((nc, nl), np.nan)
     if fd:
         for i, c in enumerate(cases):
             if np.isfinite(fd["mbs"][i]).all():
-                u_fd[i] = utilisation(fd["tension_static"][i], fd["tension_max_total"][i],
-                                      fd["mbs"][i], c["limit_state"], design)
+                eol = None if eol_ratio is None else fd["mbs"][i] * eol_ratio
+                u_fd[i] = _fd_utilisation(fd["tension_static"][i], fd["tension_max_total"][i],
+                                          fd["mbs"][i], eol, c["limit_state"], design, analyses)
     screened = np.zeros(nc, bool)     # kept by the screening rule
     sent = np.ones(nc, bool)           # sent to the time domain (run, running or failed)
     scr = Path(out_dir) / "screening.csv"
@@ -102,11 +231,14 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
         screened = np.array([bool(pos.get(i, (0, 0))[1]) for i in ids])
     st = store.load_td_statistics(out_dir, ids, seeds)
     u_td = np.full((nc, nl), np.nan)
+    u_td_new = np.full((nc, nl), np.nan)
     t_c = np.full((nc, nl), np.nan)
     t_m = np.full((nc, nl), np.nan)
     n_seeds = np.zeros(nc, int)
     offset = np.full(nc, np.nan)
+    eol_mbs = None
     if st:
+        eol_mbs = None if eol_ratio is None else np.asarray(st["mbs"], float) * eol_ratio
         for i, c in enumerate(cases):
             mx = st["line_tension_max"][i]
             ok = np.isfinite(mx).all(axis=1)
@@ -114,9 +246,10 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
             if n_seeds[i] < 3:
                 continue
             skip = tuple(lines.index(ln) for ln in _condition_lines(c["condition"]))
-            r = td_case_check(mx[ok], st["line_tension_mean"][i][ok], st["mbs"],
-                              c["limit_state"], design, skip)
+            r = _check_case(mx[ok], st["line_tension_mean"][i][ok], st["mbs"], eol_mbs,
+                            c["limit_state"], design, analyses, skip)
             u_td[i], t_c[i], t_m[i] = r["utilisation"], r["t_c"], r["t_c_mean"]
+            u_td_new[i] = r["utilisation_new"]
             offset[i] = float(np.mean(st["offset_max"][i][ok]))
     ran = n_seeds >= 3
     governing = []
@@ -126,9 +259,10 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
             if rows.size == 0 or not np.isfinite(u_td[rows, j]).any():
                 continue
             i = int(rows[np.nanargmax(u_td[rows, j])])
-            chk = line_check(t_m[i, j], t_c[i, j], st["mbs"][j], limit_state=ls,
+            chk = line_check(t_m[i, j], max(t_c[i, j], t_m[i, j]), st["mbs"][j], limit_state=ls,
                              consequence_class=design.consequence_class,
-                             analysis=design.analysis)
+                             analysis=analyses[j], code=design.code,
+                             eol_mbs=None if eol_mbs is None else eol_mbs[j])
             mx = st["line_tension_max"][i][:, j]
             ci = fractile_interval(mx[np.isfinite(mx)])
             # FD against TD for this line and limit state
@@ -152,6 +286,8 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
                 "condition": cases[i]["condition"], "n_seeds": int(n_seeds[i]),
                 "t_c_mean": float(chk["t_c_mean"]), "t_c": float(chk["t_c"]),
                 "design_tension": float(chk["design_tension"]), "s_c": float(chk["s_c"]),
+                "s_c_new": float(chk["s_c_new"]), "utilisation_new":
+                float(chk["utilisation_new"]), "analysis": analyses[j],
                 "utilisation": float(chk["utilisation"]), "passed": bool(chk["passed"]),
                 "gamma_mean": chk["factors"].gamma_mean, "gamma_dyn": chk["factors"].gamma_dyn,
                 "u_fd": float(u_fd[i, j]), "fd_rank": fd_rank,
@@ -167,11 +303,167 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
                 "seeds_needed": seeds_needed(ci["n"], ci["half_width"], tolerance),
                 "in_screening": bool(screened[i]),
             })
+    other = _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design,
+                          analyses)
+    verdict = _verdict(governing, states, other, base)
     return {"record": rec, "lines": lines, "cases": cases, "ids": ids, "states": states,
-            "u_fd": u_fd, "u_td": u_td, "t_c": t_c, "t_c_mean": t_m, "n_seeds": n_seeds,
-            "sent": sent,
+            "u_fd": u_fd, "u_td": u_td, "u_td_new": u_td_new, "t_c": t_c, "t_c_mean": t_m,
+            "n_seeds": n_seeds, "sent": sent,
             "offset": offset, "fd": fd, "governing": governing, "screened": screened,
-            "tolerance": tolerance, "mbs": st["mbs"] if st else None, "design": design}
+            "tolerance": tolerance, "mbs": st["mbs"] if st else None, "design": design,
+            "analysis": res_an, "capacities": capacities, "other": other,
+            "verdict": verdict, "overall": vd.overall(verdict),
+            "unverified": [e for e in design.code.entries_used(_used_parts(states, other,
+                                                                           capacities))
+                           if not e.verified]}
+
+
+def _used_parts(states, other, capacities):
+    parts = ["line_tension.strength_factor", "line_tension.ULS"]
+    if "ALS" in set(states):
+        parts.append("line_tension.ALS")
+    if capacities is not None:
+        parts.append("corrosion")
+    if other["anchors"]:
+        parts.append("anchors")
+    if other["fibre"]:
+        parts.append("fibre")
+    return parts
+
+
+def _worst(per_case: list, key: str, fn=np.nanmax):
+    """Per line, the case whose ``key`` is the worst (largest by default): (Dataset rows
+    stacked over cases, index of the worst case per line)."""
+    import xarray as xr
+    stacked = xr.concat([d for _, d in per_case], dim="case")
+    vals = stacked[key].values
+    vals = np.where(np.isfinite(vals), vals, -np.inf if fn is np.nanmax else np.inf)
+    idx = np.argmax(vals, axis=0) if fn is np.nanmax else np.argmin(vals, axis=0)
+    return stacked, idx
+
+
+def _pick(stacked, idx, dim):
+    """The rows of ``stacked`` (over ``case`` and ``dim``) of the worst case of each item."""
+    import xarray as xr
+    parts = [stacked.isel(case=int(k), **{dim: [j]}) for j, k in enumerate(idx)]
+    out = xr.concat(parts, dim=dim)
+    out.attrs = dict(stacked.attrs)
+    return out
+
+
+def _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design, analyses):
+    """Anchor, offset and fibre checks of every TD case with design statistics; per limit
+    state the worst case of each line (anchors: the largest uplift angle, then the largest
+    design load; fibre: the most rope on the seabed), and of each limit and point."""
+    from ..post.design_checks import anchor_checks, fibre_checks, offset_checks
+    out = {"anchors": {}, "offsets": {}, "fibre": {}, "missing": 0, "cases": {}}
+    if base is None:
+        return out
+    for ls in ("ULS", "ALS"):
+        anchor_rows, offs, fibs = [], [], []
+        for i in np.nonzero((states == ls) & (n_seeds >= 3))[0]:
+            stats = _design_stats(out_dir, ids[i], seeds)
+            if stats is None:
+                out["missing"] += 1
+                continue
+            anchor_rows.append((ids[i], anchor_checks(stats, base["design"], design.code,
+                                              limit_state=ls,
+                                              consequence_class=design.consequence_class,
+                                              analysis=analyses)))
+            offs.append((ids[i], offset_checks(stats, base["limits"], limit_state=ls)))
+            fake = xr_line_checks(stats["line"].values)
+            f = fibre_checks(stats, base["mooring"], design.code, fake, limit_state=ls)
+            if f is not None:
+                fibs.append((ids[i], f))
+        if anchor_rows:
+            stacked, _ = _worst(anchor_rows, "design_load")
+            up = stacked["uplift_c"].values
+            load = np.where(np.isfinite(stacked["utilisation"].values),
+                            stacked["utilisation"].values, stacked["design_load"].values)
+            score = np.where(np.nan_to_num(up) > 0, 1e12 + np.nan_to_num(up),
+                             np.nan_to_num(load, nan=-np.inf))
+            idx = np.argmax(score, axis=0)
+            worst = _pick(stacked, idx, "line")
+            worst["case"] = ("line", np.array([anchor_rows[int(k)][0] for k in idx]))
+            out["anchors"][ls] = worst
+        if offs:
+            res = {"offset_c": max(o["offset_c"] for _, o in offs), "offsets": None,
+                   "points": None}
+            for kind, dim in (("offsets", "offset_limit"), ("points", "point")):
+                items = [(cid, o[kind]) for cid, o in offs if o[kind] is not None]
+                if items:
+                    stacked, idx = _worst(items, "ratio_c")
+                    w = _pick(stacked, idx, dim)
+                    w["case"] = (dim, np.array([items[int(k)][0] for k in idx]))
+                    if kind == "offsets":
+                        w.attrs["offset_c"] = res["offset_c"]
+                    res[kind] = w
+            out["offsets"][ls] = res
+        if fibs:
+            stacked, idx = _worst(fibs, "seabed_length_c")
+            w = _pick(stacked, idx, "line")
+            w["case"] = ("line", np.array([fibs[int(k)][0] for k in idx]))
+            out["fibre"][ls] = w
+    return out
+
+
+def xr_line_checks(lines):
+    """A line-check stand-in without design tensions (the fibre-rope strength is checked with
+    the line tension check of the governing case instead)."""
+    import xarray as xr
+    n = len(lines)
+    return xr.Dataset({"design_tension": ("line", np.full(n, np.nan))},
+                      coords={"line": [str(v) for v in lines]})
+
+
+def _verdict(governing, states, other, base):
+    """The verdict lines of the campaign (as ``floatmoor report``'s)."""
+    out = []
+    for ls in ("ULS", "ALS"):
+        g = [x for x in governing if x["limit_state"] == ls]
+        if not g:
+            if ls in set(states):
+                out.append(vd.VerdictLine(ls, "line tension", vd.NOT_CHECKED,
+                                          text="no time-domain case with 3 finished seeds"))
+            else:
+                out.append(vd.VerdictLine(ls, "line tension", vd.NOT_CHECKED,
+                                          text="no case of this limit state in the campaign"))
+            continue
+        w = max(g, key=lambda x: x["utilisation"])
+        n_fail = sum(1 for x in g if not x["passed"])
+        text = (f"{w['line']}, case {w['case']}: T_C {w['t_c'] / 1e3:.0f} kN (mean "
+                f"{w['t_c_mean'] / 1e3:.0f}), design tension {w['design_tension'] / 1e3:.0f} "
+                f"kN, S_C {w['s_c'] / 1e3:.0f} kN")
+        if abs(w["s_c_new"] - w["s_c"]) > 1e-6 * w["s_c"]:
+            text += (f" end of life ({w['s_c_new'] / 1e3:.0f} new), utilisation "
+                     f"{w['utilisation']:.3f} (new {w['utilisation_new']:.3f})")
+        else:
+            text += f", utilisation {w['utilisation']:.3f}"
+        if n_fail:
+            text += f"; {n_fail} line(s) fail"
+        out.append(vd.VerdictLine(ls, "line tension", vd.PASS if w["passed"] else vd.FAIL,
+                                  w["utilisation"], w["line"], text))
+    out.append(vd.VerdictLine("FLS", "fatigue", vd.NOT_CHECKED,
+                              text="not part of a ULS/ALS campaign (floatmoor fatigue, and "
+                                   "floatmoor report --fatigue on a storm's results)"))
+    limits_given = base is not None and base["limits"] is not None and bool(
+        base["limits"].offset or base["limits"].points)
+    for ls in ("ULS", "ALS"):
+        if ls not in set(states):
+            continue
+        if ls not in other["anchors"]:
+            why = ("the base scene is not available" if base is None else
+                   "the storms carry no design statistics (they were run before floatmoor "
+                   "stored them: run the campaign again in a new folder)")
+            for check in ("anchor uplift", "anchor load", "offsets"):
+                out.append(vd.VerdictLine(ls, check, vd.NOT_CHECKED, text=why))
+            continue
+        out += vd.anchor_lines(other["anchors"][ls], ls)
+        out.append(vd.offset_line(other["offsets"].get(ls, {}), ls, limits_given))
+        f = vd.fibre_line(other["fibre"].get(ls), ls)
+        if f is not None:
+            out.append(f)
+    return out
 
 
 def _condition_lines(name: str) -> list[str]:
@@ -188,9 +480,12 @@ def _condition_lines(name: str) -> list[str]:
 _GOV_COLS = [("limit_state", "limit state", None), ("line", "line", None),
              ("sea_state", "sea state", None), ("hs", "Hs (m)", "{:g}"), ("tp", "Tp (s)", "{:g}"),
              ("wave_heading_deg", "heading (deg)", "{:g}"), ("condition", "condition", None),
+             ("analysis", "analysis", None),
              ("t_c_mean", "T_C-mean (kN)", "kN"), ("t_c", "T_C (kN)", "kN"),
              ("design_tension", "design (kN)", "kN"), ("s_c", "S_C (kN)", "kN"),
-             ("utilisation", "utilisation", "{:.3f}"), ("passed", "pass", None),
+             ("s_c_new", "S_C new (kN)", "kN"),
+             ("utilisation", "utilisation", "{:.3f}"),
+             ("utilisation_new", "utilisation new", "{:.3f}"), ("passed", "pass", None),
              ("u_fd", "FD utilisation", "{:.3f}"), ("fd_rank", "FD rank", "{}"),
              ("spearman_fd_td", "Spearman FD-TD", "{:.2f}"),
              ("screening_margin", "screening margin", "{:.3f}"),
@@ -298,12 +593,39 @@ def _polar_figures(a) -> dict:
     return figs
 
 
+def _detail_tables(a) -> list:
+    """The capacity, anchor, offset and fibre tables (objects with caption, html, markdown)."""
+    from ..post.report_tables import anchor_table, capacity_table, fibre_table, offset_tables
+    out = []
+    if a["capacities"] is not None:
+        out.append(capacity_table(a["capacities"]))
+    o = a["other"]
+    for ls, anchor_rows in o["anchors"].items():
+        t = anchor_table(anchor_rows, ls)
+        t.header.append("case")
+        for row, cid in zip(t.rows, anchor_rows["case"].values):
+            row.append(str(cid))
+        t.caption = t.caption.replace(f"{ls} anchors:", f"{ls} anchors (the worst time-domain "
+                                      "case of each line, named in the last column):")
+        out.append(t)
+    for ls, res in o["offsets"].items():
+        out += offset_tables(res, ls)
+    for ls, fib in o["fibre"].items():
+        t = fibre_table(fib, ls)
+        t.header.append("case")
+        for row, cid in zip(t.rows, fib["case"].values):
+            row.append(str(cid))
+        out.append(t)
+    return out
+
+
 def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE, *,
-                 consequence_class=None, analysis=None) -> dict:
+                 consequence_class=None, analysis=None, code=None) -> dict:
     """Write the campaign report; returns :func:`analyse`'s dict plus the paths written
-    (``consequence_class``, ``analysis``: see :func:`analyse`)."""
+    (``code``, ``consequence_class``, ``analysis``: see :func:`analyse`)."""
     import xarray as xr
-    a = analyse(out_dir, tolerance, consequence_class=consequence_class, analysis=analysis)
+    a = analyse(out_dir, tolerance, consequence_class=consequence_class, analysis=analysis,
+                code=code)
     rd = Path(report_dir) if report_dir else Path(out_dir) / "report"
     rd.mkdir(parents=True, exist_ok=True)
     rec = a["record"]
@@ -327,9 +649,19 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE,
                       {"units": "1", "long_name": "kept by the FD screening rule"})},
         coords={"case": a["ids"], "line": a["lines"],
                 "limit_state": ("case", list(a["states"]))})
-    ds.attrs = {"campaign": rec["name"], "standard": "DNV-OS-E301 (October 2008)",
+    ds["u_td_new"] = (("case", "line"), a["u_td_new"],
+                      {"units": "1", "long_name": "TD utilisation of the new line"})
+    ds["analysis"] = (("line",), np.array(a["analysis"]["analyses"]),
+                      {"units": "", "long_name": "analysis type (partial factors) per line"})
+    ds.attrs = {"campaign": rec["name"], "standard": a["design"].code.name,
+                "code": a["design"].code.key,
                 "consequence_class": a["design"].consequence_class,
-                "analysis": a["design"].analysis, "design_options": a["design"].source,
+                "analysis": a["design"].analysis,
+                "analysis_reason": a["analysis"]["reason"],
+                "design_options": a["design"].source,
+                "verdict": a["overall"][0], "verdict_text": a["overall"][1],
+                "verdict_lines": " | ".join(f"{v.label}: {v.status}" for v in a["verdict"]),
+                "unverified_code_values": "; ".join(e.path for e in a["unverified"]),
                 "seed_interval_method": METHOD}
     ds.to_netcdf(rd / "summary.nc")
     figs = _polar_figures(a)
@@ -342,25 +674,47 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE,
         import matplotlib.pyplot as plt
         plt.close(fig)
     text = _summary_text(a)
-    md = [f"# Campaign report: {rec['name']}", "", *text, "",
+    details = _detail_tables(a)
+    verdict_md = ["| limit state | check | status | governing | utilisation | detail |",
+                  "|---|---|---|---|---|---|"] + [
+        f"| {v.limit_state} | {v.check} | {v.status} | {v.governing} | "
+        f"{_fmt(v.utilisation, '{:.3f}') if np.isfinite(v.utilisation) else '-'} | {v.text} |"
+        for v in a["verdict"]]
+    md = [f"# Campaign report: {rec['name']}", "", f"**Verdict: {a['overall'][1]}**", "",
+          *verdict_md, "", *text, "",
           "## Governing case per line and limit state", "", _md(gh, gr), "",
           "## Utilisation of every time-domain case", "", _md(ch, cr), ""]
+    for t in details:
+        md += [t.markdown(), ""]
     md += [f"![{n}]({n}.png)" for n in imgs]
     (rd / "report.md").write_text("\n".join(md) + "\n")
+    status_cls = "fail" if a["overall"][0] == vd.FAIL else "pass"
+    vrows = "".join(
+        f"<tr><td>{html.escape(v.limit_state)}</td><td>{html.escape(v.check)}</td>"
+        f"<td class='{ {'PASS': 'pass', 'FAIL': 'fail'}.get(v.status, 'notchecked') }'>"
+        f"{html.escape(v.status)}</td><td>{html.escape(v.governing)}</td><td>"
+        f"{_fmt(v.utilisation, '{:.3f}') if np.isfinite(v.utilisation) else '-'}</td>"
+        f"<td style='text-align:left'>{html.escape(v.text)}</td></tr>" for v in a["verdict"])
     body = [f"<h1>Campaign report: {html.escape(rec['name'])}</h1>",
+            f'<div class="summary {status_cls}" id="summary"><p class="verdict {status_cls}">'
+            f"Verdict: {html.escape(a['overall'][1])}</p><table id='verdict'><tr><th>limit "
+            "state</th><th>check</th><th>status</th><th>governing</th><th>utilisation</th>"
+            f"<th>detail</th></tr>{vrows}</table></div>",
             "".join(f"<p>{html.escape(t)}</p>" for t in text),
             "<h2>Governing case per line and limit state</h2>",
             _html_table(gh, gr, lambda k: a["governing"][k]["utilisation"] == max(
                 g["utilisation"] for g in a["governing"]
                 if g["limit_state"] == a["governing"][k]["limit_state"])),
             "<h2>Utilisation of every time-domain case</h2>", _html_table(ch, cr)]
+    for t in details:
+        body += [f"<h2>{html.escape(t.caption.split(':')[0])}</h2>",
+                 f'<div class="scroll">{t.html()}</div>']
     body += [f'<h2>{n.replace("_", " ")}</h2><img src="data:image/png;base64,{b}">'
              for n, b in imgs.items()]
     if not imgs:
         body.append("<p>No plots: matplotlib is not installed (pip install floatmoor[plot]).</p>")
-    css = ("body{font-family:sans-serif;max-width:1400px;margin:auto}table{border-collapse:"
-           "collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 5px}"
-           "tr.gov{background:#fde}")
+    from ..post.report_tables import CSS
+    css = CSS + "tr.gov{background:#fde}"
     (rd / "report.html").write_text(f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>"
                                     f"{html.escape(rec['name'])}</title><style>{css}</style>"
                                     f"</head><body>{''.join(body)}</body></html>")
@@ -374,19 +728,24 @@ def _summary_text(a) -> list[str]:
     n_td = int(np.sum(a["n_seeds"] >= 3))
     pending = int(np.sum(a["sent"])) - n_td
     d = a["design"]
-    out = [(f"DNV-OS-E301 Position Mooring, October 2008, consequence class "
-            f"{d.consequence_class}, {d.analysis} analysis ({d.source}); "
+    an = a["analysis"]
+    out = [(f"{d.code.name}, consequence class "
+            f"{d.consequence_class}, {d.analysis} analysis ({d.source}): "
+            f"{an['summary']}{' (OVERRIDE)' if an['override'] else ''} -- {an['reason']}; "
             f"{len(a['cases'])} cases screened in the frequency domain, {n_td} run in the time "
             f"domain ({len(rec['seeds'])} seeds each; screening {rec['screening']})"
             + (f"; {pending} case(s) sent to the time domain have fewer than 3 finished "
                "seeds and are not in this report (campaign unfinished or failed storms)"
                if pending else "") + ".")]
+    if a["unverified"]:
+        out.append("unverified code values used: " + ", ".join(e.path for e in a["unverified"])
+                   + f" ({d.code.file.name})")
     for ls in ("ULS", "ALS"):
         g = [x for x in a["governing"] if x["limit_state"] == ls]
         if not g:
             continue
         w = max(g, key=lambda x: x["utilisation"])
-        out.append(f"{ls}: governing line {w['line']}, case {w['case']} (sea state "
+        out.append(f"{ls} governing line {w['line']}, case {w['case']} (sea state "
                    f"{w['sea_state']}, Hs {w['hs']:g} m, Tp {w['tp']:g} s, heading "
                    f"{w['wave_heading_deg']:g} deg, {w['condition']}): T_C {w['t_c'] / 1e3:.0f} "
                    f"kN, design tension {w['design_tension'] / 1e3:.0f} kN, S_C "

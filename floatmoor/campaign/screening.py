@@ -22,15 +22,31 @@ import numpy as np
 __all__ = ["select_cases", "td_case_check", "utilisation"]
 
 
+def screening_analysis(design) -> str:
+    """The analysis type of the screening's factors: the campaign's, and for ``auto`` (which
+    the report resolves per line from the line model) the quasi-static one -- the larger
+    factors, so that the screening keeps more cases -- or the dynamic one for a code without
+    quasi-static factors (DNV-ST-0119)."""
+    from ..post.design_codes import load_code
+    an = getattr(design, "analysis", "auto")
+    if an != "auto":
+        return an
+    code = load_code(getattr(design, "standard", "dnv-os-e301-2008"))
+    return "quasi-static" if "quasi-static" in code.analyses else "dynamic"
+
+
 def utilisation(t_mean, t_max, mbs, limit_state: str, design) -> np.ndarray:
-    """DNV-OS-E301 utilisation per line (NaN where a tension is NaN or <= 0)."""
+    """Utilisation per line with the campaign's design code (NaN where a tension is NaN or
+    <= 0)."""
     from ..post.dnv_os_e301 import line_check
     tm = np.asarray(t_mean, float)
     tc = np.asarray(t_max, float)
     ok = np.isfinite(tm) & np.isfinite(tc) & (tc > 0) & (tm >= 0)
     r = line_check(np.where(ok, tm, 0.0), np.where(ok, np.maximum(tc, tm), 1.0),
                    np.asarray(mbs, float), limit_state=limit_state,
-                   consequence_class=design.consequence_class, analysis=design.analysis)
+                   consequence_class=design.consequence_class,
+                   analysis=screening_analysis(design),
+                   code=getattr(design, "standard", "dnv-os-e301-2008"))
     return np.where(ok, np.asarray(r["utilisation"], float), np.nan)
 
 

@@ -25,7 +25,9 @@ screening:
   time_domain: screened                    # screened | all | none
   within_percent: 10.0                     # TD for cases within X % of a line's governing FD
   top_per_line: 3                          #   utilisation, and at least the top N per line
-design: {standard: dnv-os-e301, consequence_class: 2, analysis: dynamic}
+design: {standard: dnv-os-e301-2008, consequence_class: 2, analysis: auto}
+                                           # a code of floatmoor/data/codes (or a code file);
+                                           # auto: the factors follow the line model
 storage:
   mode: full                               # full | statistics (series only for governing cases)
   precision: float32                       # float32 | float64 of the stored series
@@ -116,9 +118,13 @@ class Screening:
 
 @dataclass(frozen=True, kw_only=True)
 class Design:
-    standard: str = "dnv-os-e301"
+    """The design code (a key of :mod:`floatmoor.post.design_codes`, or a code file), the
+    consequence class and the analysis type: ``auto`` follows the line model (finite-element
+    lines dynamic, quasi-static lines quasi-static), ``dynamic`` or ``quasi-static`` override
+    it."""
+    standard: str = "dnv-os-e301-2008"
     consequence_class: int = 2
-    analysis: str = "dynamic"
+    analysis: str = "auto"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -308,6 +314,20 @@ def _storage(node: Node) -> Storage:
                    sampling=tuple(sampling.items()), sampling_given="sampling" in s)
 
 
+def _code(d: Node) -> str:
+    """``design.standard``: a design code key or alias, or a code file relative to the
+    campaign file; the code's key (or the file's path)."""
+    from ..post.design_codes import load_code
+    raw = d.str("standard", "dnv-os-e301-2008")
+    path = d.base_dir / raw
+    is_file = path.suffix in (".yaml", ".yml") and path.is_file()
+    try:
+        code = load_code(path if is_file else raw)
+    except SceneError as exc:
+        raise d.error("standard", exc.expected, raw) from None
+    return str(path) if is_file else code.key
+
+
 def _analysis(node: Node) -> tuple:
     if "analysis" not in node:
         return ()
@@ -350,10 +370,10 @@ def load_campaign(path: str | os.PathLike) -> CampaignSpec:
     design = Design()
     if d is not None:
         d.reject_unknown(("standard", "consequence_class", "analysis"))
-        design = Design(standard=d.str("standard", "dnv-os-e301", choices=("dnv-os-e301",)),
-                        consequence_class=d.int("consequence_class", 2, ge=1, le=2),
-                        analysis=d.str("analysis", "dynamic", choices=("dynamic",
-                                                                        "quasi-static")))
+        design = Design(standard=_code(d), consequence_class=d.int("consequence_class", 2,
+                                                                    ge=1, le=2),
+                        analysis=d.str("analysis", "auto", choices=("auto", "dynamic",
+                                                                     "quasi-static")))
     spec = CampaignSpec(
         name=node.str("name", Path(path).stem), description=node.str("description", ""),
         file=node.file, base_scene=base, sea_states=_sea_states(node),

@@ -20,7 +20,9 @@ Storage of a storm (``storage:`` of the campaign file):
 
 * always: per-storm statistics in the window after the transient, computed in float64 from the
   full-rate series -- ``line_tension_max/mean/std/min(line)``, ``anchor_tension_max(line)``,
-  ``motion_max/min/mean/std(dof)``, ``offset_max``, ``offset_mean``, ``mbs(line)``;
+  ``motion_max/min/mean/std(dof)``, ``offset_max``, ``offset_mean``, ``mbs(line)``, and the
+  design statistics of the anchors, fibre ropes, offset limits and points
+  (``design_*``, :func:`floatmoor.post.design_statistics.add_design_statistics`);
 * ``mode: full``: the series named in ``sampling`` (every ``k``-th time step, ``k = interval /
   dt``; 0 keeps every step), stored as ``precision`` (float32 by default: relative rounding
   error at most 2^-24 = 6.0e-8, i.e. 0.2 N on a 3.3 MN tension and 2 micrometres on a 35 m
@@ -335,6 +337,9 @@ def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path
             sim_cpu = time.process_time() - c_sim
         transient = float(scene.analysis.transient)
         out = storm_dataset(ds, case, seed, storage, transient, keep)
+        from ..post.design_statistics import add_design_statistics  # anchors, ropes, offsets
+        add_design_statistics(out, ds, built.mooring, start=transient,
+                              limits=getattr(scene, "limits", None), failed=failed or ())
         if failed:
             out.attrs["failed_lines"] = list(failed)
         info = write_netcdf(out, Path(out_path), compression=storage.compression)

@@ -296,6 +296,7 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
 def format_fatigue(ds) -> str:
     """Text tables of a :func:`fatigue_analysis` result: life and check per line and location,
     the dominant cells, FD against TD."""
+    from ..post.fatigue_report import format_rates
     method = ds.attrs["method"]
     locs = list(ds["location"].values)
     life_y = ds.attrs["design_life_years"]
@@ -303,7 +304,7 @@ def format_fatigue(ds) -> str:
            (f"  scatter {ds.attrs['scatter']} ({ds.sizes['cell']} sea states; "
            f"{ds.attrs['scatter_source']})"),
            (f"  FD method {method}, design life {life_y:g} years, corrosion "
-           f"{ds.attrs['corrosion_mm_per_year']} mm/year"), "",
+           f"{format_rates(ds.attrs['corrosion_mm_per_year'])}"), "",
            "* FATIGUE LIFE (years) AND DNV-OS-E301 CHECK gamma_F d_C <= 1 *",
            "  Line     " + "".join(f"{loc:>22s}" for loc in locs)]
     for i, name in enumerate(ds["line"].values):

@@ -1,12 +1,33 @@
-"""``floatmoor report RESULTS_DIR``: DNV-OS-E301 ULS/ALS design report of ``floatmoor run`` seeds.
+"""``floatmoor report RESULTS_DIR``: the design verdict of ``floatmoor run`` seeds over every limit
+state, as a self-contained HTML report (and Markdown, CSV, netCDF).
 
 Reads the per-seed netCDF files that ``floatmoor run`` wrote in RESULTS_DIR (seeds that failed,
 ``*.error.txt``, are left out and listed), removes the transient recorded in the files
 (``transient`` attribute), fits a Gumbel distribution to the seed maxima of every line, takes
 its 90 % value as the characteristic tension (Wang (2016) section 5.4.4) and checks the design
-equation S_C >= T_C-mean gamma_mean + T_C-dyn gamma_dyn of DNV-OS-E301 (October 2008) with the
-partial factors of the consequence class and analysis type.  The MBS per line comes from the
-results (``mbs`` variable), else from the scene's mooring.
+equation S_C >= T_C-mean gamma_mean + T_C-dyn gamma_dyn of the design code (``--code``, default
+DNV-OS-E301 October 2008; ``api-rp-2sk-2005``, ``dnv-st-0119-2021`` or a code file:
+:mod:`floatmoor.post.design_codes`), with S_C the end-of-life (corroded) capacity of the weakest
+segment where the code asks for it.  The MBS per line comes from the results (``mbs``
+variable), else from the scene's mooring.
+
+Analysis type: the partial factors follow the line model of the results -- finite-element
+lines the dynamic-analysis factors, quasi-static lines the quasi-static ones -- unless
+``--daf FILE`` gives the dynamic amplification factor of ``floatmoor lines`` per line (it
+multiplies T_C-dyn and the dynamic factors apply); ``--analysis dynamic|quasi-static``
+overrides this for every line, and the report prints it as an override.
+
+``--daf FILE``: the netCDF file written by ``floatmoor lines SCENE --motion SEED.nc --out FILE``
+(its variable ``daf(line)``, dimensionless, coordinate ``line`` holding the line names), or a
+CSV file with a header row naming the columns ``line`` and ``daf``.  Lines without a finite DAF
+keep the quasi-static factors.  A DAF below 1 is applied as 1.
+
+The scene named in the results (``scene_file``) gives the environment, the mooring (anchor
+types and capacities, design life and corrosion: :mod:`floatmoor.io.mooring_design`) and the
+offset limits and named points (``limits:``, :mod:`floatmoor.io.limits_section`) of the
+anchor, offset and fibre-rope checks; the mooring must reproduce the recorded tensions (a
+mooring file changed since the run is refused).  Without the scene file those checks are
+reported as not checked.
 
 ALS: ``--als-dir DIR`` is a second folder of ``floatmoor run`` results of the same mooring with
 one line failed (a scene whose ``mooring`` lists ``failed_lines``, or whose ``forces`` has
@@ -14,24 +35,30 @@ one line failed (a scene whose ``mooring`` lists ``failed_lines``, or whose ``fo
 failure time is after ``analysis.transient``).  The failed line is found in the results (its
 tension is zero at the end of every seed) or named with ``--failed-line NAME``.
 
+FLS: ``--fatigue FILE`` adds the result of ``floatmoor fatigue --out FILE`` (its check redone
+with the code's fatigue safety factor).
+
 Fibre ropes with ``analysis.fibre_stiffness: both``: RESULTS_DIR holds the sub-folders
 ``fibre_lower`` and ``fibre_upper`` of ``floatmoor run``; the report is written for each
 (``--out``/fibre_lower, ``--out``/fibre_upper) and ``fibre_bounds.md``/``fibre_bounds.csv``
 show both side by side with the governing bound (the larger ULS utilisation); exit status 1
-if a line fails in either bound.
+if a check fails in either bound.
 
 ``--fd FILE`` adds the frequency-domain result of ``floatmoor fd SCENE --out FILE`` beside the
 time-domain values (per-line maximum tension and safety factor, offsets).
 
 Writes report.html (self-contained: no network needed), report.md (+ PNG plots), summary.csv
-and summary.nc into ``--out`` (default RESULTS_DIR/report), and prints a short summary.
+and summary.nc into ``--out`` (default RESULTS_DIR/report), and prints the verdict: one line per
+limit state and check (PASS, FAIL or NOT CHECKED) and the verdict over all of them.
 
 Exit status (for scripts):
-  0  every line passes the design equation in every limit state checked
-  1  at least one line fails the design equation (the report is still written)
+  0  no check fails (checks that could not be made are listed as NOT CHECKED)
+  1  at least one check fails: a line tension (ULS, ALS), fatigue (FLS), an anchor, an offset
+     or point limit, a fibre rope (the report is still written)
   2  bad input: missing folder, no result files, results of different scenes, durations or
      input fingerprints (seeds run before and after an edit of the scene, mooring, vessel...),
-     a line whose MBS is unknown, unknown line, unreadable file (message on stderr, no
+     a line whose MBS is unknown, unknown line, unreadable file, a DAF file of other lines, a
+     mooring file that no longer reproduces the recorded tensions (message on stderr, no
      traceback)
 """
 
@@ -43,29 +70,45 @@ import sys
 import warnings
 from pathlib import Path
 
-HELP = "DNV-OS-E301 ULS/ALS design report of floatmoor run results (HTML, Markdown, CSV, netCDF)"
+HELP = ("design verdict of floatmoor run results over every limit state (ULS, ALS, FLS, anchors, "
+        "offsets, fibre ropes): HTML, Markdown, CSV, netCDF")
 
 STANDARDS = ("dnv-os-e301",)
+"""The old ``--standard`` values (the code ``dnv-os-e301-2008``)."""
 EXIT_PASS = 0
 EXIT_FAIL = 1
-"""Exit status when a line fails the design equation."""
+"""Exit status when a check fails."""
 
-_VARIABLES = ("motion", "line_tension", "mbs")
+_VARIABLES = ("motion", "line_tension", "mbs", "anchor_tension", "line_model",
+              "grounded_length")
+MAX_DAF = 10.0
+"""A larger dynamic amplification factor is a wrong file or column."""
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """Arguments of ``floatmoor report``."""
     p.add_argument("results_dir", metavar="RESULTS_DIR",
                    help="folder of per-seed netCDF files written by floatmoor run")
-    p.add_argument("--standard", choices=STANDARDS, default="dnv-os-e301",
-                   help="design standard (default dnv-os-e301: DNV-OS-E301, October 2008)")
+    p.add_argument("--code", metavar="CODE", default=None,
+                   help="design code and edition: dnv-os-e301-2008 (default), api-rp-2sk-2005, "
+                        "dnv-st-0119-2021, or a code file (floatmoor/data/codes format); on a "
+                        "campaign folder the campaign's, which this overrides")
+    p.add_argument("--standard", choices=STANDARDS, default=None,
+                   help="the same as --code dnv-os-e301-2008 (kept for old scripts)")
     p.add_argument("--consequence-class", type=int, choices=(1, 2), default=None,
                    help="consequence class 1 or 2 (default 2; on a campaign folder the "
                         "campaign's, which this overrides)")
-    p.add_argument("--analysis", choices=("dynamic", "quasi-static"), default=None,
-                   help="analysis of the WF line tension, selects the partial factors "
-                        "(default dynamic; on a campaign folder the campaign's, which this "
-                        "overrides)")
+    p.add_argument("--analysis", choices=("auto", "dynamic", "quasi-static"), default=None,
+                   help="analysis of the WF line tension, selects the partial factors: auto "
+                        "(default) follows the line model (finite-element lines dynamic, "
+                        "quasi-static lines quasi-static unless --daf gives their DAF); "
+                        "dynamic or quasi-static override it for every line (printed as an "
+                        "override; on a campaign folder they override the campaign's)")
+    p.add_argument("--daf", metavar="FILE", default=None,
+                   help="dynamic amplification factor per line from floatmoor lines (its "
+                        "netCDF output, variable daf(line); or a CSV with columns line, daf): "
+                        "quasi-static lines with a DAF get T_C-dyn x DAF and the dynamic "
+                        "factors")
     p.add_argument("--als-dir", metavar="DIR", default=None,
                    help="folder of floatmoor run results with a failed line (ALS check)")
     p.add_argument("--failed-line", metavar="NAME", action="append", default=None,
@@ -318,17 +361,106 @@ def _read_fatigue(path):
     return ds
 
 
+def read_daf(path, lines, scene: str):
+    """The DAF per line of a ``floatmoor lines`` output (netCDF, variable ``daf(line)``) or a
+    CSV with ``line`` and ``daf`` columns: ``({line: daf}, description)``.  SceneError for a
+    file that is not one, a line that is not in the results, a DAF outside (0, 10] or a file
+    of another scene."""
+    import numpy as np
+    path = Path(path)
+    if not path.is_file():
+        raise _scene_error(path, "--daf", "a DAF file of floatmoor lines (netCDF) or a CSV with "
+                           "columns line, daf", "no such file")
+    lines = [str(x) for x in lines]
+    if path.suffix.lower() == ".csv":
+        rows = [r.strip() for r in path.read_text(errors="replace").splitlines() if r.strip()]
+        if not rows:
+            raise _scene_error(path, "--daf", "a header row with the columns line, daf",
+                               "an empty file")
+        head = [h.strip().lower() for h in rows[0].split(",")]
+        if "line" not in head or "daf" not in head:
+            raise _scene_error(path, "--daf", "a header row with the columns line, daf",
+                               rows[0][:80])
+        il, idf = head.index("line"), head.index("daf")
+        names, vals = [], []
+        for k, r in enumerate(rows[1:], start=2):
+            cells = [c.strip() for c in r.split(",")]
+            try:
+                names.append(cells[il])
+                vals.append(float(cells[idf]))
+            except (IndexError, ValueError):
+                raise _scene_error(path, f"row {k}", "a line name and a number (daf)",
+                                   r[:80]) from None
+        where = f"{path} (CSV)"
+    else:
+        import xarray as xr
+        try:
+            with xr.open_dataset(path) as ds:
+                ds = ds.load()
+        except (OSError, ValueError) as exc:
+            raise _scene_error(path, "--daf", "a readable netCDF file (floatmoor lines --out)",
+                               f"{type(exc).__name__}: {exc}") from None
+        if "daf" not in ds or ds["daf"].dims != ("line",):
+            raise _scene_error(path, "daf", "a variable daf(line) (floatmoor lines --out)",
+                               "variables " + ", ".join(list(map(str, ds.data_vars))[:8]))
+        other = ds.attrs.get("scene_name")
+        if other is None:
+            title = str(ds.attrs.get("title", ""))
+            marker = "line analysis of "
+            other = title.split(marker, 1)[1].strip() if marker in title else None
+        if other and other != scene:
+            raise _scene_error(path, "--daf", f"the DAF of scene {scene!r}",
+                               f"the DAF of scene {other!r}")
+        names = [str(v) for v in ds["line"].values]
+        vals = [float(v) for v in ds["daf"].values]
+        where = f"{path} (floatmoor lines"
+        if ds.attrs.get("driving_motion"):
+            where += f", driven by the {ds.attrs['driving_motion']}"
+        where += ")"
+    unknown = [n for n in names if n not in lines]
+    if unknown:
+        raise _scene_error(path, "line", f"lines of the results {lines}", unknown)
+    out = {}
+    for n, v in zip(names, vals):
+        if np.isnan(v):
+            continue                      # floatmoor lines could not compute it
+        if not (0.0 < v <= MAX_DAF):
+            raise _scene_error(path, f"daf[{n}]", f"a dynamic amplification factor in (0, "
+                               f"{MAX_DAF:g}]", v)
+        out[n] = v
+    if not out:
+        raise _scene_error(path, "daf", "at least one finite DAF", "none")
+    return out, where
+
+
+def report_context(results):
+    """The :class:`~floatmoor.post.report.ReportContext` from the scene file the results name
+    (None when it is not found: the checks that need the scene are then not made)."""
+    from ..io.report_context import scene_context
+    from ..io.scene import load_scene
+    scene_file = results[0].attrs.get("scene_file")
+    if not scene_file or not Path(scene_file).is_file():
+        return None, (f"the scene file {scene_file!r} of the results was not found: the "
+                      "environment, end-of-life capacity, anchor, offset and fibre-rope "
+                      "checks need it")
+    scene = load_scene(scene_file)
+    return scene_context(scene, results), ""
+
+
 def run(args: argparse.Namespace) -> int:
-    """Run ``floatmoor report``; returns the exit status (0 pass, 1 a line fails)."""
+    """Run ``floatmoor report``; returns the exit status (0 pass, 1 a check fails)."""
     from ..campaign.store import is_campaign_dir
     from ..cli import UsageError
-    from ..post import dnv_os_e301 as dnv
     from ..post.report import build_report, scene_name
     if is_campaign_dir(args.results_dir):  # a floatmoor campaign folder: the matrix report
         from .campaign import report_campaign
         return report_campaign(args)
     args.consequence_class = 2 if args.consequence_class is None else args.consequence_class
-    args.analysis = "dynamic" if args.analysis is None else args.analysis
+    args.analysis = "auto" if args.analysis is None else args.analysis
+    from ..post.design_codes import DEFAULT_CODE, load_code
+    if args.code is not None and args.standard is not None:
+        raise UsageError("give the design code once: --code (or the old --standard)")
+    code = load_code(args.code or DEFAULT_CODE)
     bound_dirs = fibre_bound_dirs(args.results_dir)
     if bound_dirs:  # floatmoor run of a scene with analysis.fibre_stiffness: both
         return report_fibre_bounds(args, bound_dirs)
@@ -354,6 +486,10 @@ def run(args: argparse.Namespace) -> int:
     scene = scene_name(results[0])
     fd = _read_fd(args.fd, scene) if args.fd else None
     fatigue = _read_fatigue(args.fatigue) if args.fatigue else None
+    daf = daf_source = None
+    if args.daf:
+        daf, daf_source = read_daf(args.daf, results[0]["line"].values, scene)
+    context, context_note = report_context(results)
     out = Path(args.out) if args.out else Path(args.results_dir) / "report"
     extra = [("results folder", str(Path(args.results_dir).resolve())), ("MBS from", mbs_source)]
     if als is not None:
@@ -365,9 +501,13 @@ def run(args: argparse.Namespace) -> int:
         extra.append(("frequency-domain file", str(Path(args.fd).resolve())))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
+        if context_note:
+            extra.append(("scene", context_note))
         files = build_report(results, mbs, out, als_results=als, failed_lines=args.failed_line,
                              consequence_class=args.consequence_class, analysis=args.analysis,
-                             fd=fd, failed_seeds=failed, extra_meta=extra, fatigue=fatigue)
+                             fd=fd, failed_seeds=failed, extra_meta=extra, fatigue=fatigue,
+                             code=code, daf=daf, daf_source=daf_source or "",
+                             context=context)
     seen = set()
     for w in caught:                       # one line per distinct warning (not one per line)
         key = (w.category, str(w.message))
@@ -379,34 +519,25 @@ def run(args: argparse.Namespace) -> int:
     print(f"scene: {scene}  ({len(results)} seeds from {args.results_dir}"
           + (f"; {len(failed)} failed seed(s) left out: "
              + ", ".join(f.split(":")[0] for f in failed) if failed else "") + ")")
-    print(f"{dnv.EDITION}, consequence class {args.consequence_class}, {args.analysis} "
-          f"analysis; statistics window {stats.attrs['window_start_s']:g} - "
+    cc = (f", consequence class {args.consequence_class}" if code.has_classes
+          else " (no consequence classes)")
+    print(f"{code.name}{cc}; statistics window {stats.attrs['window_start_s']:g} - "
           f"{stats.attrs['window_end_s']:g} s")
-    for ls in checks["limit_state"].values:
-        c = checks.sel(limit_state=ls)
-        gov = str(c["governing_line"].item())
-        j = [str(v) for v in c["line"].values].index(gov)
-        n_fail = int((c["checked"].values & ~c["passed"].values).sum())
-        text = (f"{ls}: governing line {gov}, T_C {c['t_c'].values[j] / 1e3:.0f} kN "
-                f"(T_C-mean {c['t_c_mean'].values[j] / 1e3:.0f}), design tension "
-                f"{c['design_tension'].values[j] / 1e3:.0f} kN, S_C {c['s_c'].values[j] / 1e3:.0f} kN, "
-                f"utilisation {c['utilisation'].values[j]:.3f} "
-                f"{'PASS' if c['passed'].values[j] else 'FAIL'}")
-        ties = [str(ln) for ln, uj in zip(c["line"].values, c["utilisation"].values)
-                if str(ln) != gov and uj >= c["utilisation"].values[j] * (1 - 1e-3)]
-        if ties:
-            text += f" (equal within 0.1 %: {', '.join(ties)})"
-        if ls == "ALS":
-            text += f" (failed line {checks.attrs.get('failed_lines', '?')})"
-        if n_fail:
-            text += f"; {n_fail} line(s) fail"
-        print(text)
-    passed = bool(checks.attrs["all_passed"])
-    print("verdict: " + ("all lines pass" if passed else
-                         "at least one line FAILS the design equation (exit status 1)"))
+    print(f"analysis: {checks.attrs['analysis_summary']}"
+          + (" (OVERRIDE)" if int(checks.attrs["analysis_override"]) else "")
+          + f" -- {checks.attrs['analysis_reason']}")
+    if context_note:
+        print(f"note: {context_note}")
+    for v in files.verdict:
+        print(v.cli())
+    if files.unverified:
+        print("unverified code values used: " + ", ".join(e.path for e in files.unverified)
+              + f" ({code.file.name}; listed in the report)")
+    status, sentence = files.overall
+    print("verdict: " + sentence + (" (exit status 1)" if status == "FAIL" else ""))
     print(f"report: {files.html}  (also report.md, summary.csv, summary.nc)")
     sys.stdout.flush()
-    return EXIT_PASS if passed else EXIT_FAIL
+    return EXIT_FAIL if status == "FAIL" else EXIT_PASS
 
 
 FIBRE_BOUNDS = ("lower", "upper")

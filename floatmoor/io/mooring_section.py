@@ -27,6 +27,9 @@ Format (SI units, angles only in keys ending ``_deg``)::
                                          # linearised about their tension low-pass filtered
                                          # with this time constant (.inf: the static mean;
                                          # floatmoor.mooring.fibre_system)
+    design: {design_life: 20.0}          # optional design keys (anchor type and capacity per
+                                         # line, corrosion allowance and zones): they change no
+                                         # analysis; floatmoor.io.mooring_design
 
 ``clump_weight`` (submerged, N) and ``buoy_net_buoyancy`` (N) act at the upper end of the
 segment that names them (the joint towards the fairlead).  Every mistake is a
@@ -50,14 +53,17 @@ from ..mooring.fe.options import parse_line_models
 from ..mooring.fibre_system import DEFAULT_TIME_CONSTANT
 from ..mooring.line_types import MAX_DIAMETER, LineTypeLibrary, default_library
 from ..mooring.system import LineDef, MooringSystem, Segment
+from .mooring_design import LINE_DESIGN_KEYS, SEGMENT_DESIGN_KEYS, parse_mooring_design
 
 __all__ = ["parse_mooring"]
 
 _TOP_KEYS = {"line_type_library", "line_types", "seabed_friction", "defaults", "lines",
              "failed_lines", "description", "model", "finite_element",
-             "fibre_time_constant"}
-_LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction", "model"}
-_SEG_KEYS = {"type", "diameter", "length", "clump_weight", "buoy_net_buoyancy"}
+             "fibre_time_constant", "design"}
+_LINE_KEYS = {"name", "anchor", "fairlead", "segments", "seabed_friction", "model"} \
+    | LINE_DESIGN_KEYS
+_SEG_KEYS = {"type", "diameter", "length", "clump_weight", "buoy_net_buoyancy"} \
+    | SEGMENT_DESIGN_KEYS
 
 
 MAX_LENGTH_RATIO = 5.0
@@ -119,7 +125,8 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
     cb_default = node.float("seabed_friction", 0.0, ge=0.0)
     defaults = node.child("defaults", None)
     if defaults is not None:
-        defaults.reject_unknown({"segments", "seabed_friction", "fairlead", "anchor"})
+        defaults.reject_unknown({"segments", "seabed_friction", "fairlead", "anchor"}
+                                | LINE_DESIGN_KEYS)
     lines_nodes = node.item_nodes("lines", min_len=1)
     lines = []
     names = []
@@ -199,6 +206,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
     if failed and len(set(failed)) >= len(names):
         raise node.error("failed_lines", "some lines left intact (every line is listed as "
                          "failed: nothing would hold the floater)", failed)
+    parse_mooring_design(node)   # the design keys (anchors, corrosion): refused if mistyped
     ms = MooringSystem(lines, water_depth=water_depth, water_density=water_density,
                        gravity=gravity, source=str(node.file) if node.file else "mooring (given in Python)",
                        failed=failed, line_models=line_models, line_types=used_types,

@@ -16,7 +16,9 @@ extension), ``description``, ``vessel``, ``environment`` (absent: calm, no wind,
 ``mooring``, ``analysis`` (defaults in :mod:`floatmoor.io.analysis`), ``forces`` (options of the
 time-domain force models, :mod:`floatmoor.io.forces_section`), ``frequency_domain`` (options of
 the frequency-domain analysis, :mod:`floatmoor.io.fd_section`), ``solver`` (opt-in faster
-approximations of the time loop, :mod:`floatmoor.io.solver_section`).  Paths are relative to the
+approximations of the time loop, :mod:`floatmoor.io.solver_section`), ``limits`` (offset limits
+and named points on the body for the design checks of ``floatmoor report``; they change no
+analysis, :mod:`floatmoor.io.limits_section`).  Paths are relative to the
 scene file's folder.  Unknown keys are refused everywhere.  The section formats are documented
 in :mod:`floatmoor.io.site`, :mod:`floatmoor.io.environment`, :mod:`floatmoor.io.analysis`.
 
@@ -43,6 +45,7 @@ from .analysis import AnalysisSpec, describe_analysis, parse_analysis
 from .checks import SCENE_CHECKS
 from .environment import describe_environment, environment_models, parse_environment
 from .forces_section import ForcesSpec, describe_forces, parse_forces
+from .limits_section import LimitsSpec, describe_limits, parse_limits
 from .site import SiteSpec, parse_site
 from .solver_section import SolverSpec, describe_solver, parse_solver
 
@@ -118,6 +121,12 @@ def _parse_solver(node: Node, key: str, parsed: Mapping[str, Any]) -> SolverSpec
     return parse_solver(node.child(key))
 
 
+def _parse_limits(node: Node, key: str, parsed: Mapping[str, Any]) -> LimitsSpec | None:
+    if key not in node:
+        return None
+    return parse_limits(node.child(key))
+
+
 def _parse_frequency_domain(node: Node, key: str, parsed: Mapping[str, Any]) -> FDOptions | None:
     if key not in node:  # imported only when used: the solver module is heavy
         return None
@@ -187,6 +196,7 @@ SECTIONS: tuple[Section, ...] = (
     Section("frequency_domain", "frequency_domain", _parse_frequency_domain,
             describe=_describe_frequency_domain),
     Section("solver", "solver", _parse_solver, describe=describe_solver),
+    Section("limits", "limits", _parse_limits, describe=describe_limits),
 )
 """The scene's sections in parsing order (a section may use those before it)."""
 
@@ -209,7 +219,9 @@ class Scene:
     (:class:`~floatmoor.io.analysis.AnalysisSpec`), ``forces`` (options of the time-domain force
     models, :class:`~floatmoor.io.forces_section.ForcesSpec`, or None for the defaults),
     ``frequency_domain`` (:class:`~floatmoor.solvers.frequency_domain.FDOptions` or None),
-    ``solver`` (:class:`~floatmoor.io.solver_section.SolverSpec` or None: the exact path).
+    ``solver`` (:class:`~floatmoor.io.solver_section.SolverSpec` or None: the exact path),
+    ``limits`` (offset limits and named points of the design checks,
+    :class:`~floatmoor.io.limits_section.LimitsSpec`, or None).
     """
 
     name: str
@@ -223,6 +235,7 @@ class Scene:
     forces: ForcesSpec | None = None
     frequency_domain: FDOptions | None = None
     solver: SolverSpec | None = None
+    limits: LimitsSpec | None = None
 
     def active_models(self) -> list[str]:
         """Names of the models this scene asks for, as ``"section:model"`` or ``"section"``

@@ -41,6 +41,15 @@ probable maximum).
 
 The clause lettering inside Ch.2 Sec.2 is not repeated here because it was not verified against
 the text of the 2008 edition; the factors were checked against Wang's (2016) tables.
+
+Design codes as data
+--------------------
+The factors live in the code file ``floatmoor/data/codes/dnv-os-e301-2008.yaml``
+(:mod:`floatmoor.post.design_codes`), each with its source and whether it was verified; the
+constants below are read from it.  Every function here takes ``code=`` (a key such as
+``api-rp-2sk-2005`` or ``dnv-st-0119-2021``, a code file, or a
+:class:`~floatmoor.post.design_codes.DesignCode`) to check with another code's factors; the
+default is DNV-OS-E301 (2008).
 """
 
 from __future__ import annotations
@@ -52,6 +61,7 @@ import xarray as xr
 
 from ..core.errors import SceneError, argument_error
 from ..mooring.line_types import MBS_UNKNOWN
+from .design_codes import DEFAULT_CODE, load_code, normalise_analysis
 from .extremes import gumbel_fit
 
 __all__ = [
@@ -74,29 +84,27 @@ SOURCE = (
 ANALYSES = ("dynamic", "quasi-static")
 LIMIT_STATES = ("ULS", "ALS")
 
+_CODE = load_code(DEFAULT_CODE)
+
+
+def _table(ls):
+    return {(r["consequence_class"], r["analysis"]): (r["gamma_mean"], r["gamma_dyn"])
+            for r in _CODE.factors_table() if r["limit_state"] == ls}
+
+
 # (consequence class, analysis of WF tension) -> (gamma_mean, gamma_dyn)
-ULS_FACTORS = {
-    (1, "dynamic"): (1.10, 1.50),
-    (2, "dynamic"): (1.40, 2.10),
-    (1, "quasi-static"): (1.70, 1.70),
-    (2, "quasi-static"): (2.50, 2.50),
-}
-"""Wang (2016) table 3.1 (DNV-OS-E301 2008, ULS)."""
+ULS_FACTORS = _table("ULS")
+"""Wang (2016) table 3.1 (DNV-OS-E301 2008, ULS), read from the code file."""
 
-ALS_FACTORS = {
-    (1, "dynamic"): (1.00, 1.10),
-    (2, "dynamic"): (1.00, 1.25),
-    (1, "quasi-static"): (1.10, 1.10),
-    (2, "quasi-static"): (1.35, 1.35),
-}
-"""Wang (2016) table 3.2 (DNV-OS-E301 2008, ALS)."""
+ALS_FACTORS = _table("ALS")
+"""Wang (2016) table 3.2 (DNV-OS-E301 2008, ALS), read from the code file."""
 
-COMMON_FACTOR = 1.3
+COMMON_FACTOR = float(_CODE.tree["line_tension"]["common_factor"]["value"])
 """Common ULS factor for consequence class 1, dynamic analysis, when T_C-mean > 2/3 T_C-dyn."""
-COMMON_FACTOR_RATIO = 2.0 / 3.0
-STRENGTH_FACTOR = 0.95
+COMMON_FACTOR_RATIO = float(_CODE.tree["line_tension"]["common_factor"]["ratio"])
+STRENGTH_FACTOR = _CODE.strength_factor
 """S_C = 0.95 S_mbs."""
-SPM_FACTOR = 1.2
+SPM_FACTOR = float(_CODE.tree["line_tension"]["single_point_mooring_factor"]["value"])
 """Increase of the ULS factors for single point moorings without redundancy."""
 
 
@@ -109,7 +117,7 @@ class PartialFactors:
     limit_state : str
         ``"ULS"`` or ``"ALS"``.
     consequence_class : int
-        1 or 2.
+        1 or 2 (any integer for a code without classes: not used).
     analysis : str
         ``"dynamic"`` or ``"quasi-static"`` (analysis of the WF tension).
     gamma_mean, gamma_dyn : float
@@ -117,6 +125,16 @@ class PartialFactors:
         common-factor remark, which depends on the tensions).
     single_point_mooring : bool
         Whether the 1.2 increase for single point moorings without redundancy is included.
+    code : str
+        Key of the design code (``dnv-os-e301-2008``).
+    code_name : str
+        Its name and edition.
+    table_source : str
+        The source of the factors as the code file gives it.
+    common_factor, common_factor_ratio : float or None
+        The code's common factor and its T_C-mean / T_C-dyn threshold (None: the code has none).
+    verified : bool
+        Whether the code file marks the factors as verified against a text of the standard.
     """
 
     limit_state: str
@@ -125,11 +143,22 @@ class PartialFactors:
     gamma_mean: float
     gamma_dyn: float
     single_point_mooring: bool = False
+    code: str = DEFAULT_CODE
+    code_name: str = _CODE.name
+    table_source: str = ""
+    common_factor: float | None = COMMON_FACTOR
+    common_factor_ratio: float | None = COMMON_FACTOR_RATIO
+    verified: bool = True
 
     @property
     def source(self) -> str:
-        table = "3.1 (ULS)" if self.limit_state == "ULS" else "3.2 (ALS)"
-        text = f"{EDITION}, Ch.2 Sec.2; Wang (2016) table {table}"
+        if self.code == DEFAULT_CODE:
+            table = "3.1 (ULS)" if self.limit_state == "ULS" else "3.2 (ALS)"
+            text = f"{EDITION}, Ch.2 Sec.2; Wang (2016) table {table}"
+        else:
+            text = f"{self.code_name}: {self.table_source}"
+            if not self.verified:
+                text += " (UNVERIFIED)"
         if self.single_point_mooring:
             text += ", increased by 1.2 for a single point mooring (remark under table 3.1)"
         return text
@@ -141,14 +170,16 @@ class PartialFactors:
         Not combined with the single-point-mooring increase: Wang (2016) does not say how the two
         remarks combine, so a single point mooring keeps its 1.2 x table factors.
         """
-        return (self.limit_state == "ULS" and self.consequence_class == 1
-                and self.analysis == "dynamic" and not self.single_point_mooring)
+        return (self.common_factor is not None and self.limit_state == "ULS"
+                and self.consequence_class == 1 and self.analysis == "dynamic"
+                and not self.single_point_mooring)
 
 
 def partial_factors(limit_state: str = "ULS", consequence_class: int = 2,
-                    analysis: str = "dynamic", *, single_point_mooring: bool = False
-                    ) -> PartialFactors:
-    """Partial safety factors from Wang (2016) tables 3.1 (ULS) and 3.2 (ALS).
+                    analysis: str = "dynamic", *, single_point_mooring: bool = False,
+                    code=None) -> PartialFactors:
+    """Partial safety factors from the design code (default DNV-OS-E301 (2008): Wang (2016)
+    tables 3.1 (ULS) and 3.2 (ALS)).
 
     Parameters
     ----------
@@ -160,33 +191,31 @@ def partial_factors(limit_state: str = "ULS", consequence_class: int = 2,
         ``"dynamic"`` or ``"quasi-static"`` (type of analysis of the WF tension).
     single_point_mooring : bool
         Single point mooring without redundancy: ULS factors x 1.2, ALS not applicable.
+    code : str, path or DesignCode, optional
+        The design code (:func:`floatmoor.post.design_codes.load_code`).
 
     Returns
     -------
     PartialFactors
     """
-    ls = str(limit_state).upper()
-    if ls not in LIMIT_STATES:
+    c = load_code(DEFAULT_CODE if code is None else code)
+    if str(limit_state).upper() not in LIMIT_STATES:
         raise argument_error("limit_state", "one of: ULS, ALS", limit_state)
-    if consequence_class not in (1, 2) or isinstance(consequence_class, bool):
+    if c.has_classes and (isinstance(consequence_class, bool)
+                          or consequence_class not in c.consequence_classes):
         raise argument_error("consequence_class",
-                             "1 or 2 (DNV-OS-E301 ULS/ALS consequence classes)",
-                             consequence_class)
-    an = str(analysis).lower().replace("_", "-").replace(" ", "-")
-    if an == "quasistatic":
-        an = "quasi-static"
-    if an not in ANALYSES:
-        raise argument_error("analysis", "one of: dynamic, quasi-static", analysis)
-    if single_point_mooring and ls == "ALS":
-        raise argument_error("limit_state",
-                             "ULS only for a single point mooring without redundancy "
-                             "(the ALS is not applicable; remark under Wang (2016) "
-                             "table 3.1)", limit_state)
-    gm, gd = (ULS_FACTORS if ls == "ULS" else ALS_FACTORS)[(int(consequence_class), an)]
-    if single_point_mooring:
-        gm, gd = gm * SPM_FACTOR, gd * SPM_FACTOR
-    return PartialFactors(limit_state=ls, consequence_class=int(consequence_class), analysis=an,
-                          gamma_mean=gm, gamma_dyn=gd, single_point_mooring=bool(single_point_mooring))
+                             f"{' or '.join(map(str, c.consequence_classes))} ({c.code} "
+                             "ULS/ALS consequence classes)", consequence_class)
+    normalise_analysis(analysis)
+    f = c.line_factors(limit_state, consequence_class, analysis,
+                       single_point_mooring=single_point_mooring)
+    return PartialFactors(limit_state=f.limit_state, consequence_class=f.consequence_class,
+                          analysis=f.analysis, gamma_mean=f.gamma_mean, gamma_dyn=f.gamma_dyn,
+                          single_point_mooring=f.single_point_mooring, code=c.key,
+                          code_name=c.name, table_source=f.entry.source,
+                          common_factor=f.common_factor,
+                          common_factor_ratio=f.common_factor_ratio,
+                          verified=f.entry.verified)
 
 
 def characteristic_strength(mbs, strength_factor: float = STRENGTH_FACTOR):
@@ -248,13 +277,14 @@ def design_tension(t_mean, t_dyn, factors: PartialFactors, *,
     gd = np.full(tm.shape, factors.gamma_dyn)
     applied = np.zeros(tm.shape, bool)
     if factors.common_factor_possible:
-        applied = tm > COMMON_FACTOR_RATIO * td
+        cf, ratio = factors.common_factor, factors.common_factor_ratio
+        applied = tm > ratio * td
         if common_factor_rule == "conservative":
-            common = COMMON_FACTOR * (tm + td)
+            common = cf * (tm + td)
             table = factors.gamma_mean * tm + factors.gamma_dyn * td
             applied &= common > table
-        gm = np.where(applied, COMMON_FACTOR, gm)
-        gd = np.where(applied, COMMON_FACTOR, gd)
+        gm = np.where(applied, cf, gm)
+        gd = np.where(applied, cf, gd)
     return {"design_tension": gm * tm + gd * td, "gamma_mean": gm, "gamma_dyn": gd,
             "common_factor_applied": applied}
 
@@ -296,8 +326,9 @@ def require_known_mbs(mbs, lines, *, file=None, key: str = "mbs", detail: str = 
 
 
 def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_class: int = 2,
-               analysis: str = "dynamic", strength_factor: float = STRENGTH_FACTOR,
-               single_point_mooring: bool = False, common_factor_rule: str = "as_written") -> dict:
+               analysis: str = "dynamic", strength_factor: float | None = None,
+               single_point_mooring: bool = False, common_factor_rule: str = "as_written",
+               code=None, eol_mbs=None) -> dict:
     """ULS or ALS check of one or more lines (arrays broadcast).
 
     Parameters
@@ -307,13 +338,17 @@ def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_clas
     t_max : float or array_like
         Characteristic (maximum) tension T_C in N; T_C-dyn = T_C - T_C-mean.
     mbs : float or array_like
-        Minimum breaking strength S_mbs in N.
-    limit_state, consequence_class, analysis, single_point_mooring
+        Minimum breaking strength S_mbs in N (of the new line).
+    limit_state, consequence_class, analysis, single_point_mooring, code
         See :func:`partial_factors`.
-    strength_factor : float
-        S_C / S_mbs (0.95).
+    strength_factor : float, optional
+        S_C / S_mbs (default: the code's, 0.95 in DNV-OS-E301).
     common_factor_rule : str
         See :func:`design_tension`.
+    eol_mbs : float or array_like, optional
+        The MBS at the end of the design life (corroded; :mod:`floatmoor.post.capacity`): when
+        given, S_C and the utilisation are on it, and ``s_c_new``, ``utilisation_new`` give the
+        check with the new line.
 
     Returns
     -------
@@ -321,10 +356,13 @@ def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_clas
         ``t_c_mean``, ``t_c_dyn``, ``t_c``, ``s_mbs``, ``s_c`` (N), ``gamma_mean``,
         ``gamma_dyn``, ``common_factor_applied``, ``design_tension`` (N), ``margin``
         (``S_C - design tension``, eq. 3.4, N), ``utilisation`` (design tension / S_C),
-        ``passed`` (eq. 3.4 satisfied), ``safety_factor`` (S_mbs / T_C), and ``factors``.
+        ``passed`` (eq. 3.4 satisfied), ``safety_factor`` (S_mbs / T_C), ``s_c_new``,
+        ``utilisation_new``, and ``factors``.
     """
+    c = load_code(DEFAULT_CODE if code is None else code)
     f = partial_factors(limit_state, consequence_class, analysis,
-                        single_point_mooring=single_point_mooring)
+                        single_point_mooring=single_point_mooring, code=c)
+    sf = c.strength_factor if strength_factor is None else strength_factor
     tm = np.asarray(t_mean, dtype=float)
     tc = np.asarray(t_max, dtype=float)
     if np.any(~np.isfinite(tm)) or np.any(tm < 0):
@@ -333,17 +371,27 @@ def line_check(t_mean, t_max, mbs, *, limit_state: str = "ULS", consequence_clas
         raise argument_error("t_max", "finite characteristic tensions in N", t_max)
     if np.any(tc < tm):
         raise argument_error("t_max", "characteristic tensions >= the mean tensions", t_max)
-    sc = np.asarray(characteristic_strength(mbs, strength_factor))
+    sc_new = np.asarray(characteristic_strength(mbs, sf))
+    if eol_mbs is None:
+        sc = sc_new
+    else:
+        e = np.asarray(eol_mbs, float)
+        if np.any(~np.isfinite(e)) or np.any(e <= 0) or np.any(e > np.asarray(mbs, float)):
+            raise argument_error("eol_mbs", "end-of-life MBS > 0 and at most the new MBS",
+                                 eol_mbs)
+        sc = np.asarray(characteristic_strength(e, sf))
     td = tc - tm
     d = design_tension(tm, td, f, common_factor_rule=common_factor_rule)
-    tm, td, tc, smbs, sc = np.broadcast_arrays(tm, td, tc, np.asarray(mbs, float), sc)
+    tm, td, tc, smbs, sc, sc_new = np.broadcast_arrays(tm, td, tc, np.asarray(mbs, float), sc,
+                                                       sc_new)
     u = d["design_tension"] / sc
     return {"t_c_mean": tm, "t_c_dyn": td, "t_c": tc, "s_mbs": smbs, "s_c": sc,
             "gamma_mean": d["gamma_mean"], "gamma_dyn": d["gamma_dyn"],
             "common_factor_applied": d["common_factor_applied"],
             "design_tension": d["design_tension"], "margin": sc - d["design_tension"],
             "utilisation": u, "passed": u <= 1.0,
-            "safety_factor": smbs / tc, "factors": f}
+            "safety_factor": smbs / tc, "s_c_new": sc_new,
+            "utilisation_new": d["design_tension"] / sc_new, "factors": f}
 
 
 _COLUMNS = {
@@ -351,13 +399,16 @@ _COLUMNS = {
     "t_c_dyn": ("N", "characteristic dynamic tension T_C-dyn = T_C - T_C-mean"),
     "t_c": ("N", "characteristic tension T_C"),
     "s_mbs": ("N", "minimum breaking strength S_mbs"),
-    "s_c": ("N", "characteristic strength S_C"),
+    "s_c": ("N", "characteristic strength S_C (at the end of the design life when a "
+                 "corrosion allowance applies)"),
+    "s_c_new": ("N", "characteristic strength S_C of the new line"),
     "gamma_mean": ("1", "partial safety factor on T_C-mean"),
     "gamma_dyn": ("1", "partial safety factor on T_C-dyn"),
     "common_factor_applied": ("1", "common factor 1.3 applied (remark under table 3.1)"),
     "design_tension": ("N", "design tension T_C-mean gamma_mean + T_C-dyn gamma_dyn"),
     "margin": ("N", "S_C - design tension (eq. 3.4, >= 0 required)"),
     "utilisation": ("1", "utilisation, design tension / S_C"),
+    "utilisation_new": ("1", "utilisation of the new line, design tension / S_C new"),
     "passed": ("1", "design equation satisfied"),
     "checked": ("1", "line checked in this limit state (false: failed or not analysed)"),
     "safety_factor": ("1", "simple safety factor S_mbs / T_C"),
@@ -365,10 +416,20 @@ _COLUMNS = {
 }
 
 
+def _per_line(value, nl, key):
+    """A per-line array of analysis names from one name or a sequence."""
+    if isinstance(value, str):
+        return [normalise_analysis(value, key)] * nl
+    vals = [normalise_analysis(v, key) for v in value]
+    if len(vals) != nl:
+        raise argument_error(key, f"one analysis type, or {nl} (one per line)", value)
+    return vals
+
+
 def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
-                consequence_class: int = 2, analysis: str = "dynamic",
-                strength_factor: float = STRENGTH_FACTOR, single_point_mooring: bool = False,
-                common_factor_rule: str = "as_written") -> xr.Dataset:
+                consequence_class: int = 2, analysis="dynamic",
+                strength_factor: float | None = None, single_point_mooring: bool = False,
+                common_factor_rule: str = "as_written", code=None, eol_mbs=None) -> xr.Dataset:
     """ULS (and ALS) design check of every line, with the governing line.
 
     Parameters
@@ -382,23 +443,31 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
     als_mean, als_max : array_like, optional
         The same with one line failed (worst over the failure cases analysed).  NaN marks a line
         not checked (e.g. the failed line itself).
-    consequence_class, analysis, strength_factor, single_point_mooring, common_factor_rule
+    consequence_class, strength_factor, single_point_mooring, common_factor_rule, code
         See :func:`line_check`.
+    analysis : str or sequence of str
+        The analysis type of the WF tension, one for all lines or one per line (e.g.
+        finite-element lines dynamic and quasi-static lines quasi-static).
+    eol_mbs : float or array_like, optional
+        End-of-life MBS per line (see :func:`line_check`).
 
     Returns
     -------
     xarray.Dataset
         Dims ``(limit_state, line)``; every column of :func:`line_check` plus ``checked`` and
-        ``governing``, each with ``units`` and ``long_name``; ``governing_line(limit_state)``;
-        attributes ``standard``, ``source``, ``consequence_class``, ``analysis``,
-        ``governing_line``, ``governing_limit_state``, ``max_utilisation`` and ``all_passed``.
+        ``governing``, each with ``units`` and ``long_name``; ``governing_line(limit_state)``,
+        ``analysis(line)``; attributes ``standard``, ``code``, ``edition``, ``source``,
+        ``consequence_class``, ``analysis``, ``governing_line``, ``governing_limit_state``,
+        ``max_utilisation`` and ``all_passed``.
     """
+    c = load_code(DEFAULT_CODE if code is None else code)
     lines = list(lines)
     nl = len(lines)
     if nl == 0:
         raise argument_error("lines", "at least one line", lines)
     if len(set(map(str, lines))) != nl:
         raise argument_error("lines", "distinct line names", lines)
+    analyses = _per_line(analysis, nl, "analysis")
     cases = [("ULS", uls_mean, uls_max)]
     if (als_mean is None) != (als_max is None):
         raise argument_error("als_max" if als_max is None else "als_mean",
@@ -407,6 +476,7 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
         cases.append(("ALS", als_mean, als_max))
     mbs_arr = np.broadcast_to(np.asarray(mbs, dtype=float), (nl,))
     require_known_mbs(mbs_arr, lines)
+    eol = None if eol_mbs is None else np.broadcast_to(np.asarray(eol_mbs, float), (nl,))
     columns = {k: [] for k in _COLUMNS if k != "governing"}
     sources = []
     for ls, tm, tc in cases:
@@ -421,12 +491,24 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
             raise argument_error("uls_max",
                                  "finite ULS tensions for every line (the intact system)",
                                  "NaN")
-        r = line_check(np.where(checked, tm, 0.0), np.where(checked, tc, 1.0), mbs_arr,
-                       limit_state=ls, consequence_class=consequence_class, analysis=analysis,
-                       strength_factor=strength_factor,
-                       single_point_mooring=single_point_mooring,
-                       common_factor_rule=common_factor_rule)
-        sources.append(r.pop("factors").source)
+        r = {}
+        for an in dict.fromkeys(analyses):
+            sel = np.array([a == an for a in analyses])
+            part = line_check(np.where(checked, tm, 0.0)[sel], np.where(checked, tc, 1.0)[sel],
+                              mbs_arr[sel], limit_state=ls,
+                              consequence_class=consequence_class, analysis=an,
+                              strength_factor=strength_factor,
+                              single_point_mooring=single_point_mooring,
+                              common_factor_rule=common_factor_rule, code=c,
+                              eol_mbs=None if eol is None else eol[sel])
+            src = part.pop("factors").source
+            if src not in sources:
+                sources.append(src)
+            for k, v in part.items():
+                v = np.asarray(v)
+                if k not in r:
+                    r[k] = np.zeros(nl, dtype=v.dtype)
+                r[k][sel] = v
         for k in columns:
             if k == "checked":
                 columns[k].append(checked)
@@ -434,15 +516,18 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
             v = np.asarray(r[k])
             if v.dtype == bool:
                 v = v & checked
-            elif k not in ("s_mbs", "s_c"):
+            elif k not in ("s_mbs", "s_c", "s_c_new"):
                 v = np.where(checked, v, np.nan)
             columns[k].append(v)
-    states = [c[0] for c in cases]
+    states = [cs[0] for cs in cases]
     ds = xr.Dataset(coords={"limit_state": ("limit_state", states), "line": ("line", lines)})
     for k, vals in columns.items():
         unit, long = _COLUMNS[k]
         ds[k] = xr.DataArray(np.stack(vals), dims=("limit_state", "line"),
                              attrs={"units": unit, "long_name": long})
+    ds["analysis"] = xr.DataArray(np.array(analyses, dtype=object), dims=("line",),
+                                  attrs={"units": "", "long_name": "analysis type of the WF tension "
+                                         "(selects the partial safety factors)"})
     u = ds["utilisation"].values
     gov = np.zeros(u.shape, bool)
     gov_names = []
@@ -458,13 +543,19 @@ def check_lines(lines, mbs, *, uls_mean, uls_max, als_mean=None, als_max=None,
     ds["governing_line"] = xr.DataArray(np.array(gov_names, dtype=object), dims=("limit_state",),
                                         attrs={"long_name": "governing line per limit state"})
     i, j = np.unravel_index(np.nanargmax(u), u.shape)
+    distinct = list(dict.fromkeys(analyses))
     ds.attrs.update({
-        "standard": STANDARD, "edition": EDITION, "source": SOURCE,
+        "standard": c.code, "code": c.key, "edition": c.name,
+        "source": SOURCE if c.key == DEFAULT_CODE else c.name,
         "factor_sources": " | ".join(sources),
-        "consequence_class": int(consequence_class), "analysis": str(analysis),
-        "strength_factor": float(strength_factor),
+        "consequence_class": int(consequence_class),
+        "analysis": distinct[0] if len(distinct) == 1 else "per line: " + ", ".join(
+            f"{ln} {an}" for ln, an in zip(map(str, lines), analyses)),
+        "strength_factor": float(c.strength_factor if strength_factor is None
+                                 else strength_factor),
         "common_factor_rule": common_factor_rule,
         "single_point_mooring": int(bool(single_point_mooring)),
+        "end_of_life_capacity": int(eol is not None),
         "governing_line": str(lines[j]), "governing_limit_state": states[i],
         "max_utilisation": float(u[i, j]),
         "all_passed": int(bool(np.all(ds["passed"].values | ~ds["checked"].values))),
@@ -538,12 +629,7 @@ def characteristic_tensions(seed_max, seed_mean, *, p: float = 0.9, method: str 
     return ds
 
 
-def factors_table() -> list[dict]:
+def factors_table(code=None) -> list[dict]:
     """All table factors as rows (limit state, class, analysis, gamma_mean, gamma_dyn) for a
     report."""
-    rows = []
-    for ls, table in (("ULS", ULS_FACTORS), ("ALS", ALS_FACTORS)):
-        for (cc, an), (gm, gd) in table.items():
-            rows.append({"limit_state": ls, "consequence_class": cc, "analysis": an,
-                         "gamma_mean": gm, "gamma_dyn": gd})
-    return rows
+    return load_code(DEFAULT_CODE if code is None else code).factors_table()

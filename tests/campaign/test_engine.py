@@ -95,8 +95,10 @@ def test_report_files_and_cli(tiny_runs, capsys):
     a = tiny_runs[0]
     status = main(["report", str(a)])
     out = capsys.readouterr().out
-    assert status == 0
-    assert "ULS: governing line" in out and "ALS: governing line" in out
+    assert "ULS governing line" in out and "ALS governing line" in out
+    # the verdict of the same checks as floatmoor report; the exit status follows it
+    assert "ULS line tension" in out and "ULS anchor uplift" in out and "verdict:" in out
+    assert status == (1 if "verdict: FAIL" in out else 0)
     rd = Path(a) / "report"
     for f in ("report.html", "report.md", "governing.csv", "td_cases.csv", "summary.nc"):
         assert (rd / f).is_file()

@@ -121,3 +121,16 @@ def test_scatter_and_probabilities_refused(tmp_path, old, new, key):
         load_campaign(p)
     assert e.value.key == key and Path(e.value.file) == p
     assert "contour" in str(e.value) and "floatmoor fatigue" in str(e.value)
+
+
+def test_design_code_from_the_campaign_file(tmp_path):
+    """``design: standard`` names a code of floatmoor/data/codes (alias or key) or a code file;
+    the analysis is auto (the line model) unless the file says otherwise."""
+    spec = load_campaign(_write(tmp_path, GOOD))
+    assert spec.design.standard == "dnv-os-e301-2008" and spec.design.analysis == "auto"
+    spec = load_campaign(_write(tmp_path, GOOD + "design: {standard: api-rp-2sk}\n"))
+    assert spec.design.standard == "api-rp-2sk-2005"
+    p = _write(tmp_path, GOOD + "design: {standard: dnv-os-e301-2018}\n")
+    with pytest.raises(SceneError) as e:
+        load_campaign(p)
+    assert e.value.key == "design.standard" and "dnv-os-e301-2008" in str(e.value)

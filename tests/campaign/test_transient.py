@@ -78,8 +78,12 @@ def test_report_checks_transient_case_as_als(transient_run):
         with pytest.warns(UserWarning, match="only 3 maxima"):
             t_c = gumbel_fit(np.array(mx), method="mle").fractile(0.9)
         t_m = float(np.mean(mean))
-        u = (1.00 * t_m + 1.25 * (t_c - t_m)) / (0.95 * mbs)
+        # S_C at the end of life: the Floatel-like chain 84 -> 76 mm (0.4 mm/year in the
+        # splash and bottom zones over the default 20 years, DNV-OS-E301 (2008) table B1 in the
+        # code file), MBS x (76/84)^2; the new line's utilisation on 0.95 MBS
+        u = (1.00 * t_m + 1.25 * (t_c - t_m)) / (0.95 * mbs * (76 / 84) ** 2)
         assert g["utilisation"] == pytest.approx(u, rel=1e-12)
+        assert g["utilisation_new"] == pytest.approx(u * (76 / 84) ** 2, rel=1e-12)
     report = write_report(out)
     md = (Path(out) / "report" / "report.md").read_text()
     assert "break-line6-t150" in md and report["governing"]
@@ -108,3 +112,37 @@ def test_report_consequence_class_flag_overrides_the_campaign(transient_run, cap
     main(["report", str(out), "--out", str(Path(out) / "report_cc2")])
     text = capsys.readouterr().out
     assert "consequence class 2, dynamic analysis (of the campaign file)" in text
+    # the campaign file's analysis: dynamic on quasi-static lines, an override said so
+    assert "dynamic (OVERRIDE) -- OVERRIDE: dynamic-analysis factors given" in text
+    assert "ALS line tension" in text and "verdict:" in text
+
+
+def test_report_takes_the_code_of_the_campaign(transient_run, tmp_path):
+    """A campaign whose file names API RP 2SK (2005): the report checks with its factors of
+    safety (damaged, dynamic: 1.25 on T_C; code file api-rp-2sk-2005) on S_C = MBS at the end
+    of life, and names the code (the record here is the transient campaign's with the code
+    changed, as a campaign file with design: {standard: api-rp-2sk-2005} writes it)."""
+    import json
+    import shutil
+    out, _ = transient_run
+    d = tmp_path / "api"
+    shutil.copytree(out, d)
+    rec = json.loads((d / "campaign.json").read_text())
+    rec["design"]["standard"] = "api-rp-2sk-2005"
+    (d / "campaign.json").write_text(json.dumps(rec))
+    a = analyse(d)
+    assert a["design"].code.key == "api-rp-2sk-2005" and not a["design"].overridden
+    lines = a["lines"]
+    for g in (g for g in a["governing"] if g["limit_state"] == "ALS"):
+        j = lines.index(g["line"])
+        mx, mbs = [], None
+        for seed in (1, 2, 3):
+            with netCDF4.Dataset(store.storm_path(d, BREAK, seed)) as nc:
+                mx.append(float(nc["line_tension_max"][j]))
+                mbs = float(nc["mbs"][j])
+        with pytest.warns(UserWarning, match="only 3 maxima"):
+            t_c = gumbel_fit(np.array(mx), method="mle").fractile(0.9)
+        assert g["utilisation"] == pytest.approx(1.25 * t_c / (mbs * (76 / 84) ** 2),
+                                                 rel=1e-9)
+    r = write_report(d, tmp_path / "rep")
+    assert r["summary_lines"][0].startswith("API RP 2SK")

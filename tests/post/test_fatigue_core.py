@@ -132,10 +132,15 @@ def test_tn_constants_and_design_equation_by_hand():
         1.0 / 65678.0, rel=1e-4)
     assert reference_breaking_strength(8.5e6, 0.185, DNV_CURVES["polyester"],
                                        rate_mm_per_year=0.3, design_life_years=20.0) == 8.5e6
-    # fatigue safety factor: 5 up to d_F = 0.8, 8 at 0.9, 11 at 1.0
+    # fatigue safety factor of DNV-OS-E301 (2008): 5 up to d_F = 0.8, then 5 + 3 (d_F - 0.8)/0.2:
+    # 5 + 3 * 0.1 / 0.2 = 6.5 at 0.9, 8 at 1.0 (the range 5 to 8 of the standard; code file)
     assert fatigue_safety_factor(0.5) == 5.0
-    assert fatigue_safety_factor(0.9) == pytest.approx(8.0)
-    assert fatigue_safety_factor(1.0) == pytest.approx(11.0)
+    assert fatigue_safety_factor(0.8) == 5.0
+    assert fatigue_safety_factor(0.9) == pytest.approx(6.5)
+    assert fatigue_safety_factor(1.0) == pytest.approx(8.0)
+    assert fatigue_safety_factor(float("nan")) == 5.0
+    # API RP 2SK (2005): a constant factor of safety 3 on the fatigue life (code file)
+    assert fatigue_safety_factor(0.95, code="api-rp-2sk-2005") == 3.0
     # design equation 1 - gamma_F d_C >= 0: 0.01/year over 20 years, gamma 5 -> 1 - 1.0 = 0: ok
     c = design_check(0.01, 20.0, 5.0)
     assert c["d_c"] == pytest.approx(0.2) and c["life"] == pytest.approx(100.0)

@@ -88,7 +88,10 @@ def parse(path):
 
 def test_html_has_every_table_and_the_governing_line(report):
     p = parse(report.html)
-    assert set(p.tables) == {"meta", "lines_uls", "lines_als", "offsets"}
+    # the first screen (verdict, governing line, environment, analysis) and the detail; without
+    # a scene (synthetic results) no capacity, anchor, offset-limit or fibre table
+    assert set(p.tables) == {"verdict", "governing", "environment", "analysis", "meta",
+                             "lines_uls", "lines_als", "offsets", "code_values"}
     for ls in ("uls", "als"):
         rows = [r for r in p.tables[f"lines_{ls}"] if r["cells"] and r["cells"][0] != "line"]
         assert len(rows) == N_LINES
@@ -144,14 +147,17 @@ def test_markdown_csv_and_netcdf(report):
 
 
 def test_report_numbers_follow_the_method(report):
-    """T_C of the report = Gumbel 90 % of the seed maxima; design check as dnv.line_check."""
+    """T_C of the report = Gumbel 90 % of the seed maxima; design check as dnv.line_check with
+    the quasi-static factors: the synthetic results do not say what line model made them, and
+    the report then takes them for quasi-static lines (the larger factors)."""
     from floatmoor.post.extremes import gumbel_fit
     stats, ct = report.statistics, report.characteristic
     for line in ct["line"].values:
         fit = gumbel_fit(stats["line_tension_max"].sel(line=line).values)
         assert float(ct["t_c"].sel(line=line)) == pytest.approx(fit.p90)
         r = dnv.line_check(float(ct["t_c_mean"].sel(line=line)), float(ct["t_c"].sel(line=line)),
-                           8.5e6, limit_state="ULS", consequence_class=2)
+                           8.5e6, limit_state="ULS", consequence_class=2,
+                           analysis="quasi-static")
         assert float(report.checks["utilisation"].sel(limit_state="ULS", line=line)) == \
             pytest.approx(float(r["utilisation"]))
 
@@ -180,16 +186,22 @@ def test_report_input_errors(tmp_path):
 
 @pytest.mark.slow
 def test_headless_browser_screenshot(report, tmp_path):
-    """Slow (starts a browser): Chromium renders the report to a non-empty screenshot."""
+    """Slow (starts a browser): Chromium renders the report to a non-empty screenshot, and the
+    DOM it builds has the verdict first, before the line tables."""
     exe = next((shutil.which(n) for n in ("chromium", "chromium-browser", "google-chrome",
                                           "headless_shell") if shutil.which(n)), None)
     if exe is None:
         pytest.skip("no Chromium binary on this machine")
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+             "--no-first-run"]
     shot = tmp_path / "shot.png"
-    subprocess.run([exe, "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={shot}",
-                    "--window-size=1280,2400", report.html.as_uri()], check=True, timeout=120,
-                   capture_output=True)
+    subprocess.run([exe, *flags, f"--screenshot={shot}", "--window-size=1366,1100",
+                    report.html.as_uri()], check=True, timeout=120, capture_output=True)
     assert shot.stat().st_size > 10_000
+    dom = subprocess.run([exe, *flags, "--dump-dom", report.html.as_uri()], check=True,
+                         timeout=120, capture_output=True, text=True).stdout
+    assert dom.index('id="verdict_line"') < dom.index('id="verdict"') < dom.index(
+        'id="lines_uls"') < dom.index('id="meta"')
 
 
 def test_window_starts_at_the_transient_attribute(tmp_path):
@@ -216,3 +228,33 @@ def test_detect_failed_lines():
     b["line_tension"][-100:, 2] = 0.0          # broken near the end of seed 2
     assert detect_failed_lines([a, b]) == ["L3"]
     assert detect_failed_lines([seed_result(3), b]) == []
+
+
+def test_verdict_first_screen_without_a_scene(report):
+    """Synthetic results (no scene): the verdict covers every limit state; what needs the scene
+    (anchors, offsets) or another input (FLS) is NOT CHECKED, never PASS."""
+    p = parse(report.html)
+    rows = {(r["cells"][0], r["cells"][1]): r["cells"][2] for r in p.tables["verdict"]
+            if r["cells"] and r["cells"][0] != "limit state"}
+    assert rows[("FLS", "fatigue")] == "NOT CHECKED"
+    for ls in ("ULS", "ALS"):
+        # no mooring: no end-of-life capacity, which DNV-OS-E301 asks for: never a PASS
+        assert rows[(ls, "line tension")] in ("NOT CHECKED", "FAIL")
+        assert rows[(ls, "anchor uplift")] == "NOT CHECKED"
+        assert rows[(ls, "offsets")] == "NOT CHECKED"
+    text = report.html.read_text()
+    assert text.index('id="verdict"') < text.index('id="lines_uls"')   # the answer first
+    status, sentence = report.overall
+    assert status == "FAIL" or "not checked" in sentence        # PASS only with what is missing
+    analysis = {r["cells"][0]: r["cells"][1] for r in p.tables["analysis"]}
+    assert analysis["analysis type"] == "quasi-static"
+    assert "DNV-OS-E301 Position Mooring, October 2008" in analysis["design code"]
+    # unverified code values used are listed (the strength factor 0.95 is one)
+    assert "line_tension.strength_factor" in analysis["unverified code values used"]
+
+
+def test_line_label():
+    from floatmoor.post.report_tables import line_label
+    assert line_label("line7") == "line7"          # not "line line7"
+    assert line_label("L3") == "line L3"
+    assert line_label(4) == "line 4"

@@ -49,9 +49,14 @@ scaled by the area, ``RBS = MBS (d_red / d)^2``; an S-N curve takes the area of 
 Design equation (DNV 2008 Ch.2 Sec.2 D)
 --------------------------------------
 ``1 - gamma_F d_C >= 0`` with ``d_C`` the characteristic damage over the design life and the
-fatigue safety factor ``gamma_F = 5`` if ``d_F <= 0.8`` and ``gamma_F = 5 + 3 (d_F - 0.8)/0.1``
-above, ``d_F`` the ratio of the characteristic damage of the adjacent line to that of the most
-exposed line (lines close together share the load history: a higher factor).
+fatigue safety factor of the design code (:mod:`floatmoor.post.design_codes`; its file says
+where the value comes from).  DNV-OS-E301 (2008): ``gamma_F = 5`` if ``d_F <= 0.8`` and
+``gamma_F = 5 + 3 (d_F - 0.8)/0.2`` above, ``d_F`` the ratio of the characteristic damage of
+the adjacent line to that of the most exposed line (lines close together share the load
+history: a higher factor), so that ``gamma_F`` runs from 5 to 8 -- the range the standard is
+usually quoted with; the text itself could not be read here (the code file marks the value
+unverified).  Before, floatmoor divided by 0.1 instead of 0.2: gamma_F reached 8 at d_F = 0.9
+and 11 at d_F = 1.
 
 User curves: a line type of the library may name a curve (``tn_curve: chain_studlink``) or give
 its own constants (``tn_a_d: 500.0, tn_m: 3.0``).
@@ -206,12 +211,13 @@ def reference_breaking_strength(mbs: float, diameter: float, curve: TNCurve, *,
     return float(mbs) * (d / diameter) ** 2
 
 
-def fatigue_safety_factor(d_f: float = 0.0) -> float:
-    """DNV (2008) fatigue safety factor: 5 for ``d_F <= 0.8``, ``5 + 3 (d_F - 0.8)/0.1`` above;
-    ``d_F`` = damage of the adjacent line / damage of the most exposed line."""
-    if not math.isfinite(d_f) or d_f <= 0.8:
-        return 5.0
-    return 5.0 + 3.0 * (min(d_f, 1.0) - 0.8) / 0.1
+def fatigue_safety_factor(d_f: float = 0.0, code=None) -> float:
+    """The fatigue safety factor ``gamma_F`` of the design code (default DNV-OS-E301 (2008): 5
+    for ``d_F <= 0.8``, ``5 + 3 (d_F - 0.8)/0.2`` above, 8 at ``d_F = 1``; ``d_F`` = damage of
+    the adjacent line / damage of the most exposed line; :meth:`floatmoor.post.design_codes.
+    DesignCode.fatigue_factor`)."""
+    from ..design_codes import DEFAULT_CODE, load_code
+    return load_code(DEFAULT_CODE if code is None else code).fatigue_factor(d_f)
 
 
 def design_check(damage_per_year: float, design_life_years: float, gamma_f: float) -> dict:
