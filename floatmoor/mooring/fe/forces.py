@@ -72,24 +72,31 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
 
 @njit(cache=True)
 def force_tolerances(r, P, E):
-    """Force scale of the line for the iteration's convergence tests: ``(ftol, fcap)`` (N).
+    """Force scale of the line for the iteration's convergence tests:
+    ``(ftol, fcap, weight, rfloor)`` (N).
 
     ``ftol``: the largest node weight (in air if the net weight vanishes) times 1e-5, but not
     below the round-off of the axial forces: an element tension ``c1 (l / L0 - 1)`` carries the
     relative error of ``l / L0`` (~ 1 ulp, plus the coordinates' round-off ``|r| eps / L0``),
     which is several N for ``c1 = 3.84e14`` N; summed over the ``3 (n - 2)`` residual
     components.  ``fcap``: the weight-based bound of the residual when the position correction
-    is below the position tolerance (1e3 ``ftol``, at least the round-off bound)."""
+    is below the position tolerance (1e3 ``ftol``, at least the round-off bound).  ``weight``:
+    the weight in air of the free nodes (the scale of the force-terms stop of
+    :func:`~.gen_alpha.gen_alpha_step`); ``rfloor``: the round-off of the axial forces summed
+    over the ``3 (n - 2)`` residual components (below it no residual can be told from zero)."""
     n = r.shape[0]
     ftol = 0.0
     rmax = 0.0
+    weight = 0.0
     for i in range(n):
         ftol = max(ftol, 1e-5 * abs(P[i, NP_W]), 1e-5 * 9.80665 * P[i, NP_MASS])
         for k in range(3):
             rmax = max(rmax, abs(r[i, k]))
+        if 0 < i < n - 1:
+            weight += 9.80665 * P[i, NP_MASS]
     fround = 0.0
     for j in range(n - 1):
         fround = max(fround, E[j, EL_C1] * EPS_MACH * (2.0 + 2.0 * rmax / E[j, EL_L0]))
     fcap = max(1e3 * ftol, math.sqrt(3.0 * n) * fround)
     ftol = max(ftol, math.sqrt(3.0 * n) * fround)
-    return ftol, fcap
+    return ftol, fcap, weight, 3.0 * (n - 2) * fround

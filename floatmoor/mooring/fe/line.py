@@ -58,9 +58,10 @@ FIBRE_LAWS = ("two_component", "working_curve", "constant")
 """Axial laws of the segments whose line type has a fibre model (:class:`FELine`)."""
 
 _NO_COEF = np.zeros(4)   # generalised-alpha coefficients of a static parameter bundle (unused)
-NEWTON_MODES = ("exact", "modified", "fast")
+NEWTON_MODES = ("force", "exact", "modified", "fast")
 """Newton iteration of the dynamic step (:meth:`FELine.start`)."""
-_NEWTON_CODES = {"exact": 0, "modified": K.NW_KEEP, "fast": K.NW_PREDICT | K.NW_QSTOP}
+_NEWTON_CODES = {"force": K.NW_TRAPEZ | K.NW_FORCE, "exact": 0, "modified": K.NW_KEEP,
+                 "fast": K.NW_PREDICT | K.NW_QSTOP}
 """``newton`` code of :class:`~.bundles.LineParams` of each mode (bits of :mod:`.kernels`)."""
 
 
@@ -471,12 +472,19 @@ class FELine:
 
     # ------------------------------------------------------------------------------------------
     def start(self, *, rho_inf: float = 0.7, tol: float = 1e-6, maxit: int = 30,
-              integrator: str = "generalized_alpha", t0: float = 0.0, newton: str = "exact"):
+              integrator: str = "generalized_alpha", t0: float = 0.0, newton: str = "force"):
         """Prepare dynamics from the current (static) state: velocities and accelerations zero,
         friction references at the current positions.
 
-        ``newton``: ``"exact"`` (default) rebuilds the iteration matrix of the
-        generalised-alpha Newton iteration at every iteration; ``"modified"`` keeps the matrix
+        ``newton``: ``"force"`` (default) rebuilds the iteration matrix of the
+        generalised-alpha Newton iteration at every iteration, starts from a predictor with
+        the fairlead's trapezoidal prediction and stops when the force imbalance of
+        the free nodes, summed and over ``1 - alpha_f``, is below 1e-4 of the line's weight in
+        air, accepting that iterate with its forces (:func:`~.gen_alpha.gen_alpha_step`;
+        ``tol`` is not used); ``"exact"`` rebuilds the matrix at every iteration and stops on
+        the position correction ``tol`` (the default before the force-terms stop; about 40 %
+        more force evaluations per step, results within the tolerance of each other's:
+        benchmarks/RESULTS.md); ``"modified"`` keeps the matrix
         of a step's first iteration while the residual falls fast enough and also stops on the
         estimated error left (same tolerance; 10-30 % less CPU; results not bit-identical
         to the exact iteration's and, over a storm, single-line extremes can differ by a few
@@ -488,7 +496,8 @@ class FELine:
         within ``tol`` of the converged one, but not bit-identical to ``"exact"``, and a snap
         load's peak can move as with ``"modified"``: benchmarks/RESULTS.md).
 
-        ``tol`` (m): Newton stops when the position correction is below it and the residual
+        ``tol`` (m; ``"exact"``, ``"modified"``, ``"fast"``): Newton stops when the position
+        correction is below it and the residual
         below 1e-2 node weights, or when the residual is below 1e-5 node weights; for very
         stiff lines the residual bound is raised to the round-off of the axial forces
         (``c1 * 2.2e-16 * (2 + 2 max|r| / L0)`` per element, ~100 N summed for the OC3 line
