@@ -301,7 +301,8 @@ def run(args: argparse.Namespace) -> int:
               f"max difference {rel:.2e} of the max")
         res.attrs["qs_vs_run_max_relative_difference"] = rel
     res.attrs.update({"title": f"floatmoor decoupled FE line analysis of {scene.name}",
-                      "scene_file": str(scene.file), "driving_motion": source})
+                      "scene_name": scene.name, "scene_file": str(scene.file),
+                      "driving_motion": source})
     out.parent.mkdir(parents=True, exist_ok=True)
     res.to_netcdf(out)
     print(f"written: {out}")

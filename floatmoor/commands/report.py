@@ -413,6 +413,14 @@ def read_daf(path, lines, scene: str):
                                f"the DAF of scene {other!r}")
         names = [str(v) for v in ds["line"].values]
         vals = [float(v) for v in ds["daf"].values]
+        if "selfcheck" in ds:
+            # a DAF whose FE line broke a bound of its self-check is no number to design with
+            failed = {str(n): str(c) for n, c in zip(ds["line"].values, ds["selfcheck"].values)
+                      if str(c) not in ("ok", "-")}
+            if failed:
+                raise _scene_error(path, "selfcheck", "finite-element lines whose self-check "
+                                   "passed (floatmoor lines prints it)",
+                                   "; ".join(f"{n}: {c}" for n, c in failed.items()))
         where = f"{path} (floatmoor lines"
         if ds.attrs.get("driving_motion"):
             where += f", driven by the {ds.attrs['driving_motion']}"
