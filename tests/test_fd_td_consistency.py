@@ -54,7 +54,8 @@ def _scene(tmp_path, name, waves, *, quadratic=None, duration, dt=0.2):
         vessel.write_text(yaml.safe_dump(v, sort_keys=False))
     sc = {"name": name, "site": {"water_depth": 320.0, "water_density": 1025.0},
           "vessel": str(vessel), "mooring": str(OC3 / "mooring.yaml"),
-          "environment": {"waves": {**waves, "random_amplitudes": True}},
+          "environment": {"waves": {**waves, "random_amplitudes": True}
+                          if "systems" not in waves else waves},
           "analysis": {"duration": TRANSIENT + duration, "dt": dt, "transient": TRANSIENT,
                        "ramp": 100.0}}
     p = tmp_path / f"{name}.yaml"
@@ -95,14 +96,27 @@ def _standard_error(omega, spectra, T, n):
     return np.sqrt(var_s2 / n)
 
 
-def test_linear_scene_td_std_equals_fd_std_within_the_sampling_error(tmp_path):
-    """OC3 spar, first-order waves only (JONSWAP Hs 2 m, Tp 10 s, 30 deg: surge, sway, heave,
-    roll and pitch all respond), linear damping, radiation memory, catenary lines at small
-    motions: the FD is exact (its linear RAOs and tension gradients).  The mean over 10 seeds
-    of the TD sample variance of every motion and fairlead tension equals the FD variance
-    within 4 standard errors of the sampling (module docstring)."""
-    p = _scene(tmp_path, "linear", {"spectrum": "jonswap", "hs": 2.0, "tp": 10.0,
-                                    "heading_deg": 30.0}, duration=3000.0)
+LINEAR_SEAS = {
+    "one_system": {"spectrum": "jonswap", "hs": 2.0, "tp": 10.0, "heading_deg": 30.0},
+    "wind_sea_and_swell": {"systems": [
+        {"name": "wind_sea", "spectrum": "jonswap", "hs": 1.8, "tp": 9.0, "heading_deg": 0.0},
+        {"name": "swell", "spectrum": "jonswap", "hs": 1.0, "tp": 14.0, "gamma": 5.0,
+         "heading_deg": 100.0, "spreading": "cos2s", "spreading_s": 8.0, "n_directions": 5}]},
+}
+
+
+@pytest.mark.parametrize("sea", list(LINEAR_SEAS))
+def test_linear_scene_td_std_equals_fd_std_within_the_sampling_error(tmp_path, sea):
+    """OC3 spar, first-order waves only (JONSWAP Hs 2 m, Tp 10 s, 30 deg; or a wind sea and
+    a spread swell from 100 deg: surge, sway, heave, roll and pitch all respond), linear
+    damping, radiation memory, catenary lines at small motions: the FD is exact (its linear
+    RAOs and tension gradients, the directions' responses added).  The mean over 10 seeds of
+    the TD sample variance of every motion and fairlead tension equals the FD variance within
+    4 standard errors of the sampling (module docstring)."""
+    waves = LINEAR_SEAS[sea]
+    if "systems" in waves:
+        waves = {**waves, "random_amplitudes": True}
+    p = _scene(tmp_path, "linear", waves, duration=3000.0)
     res = floatmoor.frequency_domain_result(p)
     assert set(res.models) == {"hydrostatics", "mooring", "radiation", "damping_linear",
                                "wave1"}  # linear forces only, first-order waves
