@@ -12,7 +12,7 @@ sea_states:                                # one of: contour (a file with sea_st
   # list: [{name: peak, hs: 16.0, tp: 18.2, gamma: null}]
   # a sea state of several wave systems (wind sea and swell), turned with the case's wave
   # heading; each system as a scene's (floatmoor.io.environment.parse_wave_systems) with
-  # heading_offset_deg from the wave heading instead of heading_deg:
+  # heading_offset_deg from the wave heading instead of heading_deg, JONSWAP by default:
   # list: [{name: sea+swell, systems: [{hs: 14.0, tp: 16.0},
   #                                    {hs: 4.0, tp: 22.0, gamma: 5.0, heading_offset_deg: 30}]}]
 headings:
@@ -241,7 +241,8 @@ def _sea_state_systems(item: Node, default_name: str) -> SeaState:
         n.reject_unknown(allowed)
         names.append(n.str("name", f"system{i + 1}"))
         systems.append(WaveSpec(**_system_fields(n, water_depth=None, gravity=GRAVITY,
-                                                 heading_key="heading_offset_deg")))
+                                                 heading_key="heading_offset_deg",
+                                                 spectrum="jonswap")))
     if len(set(names)) != len(names):
         raise item.error("systems", "wave systems with distinct names", names)
     dominant = max(systems, key=lambda s: s.hs)

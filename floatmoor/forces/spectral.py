@@ -114,27 +114,43 @@ def newman_drift_spectrum_directions(omega, spectra, coefficients, mu):
         return newman_drift_spectrum(omega, spectra[0], coefficients[0], mu)
     w = np.asarray(omega, float)
     mu = np.asarray(mu, float)
-    n_dir, d = spectra.shape[0], coefficients.shape[2]
+    d_all = coefficients.shape[2]
+    used = np.nonzero(np.any(coefficients != 0.0, axis=(0, 1)))[0]  # DOFs with a drift force
+    coefficients = coefficients[:, :, used]
+    n_dir, d = spectra.shape[0], used.size
     q = trapezoid_weights(w)
     out = np.zeros((mu.size, d, d))
-    for a in range(0, mu.size, 128):
-        mb = mu[a:a + 128]
-        w2 = (w[None, :] + mb[:, None]).ravel()
-        wm = (w[None, :] + 0.5 * mb[:, None]).ravel()
-        s1 = [np.broadcast_to(spectra[k], (mb.size, w.size)) for k in range(n_dir)]
-        s2 = [np.interp(w2, w, spectra[k], right=0.0).reshape(mb.size, w.size)
-              for k in range(n_dir)]
-        cm = [np.stack([np.interp(wm, w, coefficients[k][:, j], right=0.0).reshape(mb.size,
-                                                                                   w.size)
-                        for j in range(d)], axis=-1) for k in range(n_dir)]  # (block, n, d)
-        b0 = sum(s2)
-        a0 = sum(s1)
-        a1 = sum(cm[k] * (q * s1[k])[..., None] for k in range(n_dir))
-        b1 = sum(cm[k] * s2[k][..., None] for k in range(n_dir))
-        t14 = sum(np.matmul(np.swapaxes(cm[k] * (q * (s1[k] * b0 + a0 * s2[k]))[..., None],
-                                        1, 2), cm[k]) for k in range(n_dir))
+    for a in range(0, mu.size, 64):
+        mb = mu[a:a + 64]
+        s2 = _interp_right0(w, spectra.T, (w[None, :] + mb[:, None]))      # (b, n, n_dir)
+        cm = _interp_right0(w, coefficients.transpose(1, 0, 2).reshape(w.size, -1),
+                            (w[None, :] + 0.5 * mb[:, None]))
+        cm = cm.reshape(mb.size, w.size, n_dir, d)                        # (b, n, n_dir, d)
+        s1 = spectra.T[None]                                               # (1, n, n_dir)
+        b0 = s2.sum(axis=-1)                                               # (b, n)
+        a0 = s1.sum(axis=-1)                                               # (1, n)
+        wgt = q[None, :, None] * (s1 * b0[..., None] + a0[..., None] * s2)  # (b, n, n_dir)
+        cw = (cm * wgt[..., None]).reshape(mb.size, -1, d)
+        t14 = np.matmul(np.swapaxes(cw, 1, 2), cm.reshape(mb.size, -1, d))
+        a1 = np.einsum("bnkj,nk->bnj", cm, q[:, None] * spectra.T)          # (b, n, d)
+        b1 = np.einsum("bnkj,bnk->bnj", cm, s2)
         t2 = np.matmul(np.swapaxes(a1, 1, 2), b1)
         out[a:a + mb.size] = 2.0 * (t14 + t2 + np.swapaxes(t2, 1, 2))
+    full = np.zeros((mu.size, d_all, d_all))
+    full[:, used[:, None], used[None, :]] = out
+    return full
+
+
+def _interp_right0(x, table, x_new):
+    """``table`` (n, ...) linearly interpolated along axis 0 at ``x_new`` (any shape, each
+    >= x[0]) on the increasing grid ``x``; zero beyond ``x[-1]`` (as ``np.interp(...,
+    right=0.0)``).  Returns ``x_new.shape + table.shape[1:]``."""
+    x_new = np.asarray(x_new, float)
+    i = np.clip(np.searchsorted(x, x_new, side="right") - 1, 0, x.size - 2)
+    f = (x_new - x[i]) / (x[i + 1] - x[i])
+    f = f.reshape(f.shape + (1,) * (table.ndim - 1))
+    out = (1.0 - f) * table[i] + f * table[i + 1]
+    out[x_new > x[-1]] = 0.0
     return out
 
 

@@ -203,10 +203,14 @@ def parse_wave_systems(node: Node, *, water_depth: float | None = None,
 
 
 def _system_fields(node: Node, *, water_depth: float | None, gravity: float,
-                   heading_key: str = "heading_deg") -> dict:
+                   heading_key: str = "heading_deg", spectrum=None) -> dict:
     """The WaveSpec fields of one sea state or wave system (checks of :func:`parse_waves`);
-    the heading read from ``heading_key`` (degrees)."""
-    spectrum = node.choice("spectrum", WAVE_SPECTRA, what="wave spectrum")
+    the heading read from ``heading_key`` (degrees); ``spectrum`` the default spectrum (None:
+    the key is required)."""
+    if spectrum is None:
+        spectrum = node.choice("spectrum", WAVE_SPECTRA, what="wave spectrum")
+    else:
+        spectrum = node.choice("spectrum", WAVE_SPECTRA, spectrum, what="wave spectrum")
     hs = node.float("hs", gt=0.0, unit="m")
     tp = node.float("tp", gt=0.0, unit="s")
     gamma = node.float("gamma", None, ge=1.0, allow_none=True)
