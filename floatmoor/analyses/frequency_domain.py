@@ -9,6 +9,17 @@
 :func:`frequency_domain` turns it into the Dataset (:mod:`floatmoor.analyses.fd_dataset`, one
 table of variables with units).
 
+The models are the time domain's: the scene's force models (:func:`floatmoor.forces.
+select_models`, the ``forces:`` section acting in both domains) each give their
+:class:`~floatmoor.forces.base.FDTerms` (``ForceModel.frequency_domain``) at the body heading;
+this module sums them into the statics of the mean position and the linear :class:`FDModel`.
+The rules that combine models (viscous drift, double counting of current) come from
+:func:`floatmoor.io.build.model_inputs` at each heading, as in the time domain.  The options
+``drift`` and ``wave_drift_damping`` of ``frequency_domain:`` may choose otherwise for the
+frequency domain alone (a note says so).  A sea of several wave systems or a spread sea is
+carried direction by direction (:func:`floatmoor.metocean.spectra.sea_directions`): the
+directions' first-order responses add, the slow drift couples them (Newman's approximation).
+
 What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
 --------------------------------------------------------------------------
 1. **Mean** (eq. 2.39): static equilibrium (:func:`floatmoor.solvers.statics.solve_equilibrium`,
@@ -39,9 +50,9 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
 3. **Low frequency** (eq. 2.35, 2.38, 2.44-2.48): surge, sway and yaw with mass M + A(0)
    (the database's ``zero_frequency_added_mass``, else A at its lowest frequency: see the
    attribute ``lf_added_mass_source``); heave, roll and pitch follow quasi-statically.  Damping:
-   vessel linear damping, quadratic damping linearised stochastically (iterated), wind and
-   current damping -dF/dv of F = C(theta_rel) |U - v|^2 at the mean velocities, optionally
-   Aranha's wave drift damping; with ``line_damping: fe`` (option, default ``none``) the
+   vessel linear damping, quadratic damping linearised stochastically (iterated; every entry of
+   the matrix), wind and current damping -dF/dv of F = C(theta_rel) |U - v|^2 at the mean
+   velocities, Aranha's wave drift damping with ``forces: wave_drift_damping``; with ``line_damping: fe`` (option, default ``none``) the
    mooring lines' LF impedance from their FE models under the WF and LF fairlead motion
    (drag damping and the drag's dynamic stiffening, frequency by frequency, iterated with the
    response: :mod:`~floatmoor.analyses.fd_line_damping`; Floatel-like 100-year case: 42 % of
@@ -77,9 +88,10 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    the slow-drift spectrum of item 3 (which then uses Newman's approximation: ``drift: qtf`` is
    refused, ``auto`` picks ``newman``); its ``extra_damping`` raises the surge and sway linear
    damping (:func:`floatmoor.forces.slender.viscous_linear_damping`, section 6.6).
-   ``model: slender_elements`` (Morison strips in the time loop) has no frequency-domain
-   counterpart: a :class:`FloatmoorWarning` says that the FD runs without viscous drift and with
-   the hull current coefficients.  Attribute ``viscous_drift_model``.
+   ``model: slender_elements`` (Morison strips in the time loop): the FD carries the strips'
+   current load and its LF damping (the model's ``frequency_domain``; the hull current
+   coefficients zeroed where the strips carry the current, as in the time domain), not their
+   viscous wave drift: a :class:`FloatmoorWarning` says so.  Attribute ``viscous_drift_model``.
 """
 
 from __future__ import annotations

@@ -233,11 +233,12 @@ class FDTerms:
                 elif kind == "quadratic_damping":
                     quadratic = payload
                 else:
-                    raise SceneError(None, f"forces: {name}", "a force model with a "
-                                     "frequency-domain form (its terms of the kinds restoring, "
-                                     "damping, quadratic damping, or its own frequency_domain)",
-                                     f"a {kind} term; exclude the model (forces: exclude) to "
-                                     "run the frequency domain without it")
+                    raise SceneError(None, "forces", "force models with a frequency-domain "
+                                     "form (terms of the kinds restoring, damping, quadratic "
+                                     "damping, or a frequency_domain of their own)",
+                                     f"model {name!r} with a {kind} term",
+                                     hint="exclude it (forces: exclude) to run the frequency "
+                                          "domain without it")
         return cls(const_force=const, restoring=restoring, damping=damping,
                    quadratic_damping=quadratic)
 

@@ -22,9 +22,15 @@ Low frequency (eq. 2.35, 2.38, 2.44-2.46)
     eq. 2.38 for every pair of DOFs, or the full difference-frequency QTF) plus the wind gust
     force 4 U^2 C C^T S_u(mu).
 
-Quadratic damping: stochastic linearisation of B_q v|v| for a zero-mean Gaussian velocity,
-B_eq = sqrt(8/pi) sigma_v B_q (Caughey 1963; e.g. Faltinsen 1990), with sigma_v the standard
-deviation of the total (WF + LF) velocity, iterated to convergence.
+Quadratic damping: stochastic linearisation of F_i = -sum_j B_q,ij v_j|v_j| for zero-mean
+Gaussian velocities, B_eq = sqrt(8/pi) B_q diag(sigma_v) (Caughey 1963; e.g. Faltinsen 1990):
+every entry of the matrix, off-diagonal couplings included, with sigma_v the standard
+deviations of the total (WF + LF) velocity in the yaw frame at the mean heading, iterated to
+convergence.
+
+A sea of several directions (wave systems, spreading): ``excitation`` (n_dir, n, 6) with the
+directions' spectra ``direction_spectra``; the WF cross-spectra add over the directions
+(independent components), :func:`wf_directions` gives each direction's RAO and spectrum.
 """
 
 from __future__ import annotations
