@@ -122,7 +122,7 @@ def test_run_command_table_and_exit_status(scene_file, tmp_path, capsys):
 
 def test_convergence_study_errors_shrink(scene_file):
     """Halving dt: the error of max offset / max tension against the finest run falls."""
-    from floatmoor.commands.convergence import convergence_study, format_table
+    from floatmoor.analyses.convergence import convergence_study, format_table
 
     rows = convergence_study(scene_file, duration=150.0, dt0=0.4, levels=3)
     assert [r["dt"] for r in rows] == [0.4, 0.2, 0.1]

@@ -74,17 +74,36 @@ def case_scene(base, case: Case, analysis: dict | None = None):
     """(scene, failed_lines) of ``case`` derived from the base :class:`~floatmoor.io.scene.Scene`.
 
     The base scene's wave spectrum keeps its type and discretisation; Hs, Tp and gamma come
-    from the sea state.  Components absent from the base scene stay absent.  ``analysis``
-    overrides the base scene's ``analysis`` fields (duration, dt, transient, ramp).
+    from the sea state.  A sea state of several wave systems replaces the base scene's waves
+    by its systems (discretisation kept), each turned by the case's wave heading; a base scene
+    of several systems needs such sea states (SceneError otherwise).  Components absent from
+    the base scene stay absent.  ``analysis`` overrides the base scene's ``analysis`` fields
+    (duration, dt, transient, ramp).
     """
+    from ..core.errors import SceneError
+    from ..metocean.config import WaveSpec, WaveSystems
     from . import _api
 
     env = base.environment
     rep = {}
-    if env.waves is not None:
-        rep["waves"] = dataclasses.replace(env.waves, hs=case.sea_state.hs, tp=case.sea_state.tp,
-                                           gamma=case.sea_state.gamma,
-                                           heading=math.radians(case.wave_heading_deg))
+    heading = math.radians(case.wave_heading_deg)
+    ss = case.sea_state
+    if env.waves is not None and ss.systems:
+        w = env.waves
+        rep["waves"] = WaveSystems(
+            systems=tuple(dataclasses.replace(s, heading=heading + s.heading)
+                          for s in ss.systems), names=tuple(ss.system_names),
+            omega_min=w.omega_min, omega_max=w.omega_max, n_frequencies=w.n_frequencies,
+            random_amplitudes=w.random_amplitudes)
+    elif env.waves is not None and not isinstance(env.waves, WaveSpec):
+        raise SceneError(base.file, "environment.waves", "one sea state in the base scene of a "
+                         "campaign whose sea states are Hs and Tp (or sea states given as "
+                         "systems: for a base scene of several wave systems)",
+                         f"{len(env.waves.systems)} wave systems",
+                         hint=f"sea state {ss.name!r}")
+    elif env.waves is not None:
+        rep["waves"] = dataclasses.replace(env.waves, hs=ss.hs, tp=ss.tp, gamma=ss.gamma,
+                                           heading=heading)
     if env.wind is not None:
         rep["wind"] = dataclasses.replace(env.wind, heading=math.radians(case.wind_heading_deg))
     if env.current is not None:

@@ -10,6 +10,11 @@ sea_states:                                # one of: contour (a file with sea_st
   contour: ../metocean/heidrun_contour.yaml
   only: [1, 4]                             # optional: 1-based indices into the contour
   # list: [{name: peak, hs: 16.0, tp: 18.2, gamma: null}]
+  # a sea state of several wave systems (wind sea and swell), turned with the case's wave
+  # heading; each system as a scene's (floatmoor.io.environment.parse_wave_systems) with
+  # heading_offset_deg from the wave heading instead of heading_deg, JONSWAP by default:
+  # list: [{name: sea+swell, systems: [{hs: 14.0, tp: 16.0},
+  #                                    {hs: 4.0, tp: 22.0, gamma: 5.0, heading_offset_deg: 30}]}]
 headings:
   waves_deg: {start: 0, stop: 345, step: 15}   # or a list [0, 15, 30]
   wind_offset_deg: [0]                     # wind heading - wave heading (non-collinear: [0, 30])
@@ -77,11 +82,16 @@ DEFAULT_SAMPLING = {"line_tension": 0.0, "motion": 0.5, "wave_elevation": 0.5}
 
 @dataclass(frozen=True, kw_only=True)
 class SeaState:
-    """One short-term sea state: name, Hs (m), Tp (s), JONSWAP gamma (None: DNV rule)."""
+    """One short-term sea state: name, Hs (m), Tp (s), JONSWAP gamma (None: DNV rule).  With
+    ``systems`` (:class:`~floatmoor.metocean.config.WaveSpec` each, headings relative to the
+    case's wave heading, names ``system_names``) a sea of several wave systems: ``hs`` is then
+    the whole sea's sqrt(sum Hs_i^2) and ``tp`` the Tp of the system with the largest Hs."""
     name: str
     hs: float
     tp: float
     gamma: float | None = None
+    systems: tuple = ()
+    system_names: tuple = ()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -203,16 +213,53 @@ NOT_FATIGUE = ("every sea state of a ULS/ALS campaign is checked at its own extr
 
 
 def _sea_state(item: Node, default_name: str) -> SeaState:
-    item.reject_unknown(("name", "hs", "tp", "gamma", "spectrum", "probability", "description"))
+    item.reject_unknown(("name", "hs", "tp", "gamma", "spectrum", "probability", "description",
+                         "systems"))
     if "probability" in item:
         raise item.error("probability", "no probability: " + ULS_SEA_STATES,
                          item.raw("probability"), NOT_FATIGUE)
+    if "systems" in item:
+        return _sea_state_systems(item, default_name)
     if "spectrum" in item and item.raw("spectrum") != "jonswap":
         raise item.error("spectrum", "jonswap (the contour's sea states are JONSWAP)",
                          item.raw("spectrum"))
     gamma = item.float("gamma", None, ge=1.0, allow_none=True)
     return SeaState(name=item.str("name", default_name), hs=item.float("hs", gt=0.0, unit="m"),
                     tp=item.float("tp", gt=0.0, unit="s"), gamma=gamma)
+
+
+def _sea_state_systems(item: Node, default_name: str) -> SeaState:
+    """A sea state of several wave systems (``systems:``, module docstring)."""
+    from ..core.constants import GRAVITY
+    from ..io.environment import MAX_WAVE_SYSTEMS, SYSTEM_KEYS, _system_fields
+    from ..metocean.config import WaveSpec, total_hs
+    for key in ("hs", "tp", "gamma", "spectrum"):
+        if key in item:
+            raise item.error(key, "no " + key + " beside systems (each system has its own)",
+                             item.raw(key))
+    nodes = item.item_nodes("systems", min_len=1)
+    if len(nodes) > MAX_WAVE_SYSTEMS:
+        raise item.error("systems", f"at most {MAX_WAVE_SYSTEMS} wave systems",
+                         f"{len(nodes)} systems")
+    allowed = tuple(k for k in SYSTEM_KEYS if k != "heading_deg") + ("heading_offset_deg",)
+    systems, names = [], []
+    for i, n in enumerate(nodes):
+        n.reject_unknown(allowed)
+        names.append(n.str("name", f"system{i + 1}"))
+        systems.append(WaveSpec(**_system_fields(n, water_depth=None, gravity=GRAVITY,
+                                                 heading_key="heading_offset_deg",
+                                                 spectrum="jonswap")))
+    if len(set(names)) != len(names):
+        raise item.error("systems", "wave systems with distinct names", names)
+    dominant = max(systems, key=lambda s: s.hs)
+    return SeaState(name=item.str("name", default_name), hs=total_hs(
+        _systems(systems)), tp=dominant.tp, gamma=None, systems=tuple(systems),
+        system_names=tuple(names))
+
+
+def _systems(systems):
+    from ..metocean.config import WaveSystems
+    return WaveSystems(systems=tuple(systems))
 
 
 def _sea_states(node: Node) -> tuple[SeaState, ...]:

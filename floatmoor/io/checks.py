@@ -32,15 +32,17 @@ def _warn(message: str) -> None:
 def check_time_step_resolves_waves(scene: Scene) -> None:
     """Warn when dt is coarse for the waves: fewer than 20 steps per Tp, or dt above the Nyquist
     limit pi/omega_max of the highest wave component requested."""
+    from ..metocean.config import wave_systems
     waves = scene.environment.waves
     if waves is None:
         return
     dt = scene.analysis.dt
     where = f"{scene.file}: analysis.dt"
-    if dt > waves.tp / STEPS_PER_PEAK_PERIOD:
-        _warn(f"{where}: dt = {dt:g} s gives {waves.tp / dt:.3g} steps per peak period "
-              f"(Tp = {waves.tp:g} s); use dt <= Tp/{STEPS_PER_PEAK_PERIOD} = "
-              f"{waves.tp / STEPS_PER_PEAK_PERIOD:.3g} s")
+    tp = min(w.tp for w in wave_systems(waves))  # the shortest peak period of the systems
+    if dt > tp / STEPS_PER_PEAK_PERIOD:
+        _warn(f"{where}: dt = {dt:g} s gives {tp / dt:.3g} steps per peak period "
+              f"(Tp = {tp:g} s); use dt <= Tp/{STEPS_PER_PEAK_PERIOD} = "
+              f"{tp / STEPS_PER_PEAK_PERIOD:.3g} s")
     if waves.omega_max is not None and dt > math.pi / waves.omega_max:
         _warn(f"{where}: dt = {dt:g} s cannot represent waves up to omega_max = "
               f"{waves.omega_max:g} rad/s (Nyquist: dt <= pi/omega_max = "
@@ -78,17 +80,22 @@ def check_realisation_size(scene: Scene) -> None:
     duration = scene.analysis.duration
     env = scene.environment
     src = env.source or scene.file
+    from ..metocean.config import wave_systems
     waves = env.waves
     if waves is not None and waves.n_frequencies is None:
-        lo_d, hi_d = default_omega_range(waves, SPECTRAL_CUTOFF)
-        lo = lo_d if waves.omega_min is None else waves.omega_min
-        hi = hi_d if waves.omega_max is None else waves.omega_max
-        n = max(16, math.ceil((hi - lo) * duration / (2.0 * math.pi))) * waves.n_directions
+        n, lo, hi = 0, math.inf, -math.inf
+        for w in wave_systems(waves):  # every system's components on the common grid
+            lo_d, hi_d = default_omega_range(w, SPECTRAL_CUTOFF)
+            lo_w = lo_d if w.omega_min is None else w.omega_min
+            hi_w = hi_d if w.omega_max is None else w.omega_max
+            n += max(16, math.ceil((hi_w - lo_w) * duration / (2.0 * math.pi))) * w.n_directions
+            lo, hi = min(lo, lo_w), max(hi, hi_w)
+        n_dir = sum(w.n_directions for w in wave_systems(waves))
         if n > MAX_WAVE_COMPONENTS:
             raise SceneError(scene.file, "analysis.duration", "a duration whose wave "
                              f"realisation has at most {MAX_WAVE_COMPONENTS:,} components",
                              duration, f"{n:,} components (one per 2 pi/duration over "
-                             f"[{lo:.3g}, {hi:.3g}] rad/s, x {waves.n_directions} directions, "
+                             f"[{lo:.3g}, {hi:.3g}] rad/s, x {n_dir} directions, "
                              f"from {src}); their tables would need {n * 96 / 1e6:.3g} MB and "
                              "every time step would sum them all")
     wind = env.wind
