@@ -29,8 +29,14 @@ pytestmark = pytest.mark.slow   # MoorDyn: about 2-3 min of CPU for 2400 s of 13
 
 
 def test_slack_line_with_current_against_moordyn():
-    from .moordyn_floatel import (case, fairlead_track, run_floatmoor, run_moordyn, statistics,
-                                  storm_track)
+    from .moordyn_floatel import (
+        case,
+        fairlead_track,
+        run_floatmoor,
+        run_moordyn,
+        statistics,
+        storm_track,
+    )
 
     c = case("line1", current=True)
     t, poses, transient = storm_track(seed=1, duration=2400.0)
