@@ -1,10 +1,14 @@
 """``floatmoor run SCENE.yaml --seeds 1-20 --out DIR``: time-domain storms, one netCDF per seed.
 
-Seeds run in parallel on the local cores (worker processes); a seed whose file exists, is
-readable and was computed from the same inputs (the fingerprint of scene and models stored in
-it) is skipped (resumable); files from other inputs are refused (exit status 2 naming the
-differing sections) unless ``--force``; an unreadable or truncated file is computed again; a
-failed seed is reported and the others go on (exit status 3 naming the failed seeds).  Ctrl-C
+Seeds run in parallel on the local cores (worker processes); the scene and the files it reads
+are checked before any seed starts (a mistake in them: exit status 2); a seed whose file
+exists, is readable, holds finite and plausible values and was computed from the same inputs
+(the fingerprint of scene, files and code stored in it) is skipped (resumable); files from
+other inputs are refused (exit status 2 naming the differing sections) unless ``--force``; an
+unreadable, truncated or corrupted file is computed again; a failed seed is reported and the
+others go on (exit status 3 naming the failed seeds).  The output folder is locked while the
+run writes into it: a second run into it is refused (exit status 2).  A full disk stops the
+run with a message saying so (exit status 2; the finished seeds are kept).  Ctrl-C
 or SIGTERM stops the workers at once, keeps only complete files, lists the seeds not computed
 in ``interrupted.txt``, prints the command that resumes, and exits with status 130.  At the
 end a short table of the finished seeds: mean, std and max of the horizontal offset and of the
@@ -118,19 +122,22 @@ def run(args: argparse.Namespace) -> int:
         check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None
                          else "--duration")
     print(f"scene: {scene.name}  [{scene.file}]")
-    bounds = _fibre_bounds(scene)
-    if bounds:
-        status = EXIT_OK
-        for b in bounds:
-            print(f"fibre stiffness bound {b}: {len(seeds)} seed(s) -> {out / ('fibre_' + b)}")
-            st = _run_batch(args, seeds, out / f"fibre_{b}", {**overrides, "fibre_stiffness": b},
-                            resume_out=out)
-            if st == EXIT_INTERRUPTED:
-                return st
-            status = max(status, st)
-        return status
-    print(f"{len(seeds)} seed(s) -> {out}")
-    return _run_batch(args, seeds, out, overrides)
+    from ..analyses.folder_lock import folder_lock
+    with folder_lock(out, f"floatmoor run {Path(args.scene).name}"):
+        bounds = _fibre_bounds(scene)
+        if bounds:
+            status = EXIT_OK
+            for b in bounds:
+                print(f"fibre stiffness bound {b}: {len(seeds)} seed(s) -> "
+                      f"{out / ('fibre_' + b)}")
+                st = _run_batch(args, seeds, out / f"fibre_{b}",
+                                {**overrides, "fibre_stiffness": b}, resume_out=out)
+                if st == EXIT_INTERRUPTED:
+                    return st
+                status = max(status, st)
+            return status
+        print(f"{len(seeds)} seed(s) -> {out}")
+        return _run_batch(args, seeds, out, overrides)
 
 
 def _fibre_bounds(scene) -> tuple[str, ...]:
