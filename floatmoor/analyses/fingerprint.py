@@ -194,12 +194,14 @@ def scene_fingerprint(scene, overrides: dict | None = None, *,
 
 
 def case_fingerprint(case_scene, condition, files: dict[str, str], *, kind: str,
-                     storage=None, compression: int | None = None) -> dict[str, str]:
+                     storage=None, compression: int | None = None,
+                     scene_fp: dict[str, str] | None = None) -> dict[str, str]:
     """The fingerprint of one campaign result (:mod:`floatmoor.campaign`): the case's scene
     (the base scene with the case's sea state, headings, analysis and line failure), its
     ``condition`` and, by ``kind``, what decides the stored file: ``fd`` the compression,
-    ``td``/``series`` the storage settings (``series``: full series kept)."""
-    fp = scene_fingerprint(case_scene, files=files)
+    ``td``/``series`` the storage settings (``series``: full series kept).  ``scene_fp``: the
+    case scene's :func:`scene_fingerprint` when already computed."""
+    fp = dict(scene_fp) if scene_fp is not None else scene_fingerprint(case_scene, files=files)
     fp["condition"] = _value_hash(condition)
     if kind == "fd":
         fp["storage"] = _value_hash({"compression": compression})
