@@ -367,6 +367,10 @@ def _run_locked(scene, scene_path, seeds, out_dir, fp, fp_text, overrides, echo,
                 force, in_process, threads, workers, fe_lines) -> BatchResult:
     """:func:`run_seeds` with the folder locked."""
     from .fingerprint import differing_keys
+    if (out_dir / "campaign.json").is_file() and not force:
+        raise SceneError(scene.file, "", f"an output folder for the seeds of a scene "
+                         f"({out_dir})", "the folder of a campaign (campaign.json)",
+                         "use another --out folder (or --force)")
     outcomes: dict[int, SeedOutcome] = {}
     todo = []
     foreign: dict[int, list[str]] = {}
