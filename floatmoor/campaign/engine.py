@@ -438,29 +438,30 @@ def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | 
     process or holding another campaign), and
     :class:`~floatmoor.analyses.folder_lock.DiskFull` when the disk fills (the finished
     results are kept and recorded)."""
+    import warnings
+
     from ..analyses.folder_lock import folder_lock
+    from ._api import load_scene
+    from .spec import check_times
     t_start = time.perf_counter()
     spec = campaign if isinstance(campaign, CampaignSpec) else load_campaign(campaign)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        base = load_scene(spec.base_scene)
+    check_times(spec, base, analysis_overrides)   # --duration, --dt ...: before anything runs
     out_dir = Path(out_dir).resolve()
     with folder_lock(out_dir, f"floatmoor campaign {spec.name}"):
-        return _run_locked(spec, out_dir, t_start, scheduler=scheduler, workers=workers,
+        return _run_locked(spec, base, out_dir, t_start, scheduler=scheduler, workers=workers,
                            client=client, echo=echo, bar=bar, verify=verify, seeds=seeds,
                            analysis_overrides=analysis_overrides, on_outcome=on_outcome,
                            force=force)
 
 
-def _run_locked(spec, out_dir, t_start, *, scheduler, workers, client, echo, bar, verify, seeds,
-                analysis_overrides, on_outcome, force) -> CampaignOutcome:
+def _run_locked(spec, base, out_dir, t_start, *, scheduler, workers, client, echo, bar, verify,
+                seeds, analysis_overrides, on_outcome, force) -> CampaignOutcome:
     """:func:`run_campaign` with the folder locked."""
-    import warnings
-
-    from ._api import load_scene
-    from .spec import check_storm_count, check_times
+    from .spec import check_storm_count
     _check_folder(spec, out_dir, force, echo)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        base = load_scene(spec.base_scene)
-    check_times(spec, base, analysis_overrides)   # --duration, --dt ...: before anything runs
     analysis = campaign_analysis(spec, analysis_overrides)
     for tmp in out_dir.rglob("*.tmp"):  # leftovers of interrupted writes
         tmp.unlink(missing_ok=True)

@@ -122,22 +122,19 @@ def run(args: argparse.Namespace) -> int:
         check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None
                          else "--duration")
     print(f"scene: {scene.name}  [{scene.file}]")
-    from ..analyses.folder_lock import folder_lock
-    with folder_lock(out, f"floatmoor run {Path(args.scene).name}"):
-        bounds = _fibre_bounds(scene)
-        if bounds:
-            status = EXIT_OK
-            for b in bounds:
-                print(f"fibre stiffness bound {b}: {len(seeds)} seed(s) -> "
-                      f"{out / ('fibre_' + b)}")
-                st = _run_batch(args, seeds, out / f"fibre_{b}",
-                                {**overrides, "fibre_stiffness": b}, resume_out=out)
-                if st == EXIT_INTERRUPTED:
-                    return st
-                status = max(status, st)
-            return status
-        print(f"{len(seeds)} seed(s) -> {out}")
-        return _run_batch(args, seeds, out, overrides)
+    bounds = _fibre_bounds(scene)
+    if bounds:
+        status = EXIT_OK
+        for b in bounds:
+            print(f"fibre stiffness bound {b}: {len(seeds)} seed(s) -> {out / ('fibre_' + b)}")
+            st = _run_batch(args, seeds, out / f"fibre_{b}", {**overrides, "fibre_stiffness": b},
+                            resume_out=out)
+            if st == EXIT_INTERRUPTED:
+                return st
+            status = max(status, st)
+        return status
+    print(f"{len(seeds)} seed(s) -> {out}")
+    return _run_batch(args, seeds, out, overrides)
 
 
 def _fibre_bounds(scene) -> tuple[str, ...]:
