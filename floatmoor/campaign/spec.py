@@ -529,6 +529,11 @@ def check_times(spec: CampaignSpec, scene, overrides: dict | None = None) -> dic
     file = spec.file
     if not an["dt"] < an["duration"]:
         raise SceneError(file, key("dt"), f"0 < dt < duration ({an['duration']:g} s)", an["dt"])
+    if "duration" in given and "dt" not in given:   # the value given names the mistake
+        from ..io.analysis import MAX_TIME_STEPS
+        if an["duration"] / an["dt"] > MAX_TIME_STEPS:
+            raise SceneError(file, key("duration"), f"a duration of at most {MAX_TIME_STEPS:,} "
+                             f"time steps of {an['dt']:g} s ({key('dt')})", an["duration"])
     check_time_steps(file, an["duration"], an["dt"], key=key("dt"))
     if not an["duration"] > an["transient"]:
         raise SceneError(file, key("duration"), f"a duration longer than the transient "
