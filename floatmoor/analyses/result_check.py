@@ -44,11 +44,11 @@ def _fail(path, key, expected, found, hint=None):
 def _first_bad(a: np.ndarray, bad: np.ndarray, names=None) -> str:
     """Where the first bad value of ``a`` sits: ``line7 at index 1200`` (a 2-D (time, line)
     array) or ``index 3``."""
-    idx = np.argwhere(bad)[0]
-    v = a[tuple(idx)]
+    idx = [int(i) for i in np.argwhere(bad)[0]]
+    v = f"{float(a[tuple(idx)]):.6g}"
     if a.ndim == 2 and names is not None and idx[1] < len(names):
-        return f"{v!r} ({names[idx[1]]}, time index {idx[0]})"
-    return f"{v!r} (index {', '.join(str(i) for i in idx)})"
+        return f"{v} ({names[idx[1]]}, time index {idx[0]})"
+    return f"{v} (index {', '.join(str(i) for i in idx)})"
 
 
 def _finite(path, name, a, names=None):
@@ -75,18 +75,18 @@ def _tensions(path, name, a, mbs=None, names=None):
 
 
 def check_series_file(path, nc) -> None:
-    """The time series of a ``floatmoor run`` result (an open ``netCDF4.Dataset`` ``nc`` of the
-    file ``path``): every series whole (its last time step readable), finite, tensions >= 0 and
-    below :data:`TENSION_GUARD` x MBS."""
+    """The time series of a ``floatmoor run`` result (an open ``netCDF4.Dataset``, or an
+    ``xarray.Dataset``, ``nc`` of the file ``path``): every series whole (its last time step
+    readable), finite, tensions >= 0 and below :data:`TENSION_GUARD` x MBS."""
     names = None
     if "line" in nc.variables:
         try:
-            names = [str(x) for x in nc["line"][:]]
+            names = [str(x) for x in np.asarray(nc["line"][...]).ravel()]
         except Exception:  # noqa: BLE001 - the names only decorate the message
             names = None
     mbs = None
     if "mbs" in nc.variables:
-        mbs = np.asarray(nc["mbs"][:], float)
+        mbs = np.asarray(nc["mbs"][...], float)
         if not (np.all(np.isfinite(mbs)) and np.all(mbs > 0)):
             _fail(path, "mbs", "finite MBS > 0 N per line", mbs.tolist())
     if "motion" not in nc.variables:
