@@ -347,6 +347,10 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     check_time_steps(scene.file, float(overrides.get("duration", an.duration)),
                      float(overrides.get("dt", an.dt)),
                      key="analysis.dt" if "dt" not in overrides else "dt")
+    if "dt" in overrides:   # the scene's own dt was checked when it was read
+        from ..io.checks import check_dt_resolves_waves
+        check_dt_resolves_waves(scene.file, "dt (--dt)", float(overrides["dt"]),
+                                scene.environment.waves)
     # the vessel, database and mooring read and checked here, once: a mistake in them (a mass
     # of 0, a line above its MBS at zero offset, ...) is a SceneError before any seed starts,
     # not the same failure in every worker

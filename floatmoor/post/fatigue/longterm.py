@@ -25,7 +25,7 @@ Refused (SceneError naming the file and key), before anything is allocated or ru
 that cannot exist (significant steepness Hs/Lp above 1/10, the rule of scene files,
 :func:`floatmoor.io.environment.check_sea_state`, in the scene's water depth); JONSWAP gamma
 below 1 (above 7 warned); headings in radians or repeated (modulo 360 deg); bin centres not
-increasing.
+increasing; a wind above :data:`MAX_U10`.
 
 Annual damage: ``D_year = sum_i p_i d_i T_year`` with ``d_i`` the damage rate (1/s) of cell ``i``
 (stationary sea state) and ``T_year = 365.25 days``.  Fatigue life ``1 / D_year``; design check
@@ -51,6 +51,10 @@ __all__ = [
 ]
 
 SECONDS_PER_YEAR = 365.25 * 86400.0
+
+MAX_U10 = 60.0
+"""Largest wind speed (m/s, 1-hour mean at 10 m) of a scatter cell: above any design value (the
+North Sea 100-year wind is 36-41 m/s); knots or km/h typed for m/s."""
 
 MAX_CELLS = 20_000
 """Most sea states (cells of non-zero probability, Hs x Tp x directions) of a scatter diagram:
@@ -138,7 +142,7 @@ def load_scatter(path, *, water_depth: float | None = None,
             tp.append(c.float("tp", gt=0.0, unit="s"))
             hd.append(c.angle_deg("heading_deg", 0.0))
             p.append(c.float("probability", ge=0.0))
-            u.append(c.float("u10", math.nan, ge=0.0, unit="m/s"))
+            u.append(c.float("u10", math.nan, ge=0.0, le=MAX_U10, unit="m/s"))
         hs, tp, hd, p, u = map(np.asarray, (hs, tp, hd, p, u))
         key = "cells[].probability"
         _check_cells(root, hs, tp, p, lambda i: f"cells[{i}].hs", water_depth, gravity)
@@ -153,6 +157,9 @@ def load_scatter(path, *, water_depth: float | None = None,
         table = root.array("probability", shape=(hs_b.size, tp_b.size), ge=0.0)
         u_b = root.array("u10", np.full(hs_b.size, np.nan), shape=(hs_b.size,), ge=0.0,
                          unit="m/s")
+        if np.any(u_b > MAX_U10):
+            raise root.error("u10", f"1-hour mean winds at 10 m of at most {MAX_U10:g} m/s",
+                             root.raw("u10"), "in knots or km/h? give m/s")
         d = root.child("directions")
         if not isinstance(d, Node):
             raise root.error("directions", "a mapping with heading_deg and probability lists", d)
