@@ -445,6 +445,12 @@ def cases2(tree: Tree):
         str(tree.root / "d600")], "bad"
     yield "campaign --duration 1e15", ["campaign", "campaigns/floatel_uls_als.yaml",
                                        "--duration", "1e15", "--dry-run"], "bad"
+    brk = CAMPAIGN.replace("failed_lines: [[line6], [line7]]",
+                           "line_failure: {lines: [line6], time: 1500.0}").replace(
+        "duration: 600.0", "duration: 3000.0")
+    yield "campaign break 1500 s, --duration 600", [
+        "campaign", tree.write(C, brk), "--duration", "600", "--out", str(tree.root / "brk")], \
+        "bad"
     yield "campaign --seeds 1-4294967295", ["campaign", C, "--seeds", "1-4294967295",
                                             "--dry-run"], "bad"
 
@@ -572,12 +578,14 @@ def cases2(tree: Tree):
     V = "vessels/floatel_like/vessel.yaml"
     vt = tree.text(V)
     v1 = tree.write(V, re.sub(r"^mass: .*$", "mass: 1.0", vt, count=1, flags=re.M))
+    v0 = tree.write(V, re.sub(r"^mass: .*$", "mass: 0", vt, count=1, flags=re.M))
     c0 = tree.write(M, mt.replace("mass_per_length: 140.41", "mass_per_length: 0.0", 1))
     taut = tree.write(M, mt.replace("length: 1200.0}", "length: 1100.0}", 1))
     calm = st.replace("water_depth: 150.0", "water_depth: 8.0").replace(
         "environment: ../metocean/heidrun_100yr.yaml\n", "")
     run_args = ["--seeds", "1-2", "--duration", "1300"]
     for name, scene in (("vessel mass 1 kg", tree.scene_with(vessel=v1)),
+                        ("vessel mass 0", tree.scene_with(vessel=v0)),
                         ("chain mass 0", tree.scene_with(mooring=c0)),
                         ("line taut above MBS at zero offset", tree.scene_with(mooring=taut)),
                         ("water depth above the fairleads", tree.write(S, calm))):
@@ -770,15 +778,19 @@ def scen_full_disk(tree, run):
     import subprocess
     disk = tree.root / "disk"
     disk.mkdir()
-    r = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=600k", "tmpfs", str(disk)],
-                       capture_output=True)
+    scene = tree.root / "scenes" / "oc3_audit.yaml"
+    if not scene.is_file():
+        scene.write_text(OC3_SHORT.format(vessel=REPO / "vessels/oc3_hywind/vessel.yaml",
+                                          mooring=REPO / "vessels/oc3_hywind/mooring.yaml"))
+    probe = tree.root / "sc_probe"     # the size of one seed file
+    run(["run", str(scene), "--out", str(probe), "--seeds", "1", "--workers", "1"])
+    seeds = sorted(probe.glob("*.nc"))
+    one = seeds[0].stat().st_size if seeds else 150_000
+    r = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={int(1.5 * one) // 1024}k", "tmpfs",
+                        str(disk)], capture_output=True)
     if r.returncode != 0:
         return "skipped", "no tmpfs (needs root)"
     try:
-        scene = tree.root / "scenes" / "oc3_audit.yaml"
-        if not scene.is_file():
-            scene.write_text(OC3_SHORT.format(vessel=REPO / "vessels/oc3_hywind/vessel.yaml",
-                                              mooring=REPO / "vessels/oc3_hywind/mooring.yaml"))
         out = disk / "out"
         st, o, e = run(["run", str(scene), "--out", str(out), "--workers", "1"])
         if st == 2 and "no space left on the device" in e and "Traceback" not in e:
