@@ -1,15 +1,17 @@
 """The dry run: the campaign matrix, a short calibration run, wall time and storage estimates.
 
-Calibration (in this process, 10-30 s): the frequency domain of up to four cases (the first
-loads the database and the compiled kernels; the median of the others is the FD case cost),
-then, with the kernels warm (a short storm first compiles or loads them, untimed), the time
-loop of the first case timed over :data:`CAL_LOOP_S` seconds of loop, :data:`CAL_RUNS` times:
-the cost of a storm is ``setup + n_steps x step`` plus the writing of its result, with ``step``
-the median time per step of the calibration runs (their spread is printed beside the estimate:
-a loaded machine shows it) and ``setup`` the storm's own set-up (statics, wave and wind
-realisations, force series) measured at the campaign's full duration.  Measured on the Floatel
-example (2-core machine, benchmarks/RESULTS.md): within 30 % of the storms the campaign then
-runs.  The stored size of a storm is measured by writing a calibration storm with the
+Calibration (in this process, 10-30 s), in CPU seconds of this process (the wall time of a
+single-threaded task on an idle core: unlike the wall time it does not change with what else
+the machine runs, so consecutive dry runs agree): the frequency domain of up to four cases
+(the first loads the database and the compiled kernels; the median of the others is the FD
+case cost), then, with the kernels warm (short storms first compile or load them, untimed),
+storms of the first case as its campaign tasks run them, a short one (200 steps) and a long one
+(about :data:`CAL_LOOP_S` s), :data:`CAL_RUNS` times: a storm of ``n`` steps costs ``a + b n``
+(``b`` the time loop per step and the growth of the set-up with the duration, ``a`` the rest of
+the set-up), plus the writing of its result; the median ``a`` and ``b`` give the estimate, the
+spread of ``b`` its range (printed).  Measured on the Floatel example (2-core machine,
+``benchmarks/bench_dry_run.py``, benchmarks/RESULTS.md): within 30 % of the storms the campaign
+then runs.  The stored size of a storm is measured by writing a calibration storm with the
 campaign's storage options and scaling its series part to the full number of samples.
 
 The number of time-domain cases is exact when the frequency domain of every case is estimated
@@ -35,8 +37,8 @@ __all__ = ["Estimate", "estimate", "format_estimate"]
 CAL_RUNS = 3
 """Timed calibration runs of the time loop."""
 
-CAL_LOOP_S = 0.6
-"""Seconds of time loop per calibration run (the steps are chosen from a first short run)."""
+CAL_LOOP_S = 1.0
+"""CPU seconds of the long calibration storm (its steps chosen from a probe storm)."""
 
 
 @dataclass
@@ -92,16 +94,15 @@ class Estimate:
 
 def _storm(_api, built, seed, solver, **kw):
     """A storm of the built case scene as a campaign task runs it (the vessel and mooring built
-    once per worker, a fresh copy of the mooring per storm), timed: (dataset, wall s, loop s,
-    setup s)."""
+    once per worker, a fresh copy of the mooring per storm), timed in CPU seconds of this
+    process (the wall time of a storm on an idle core; unlike the wall time it does not
+    depend on what else the machine runs): (dataset, CPU s)."""
     import copy
     import dataclasses
-    t = time.perf_counter()
+    c = time.process_time()
     b = dataclasses.replace(built, mooring=copy.deepcopy(built.mooring))
     ds = _api.simulate(b, seed=seed, solver=solver, **kw)
-    wall = time.perf_counter() - t
-    loop = float(ds.attrs.get("run_time_s", wall))
-    return ds, wall, loop, wall - loop
+    return ds, time.process_time() - c
 
 
 def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None,
@@ -130,9 +131,9 @@ def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None
             scene, failed = case_scene(base, c, an)
             if c.condition.kind == "transient":
                 failed = list(c.condition.lines)
-            t = time.perf_counter()
+            t = time.process_time()
             fds.append(_api.frequency_domain(_api.build(scene, failed_lines=failed)))
-            fd_times.append(time.perf_counter() - t)
+            fd_times.append(time.process_time() - t)
         fd_case = statistics.median(fd_times[1:]) if len(fd_times) > 1 else fd_times[0]
         scene, failed = case_scene(base, cases[0], an)
         dt = full_an["dt"]
@@ -142,37 +143,39 @@ def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None
         # warm-up: the compiled kernels (compiled or loaded from numba's cache), the database
         n0 = min(200, n_steps)
         for _ in range(2):
-            _, _, loop0, _ = _storm(_api, built, seeds[0], one, duration=n0 * dt, dt=dt,
-                                    transient=0.0)
-        n_cal = min(n_steps, max(n0, round(CAL_LOOP_S / max(loop0 / n0, 1e-7))))
+            _, c0 = _storm(_api, built, seeds[0], one, duration=n0 * dt, dt=dt, transient=0.0)
+        _, c_probe = _storm(_api, built, seeds[0], one, duration=min(n_steps, 10 * n0) * dt,
+                            dt=dt, transient=0.0)
+        per = max((c_probe - c0) / max(min(n_steps, 10 * n0) - n0, 1), 1e-7)
+        n_cal = min(n_steps, max(2 * n0, round(CAL_LOOP_S / per)))
+        # a storm costs a + b n CPU seconds for n steps: b the time loop per step and the
+        # growth of the set-up with the duration (wave and wind realisations, force series),
+        # a the rest of the set-up; from a short and a long storm, CAL_RUNS times
         steps, setups = [], []
         for _ in range(CAL_RUNS):
-            ds, _, loop, setup_cal = _storm(_api, built, seeds[0], one, duration=n_cal * dt,
-                                            dt=dt, transient=0.0)
-            steps.append(loop / n_cal)
-            setups.append(setup_cal)
-        # the set-up of a storm grows with its duration (wave and wind realisations, force
-        # series): scaled from a short storm and the calibration storms to the full duration
-        setup_short = _storm(_api, built, seeds[0], one, duration=n0 * dt, dt=dt,
-                             transient=0.0)[3]
-        setup_cal = statistics.median(setups)
-        per_step_setup = max(setup_cal - setup_short, 0.0) / max(n_cal - n0, 1)
-        setup = setup_cal + per_step_setup * (n_steps - n_cal)
-    step = statistics.median(steps)
+            _, c_short = _storm(_api, built, seeds[0], one, duration=n0 * dt, dt=dt,
+                                transient=0.0)
+            ds, c_long = _storm(_api, built, seeds[0], one, duration=n_cal * dt, dt=dt,
+                                transient=0.0)
+            b = max(c_long - c_short, 0.0) / max(n_cal - n0, 1)
+            steps.append(b)
+            setups.append(max(c_short - b * n0, 0.0))
+        setup = statistics.median(setups)
     with tempfile.TemporaryDirectory() as tmp:
         keep = spec.storage.mode == "full"
         times = []
         for i in range(2):  # the first write loads the netCDF machinery: the second is timed
-            t = time.perf_counter()
+            t = time.process_time()
             out = write_netcdf(storm_dataset(ds, cases[0], seeds[0], spec.storage, 0.0, keep),
                                Path(tmp) / f"storm{i}.nc", compression=spec.storage.compression)
-            times.append(time.perf_counter() - t)
+            times.append(time.process_time() - t)
         full = write_netcdf(storm_dataset(ds, cases[0], seeds[0], spec.storage, 0.0, True),
                             Path(tmp) / "full.nc", compression=spec.storage.compression)
         stats = write_netcdf(storm_dataset(ds, cases[0], seeds[0], spec.storage, 0.0, False),
                              Path(tmp) / "stats.nc", compression=spec.storage.compression)
     del out
     write_s = times[-1] * (n_steps / n_cal if keep else 1.0)
+    step = statistics.median(steps)
     storm_bytes = stats["bytes"] + (full["bytes"] - stats["bytes"]) * n_steps / n_cal
     n_td = None
     nl = int(fds[0]["mbs"].size)
@@ -242,11 +245,11 @@ def format_estimate(e: Estimate) -> str:
         f"FD cases: {e.n_cases}",
         f"TD cases after screening: {td}",
         f"storms: {e.storms(n_td)}" + ("" if e.n_td_cases is not None else " (at most)"),
-        (f"calibration ({e.calibration_s:.1f} s, kernels warm): FD case {e.fd_case_s:.2f} s; "
-         f"storm {e.storm_s:.1f} s ({e.storm_setup_s:.2f} s setup + {e.n_steps} steps x "
-         f"{e.step_s * 1e6:.0f} us + {e.write_s:.2f} s writing; "
-         f"{e.storm_range()[0]:.1f}-{e.storm_range()[1]:.1f} s over the calibration runs: "
-         "a wide range means a loaded machine)"),
+        (f"calibration ({e.calibration_s:.1f} s, kernels warm; CPU time, the wall time on "
+         f"idle cores): FD case {e.fd_case_s:.2f} s; storm {e.storm_s:.1f} s "
+         f"({e.storm_setup_s:.2f} s setup + {e.n_steps} steps x {e.step_s * 1e6:.0f} us + "
+         f"{e.write_s:.2f} s writing; {e.storm_range()[0]:.1f}-{e.storm_range()[1]:.1f} s "
+         f"over the {CAL_RUNS} calibration runs)"),
     ]
     if e.n_td_cases is None:
         lines.append(f"the exact TD count needs the FD of all {e.n_cases} cases: about "
