@@ -51,11 +51,25 @@ _VOLATILE_ATTRS = ("created", "run_time_s", "setup_time_s", "real_time_factor", 
 
 
 @functools.lru_cache(maxsize=4)
-def _base_scene(path: str, mtime: float):
+def _load_base(path: str, stamp: tuple):
     from . import _api
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return _api.load_scene(path)
+
+
+@functools.lru_cache(maxsize=4)
+def _environment_file(path: str, base_stat: tuple):
+    return _load_base(path, (base_stat,)).environment.source
+
+
+def _current_base(path: str):
+    """The base scene as its files are now: cached while the scene file and the environment
+    file it reads are unchanged (the case scenes keep the base environment's spectrum and
+    discretisation)."""
+    st = _stat(path)
+    env = _environment_file(path, st)
+    return _load_base(path, (st, _stat(env)) if env else (st,))
 
 
 def _stat(path) -> tuple:
@@ -80,9 +94,8 @@ def _inputs_key(base_path: str) -> tuple:
     """The state (path, modification time, size) of the base scene and of every file it reads
     (vessel, database, mooring, line-type library): the key of this worker's caches, so that
     a file edited while a worker lives is read again, never taken from the cache."""
-    from ..analyses.fingerprint import _mooring_library
-    scene = _base_scene(base_path, os.path.getmtime(base_path))
-    files = [base_path]
+    scene = _current_base(base_path)
+    files = [base_path] + ([scene.environment.source] if scene.environment.source else [])
     if scene.vessel is not None:
         files.append(scene.vessel)
         db = _vessel_database(os.fspath(scene.vessel), _stat(scene.vessel))
@@ -90,16 +103,22 @@ def _inputs_key(base_path: str) -> tuple:
             files.append(db)
     if isinstance(scene.mooring, Path):
         files.append(scene.mooring)
-        lib = _mooring_library(scene.mooring)
+        lib = _library_of(os.fspath(scene.mooring), _stat(scene.mooring))
         if lib is not None:
             files.append(lib)
     return tuple(_stat(f) for f in files)
 
 
 @functools.lru_cache(maxsize=8)
+def _library_of(mooring: str, mooring_stat: tuple):
+    from ..analyses.fingerprint import _mooring_library
+    return _mooring_library(Path(mooring))
+
+
+@functools.lru_cache(maxsize=8)
 def _file_sections(base_path: str, key: tuple) -> dict:
     from ..analyses.fingerprint import file_sections
-    return file_sections(_base_scene(base_path, os.path.getmtime(base_path)))
+    return file_sections(_current_base(base_path))
 
 
 def check_inputs(base_path: str, fingerprint: str) -> None:
@@ -129,14 +148,14 @@ def check_inputs(base_path: str, fingerprint: str) -> None:
 
 def _scene_for(base_path: str, case, analysis: dict):
     from .matrix import case_scene
-    base = _base_scene(base_path, os.path.getmtime(base_path))
+    base = _current_base(base_path)
     return case_scene(base, case, analysis)
 
 
 @functools.lru_cache(maxsize=32)
 def _built_base(path: str, key: tuple, failed: tuple):
     from . import _api
-    return _api.build(_base_scene(path, os.path.getmtime(path)), failed_lines=list(failed))
+    return _api.build(_current_base(path), failed_lines=list(failed))
 
 
 def _built_for(base_path: str, case, analysis: dict, failed_override=None):
@@ -171,8 +190,7 @@ def warm_worker(base_path: str, analysis: dict) -> dict:
     out = {"pid": os.getpid(), "error": ""}
     try:
         from . import _api
-        mtime = os.path.getmtime(base_path)
-        base = _base_scene(base_path, mtime)
+        base = _current_base(base_path)
         built = _built_base(base_path, _inputs_key(base_path), ())
         out["scene_s"] = time.perf_counter() - t0
         an = dict(analysis or {})
