@@ -34,7 +34,19 @@ storage:
 ```
 
 Every mistake is a :class:`~floatmoor.core.errors.SceneError` naming the file, the key, what
-was expected and what was found.  Headings are the direction of travel (from +x towards +y), as
+was expected and what was found, raised before anything runs.  Refused as in scene files:
+angles that look like radians (0.7854, 3.1416, a range to 6.2832), a sea state that cannot
+exist (Hs/Lp above 1/10 in the base scene's depth: :func:`floatmoor.io.environment.
+check_sea_state`; steeper than 1/15 warned), a time step above the Nyquist limit of a sea
+state's highest wave component.  Refused because results would overwrite or duplicate each
+other: the same direction twice (0 and 360 deg, or closer than 0.001 deg), the same sea state
+or the same condition twice (also ``[line6, line7]`` and ``[line7, line6]``); case identifiers
+are unique by construction (:func:`floatmoor.campaign.matrix.build_matrix`).  Sizes are checked
+before anything is built: at most :data:`MAX_ANGLES` values per heading list,
+:data:`MAX_CASES` cases, :data:`MAX_STORMS` storms.  The base scene is read, built and checked
+for plausibility (vessel mass, stability, lines at zero offset) when the campaign is read; time
+settings given on the command line (``--duration``) are checked with the base scene's
+transient and the line breaks (:func:`check_times`).  Headings are the direction of travel (from +x towards +y), as
 in scenes; the environment components present in the base scene are turned, the others stay
 absent.  The FD screening of every case uses the base scene's ``frequency_domain:`` section
 (e.g. ``tension_model: dynamic``, or ``line_current_drag: true`` for the static current drag on
