@@ -19,9 +19,10 @@ __all__ = ["compile_notice"]
 
 
 @contextlib.contextmanager
-def compile_notice(what: str = "floatmoor's kernels", echo=None):
+def compile_notice(what: str = "floatmoor's kernels", echo=None, report_end: bool = True):
     """Within the block, print ``compiling <what> (numba, once ...)`` at the first numba
-    compilation (``echo``: default a line on stderr), and the compile time at the end."""
+    compilation (``echo``: default a line on stderr), and the compile time at the end (unless
+    ``report_end`` is False)."""
     from numba.core import event
 
     if echo is None:
@@ -54,5 +55,5 @@ def compile_notice(what: str = "floatmoor's kernels", echo=None):
         yield notice
     finally:
         event.unregister("numba:compile", notice)
-        if notice.started:
+        if notice.started and report_end:
             echo(f"compiled in {notice.total:.0f} s")

@@ -154,10 +154,14 @@ def _run_batch(args, seeds, out, overrides, resume_out=None) -> int:
     (``resume_out``: the ``--out`` of the command that resumes it, default ``out``)."""
     from ..analyses.runner import BatchInterrupted, run_seeds
     from ..cli import EXIT_INTERRUPTED, EXIT_NUMERICAL_ERROR, EXIT_OK
+    from .compile_notice import compile_notice
     try:
-        batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
-                          echo=lambda s: print(s, flush=True), force=args.force,
-                          in_process=False, threads=args.threads)
+        # this process checks the scene (statics kernels); the workers say their own compile
+        with compile_notice("the statics kernels", echo=lambda s: print(s, flush=True),
+                            report_end=False):
+            batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
+                              echo=lambda s: print(s, flush=True), force=args.force,
+                              in_process=False, threads=args.threads)
     except BatchInterrupted as exc:
         done = [o.seed for o in exc.finished]
         print(f"floatmoor: interrupted: {len(done)} seed(s) finished, {len(exc.interrupted)} "
