@@ -11,7 +11,8 @@ Plausibility bounds, of results floatmoor itself would write:
 
 * tensions (fairlead and anchor) are magnitudes: >= 0;
 * no tension above :data:`TENSION_GUARD` x MBS (the time loop stops with a NumericalError
-  beyond it, :func:`floatmoor.solvers.time_domain.integrate`);
+  beyond it, :func:`floatmoor.solvers.time_domain.integrate`; not checked where the MBS is
+  unknown);
 * statistics ordered: minimum <= mean <= maximum;
 * offsets >= 0, the MBS > 0.
 """
@@ -39,6 +40,14 @@ _SLACK = 1e-6
 
 def _fail(path, key, expected, found, hint=None):
     raise SceneError(path, key, expected, found, hint)
+
+
+def _check_mbs(path, mbs: np.ndarray) -> None:
+    """MBS per line: > 0 N, or NaN where it is unknown (``mbs: unknown``, e.g. an imported
+    line type: the run is valid, the design checks refuse it themselves)."""
+    bad = ~np.isnan(mbs) & ~(np.isfinite(mbs) & (mbs > 0))
+    if bad.any():
+        _fail(path, "mbs", "an MBS > 0 N per line (NaN where unknown)", mbs.tolist())
 
 
 def _first_bad(a: np.ndarray, bad: np.ndarray, names=None) -> str:
@@ -87,8 +96,7 @@ def check_series_file(path, nc) -> None:
     mbs = None
     if "mbs" in nc.variables:
         mbs = np.asarray(nc["mbs"][...], float)
-        if not (np.all(np.isfinite(mbs)) and np.all(mbs > 0)):
-            _fail(path, "mbs", "finite MBS > 0 N per line", mbs.tolist())
+        _check_mbs(path, mbs)
     if "motion" not in nc.variables:
         _fail(path, "motion", "a floatmoor time-domain result (variable motion)", "none")
     for name in SERIES:
@@ -111,8 +119,7 @@ def check_statistics(path, values: dict, *, failed_lines=()) -> None:
     mbs = values.get("mbs")
     if mbs is not None:
         mbs = np.asarray(mbs, float)
-        if not (np.all(np.isfinite(mbs)) and np.all(mbs > 0)):
-            _fail(path, "mbs", "finite MBS > 0 N per line", mbs.tolist())
+        _check_mbs(path, mbs)
     for name in ("line_tension_max", "line_tension_mean", "line_tension_min",
                  "anchor_tension_max"):
         if name in values:
@@ -150,9 +157,7 @@ def check_fd_values(path, values: dict) -> None:
     the motions finite."""
     mbs = values.get("mbs")
     if mbs is not None:
-        mbs = np.asarray(mbs, float)
-        if not (np.all(np.isfinite(mbs)) and np.all(mbs > 0)):
-            _fail(path, "mbs", "finite MBS > 0 N per line", mbs.tolist())
+        _check_mbs(path, np.asarray(mbs, float))
     failed = np.asarray(values.get("line_failed", np.zeros(0)), bool)
     for name in ("tension_static", "tension_max_total"):
         if name not in values:

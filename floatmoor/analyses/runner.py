@@ -381,7 +381,8 @@ def _run_locked(scene, scene_path, seeds, out_dir, fp, fp_text, overrides, echo,
     for s in seeds:
         path = seed_file(out_dir, scene.name, s)
         for stale in path.parent.glob(path.name + ".*tmp"):  # left by a killed run
-            stale.unlink(missing_ok=True)
+            if stale.is_file():
+                stale.unlink(missing_ok=True)
         if path.exists():
             try:
                 stored = check_result_file(path)
@@ -546,7 +547,8 @@ def _abandon(todo, outcomes, out_dir, scene, record, title) -> list[int]:
     for s in left:
         p = seed_file(out_dir, scene.name, s)
         for tmp in p.parent.glob(p.name + ".*tmp"):
-            tmp.unlink(missing_ok=True)
+            if tmp.is_file():
+                tmp.unlink(missing_ok=True)
     record.write_text(title + ":\n" + "\n".join(str(s) for s in left) + "\n")
     return left
 

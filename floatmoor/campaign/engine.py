@@ -464,7 +464,8 @@ def _run_locked(spec, base, out_dir, t_start, *, scheduler, workers, client, ech
     _check_folder(spec, out_dir, force, echo)
     analysis = campaign_analysis(spec, analysis_overrides)
     for tmp in out_dir.rglob("*.tmp"):  # leftovers of interrupted writes
-        tmp.unlink(missing_ok=True)
+        if tmp.is_file():
+            tmp.unlink(missing_ok=True)
     cases = build_matrix(spec)
     by_id = {c.id: c for c in cases}
     seeds = tuple(int(s) for s in (seeds or spec.seeds))
