@@ -134,7 +134,8 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
     corrosion = dict(corrosion)
     sc = scene if not isinstance(scene, (str, bytes)) and hasattr(scene, "environment") \
         else floatmoor.load_scene(scene)
-    sct = scatter if isinstance(scatter, Scatter) else load_scatter(scatter)
+    sct = scatter if isinstance(scatter, Scatter) else load_scatter(
+        scatter, water_depth=sc.site.water_depth, gravity=sc.site.gravity)
     built = build(sc)
     if built.mooring is None or built.vessel is None:
         from ..core.errors import SceneError
@@ -142,6 +143,7 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
                          "a vessel and a mooring (the fatigue analysis runs the frequency "
                          "domain on them)")
     mooring = built.mooring
+    _check_corrosion(mooring, corrosion, design_life)
     locations = fatigue_locations(mooring)
     segments = location_segments(mooring, locations)
     curves, rbs, types = location_curves(mooring, locations, segments, design_life=design_life,
@@ -285,6 +287,40 @@ def fatigue_analysis(scene, scatter, *, method: str = DEFAULT_METHOD, design_lif
         "run_time_s": time.perf_counter() - t0,
     })
     return out
+
+
+def _check_corrosion(mooring, corrosion: dict, design_life: float) -> None:
+    """The corrosion/wear allowances (mm/year by zone): finite, >= 0, and not consuming the
+    diameter of a corroding (steel) segment over the design life (the reference breaking
+    strength would be of a line with no steel left).  SceneError naming ``corrosion``
+    (``--corrosion`` on the command line)."""
+    from ..core.errors import SceneError
+    from ..post.fatigue.tn_curves import curve_for
+    key = "corrosion (--corrosion CATENARY BOTTOM)"
+    for zone, rate in corrosion.items():
+        if not (isinstance(rate, (int, float)) and math.isfinite(rate) and rate >= 0.0):
+            raise SceneError(None, key, f"a {zone} corrosion allowance >= 0 mm/year", rate)
+    for line in mooring.lines:
+        for sg in line.segments:
+            lt = mooring.line_types.get(sg.line_type)
+            if lt is None:
+                continue
+            try:
+                corrodes = curve_for(lt).corrodes
+            except SceneError:
+                continue
+            if not corrodes:
+                continue
+            for zone, rate in corrosion.items():
+                lost = rate * 1e-3 * design_life
+                if lost >= lt.diameter:
+                    raise SceneError(None, key, f"a {zone} allowance that leaves some of the "
+                                     f"{lt.diameter * 1e3:g} mm diameter of line type "
+                                     f"{lt.name!r} over the {design_life:g}-year design life "
+                                     f"(below {lt.diameter * 1e3 / design_life:.3g} mm/year)",
+                                     rate, f"{rate:g} mm/year x {design_life:g} years = "
+                                     f"{lost * 1e3:.4g} mm; DNV-OS-E301 allowances are "
+                                     "0.2-0.8 mm/year")
 
 
 def format_fatigue(ds) -> str:

@@ -50,21 +50,31 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run the analysis and print the tables; returns the exit status."""
     import sys
+    import time
 
     from ..analyses.fatigue import fatigue_analysis, format_fatigue
     corrosion = None
     if args.corrosion is not None:
         corrosion = {"catenary": args.corrosion[0], "bottom": args.corrosion[1]}
 
+    last = [time.perf_counter()]
+
     def progress(i, n):
-        if not args.quiet and sys.stderr.isatty():
+        if args.quiet:
+            return
+        if sys.stderr.isatty():
             print(f"\r  frequency domain: sea state {i}/{n}", end="" if i < n else "\n",
                   file=sys.stderr)
+        elif i == n or time.perf_counter() - last[0] > 10.0:
+            last[0] = time.perf_counter()
+            print(f"  frequency domain: sea state {i}/{n}", file=sys.stderr, flush=True)
 
-    ds = fatigue_analysis(args.scene, args.scatter, method=args.method,
-                          design_life=args.design_life, corrosion=corrosion,
-                          td_cells=args.td_cells, td_duration=args.td_duration, seed=args.seed,
-                          progress=progress)
+    from .compile_notice import compile_notice
+    with compile_notice("the frequency- and time-domain kernels"):
+        ds = fatigue_analysis(args.scene, args.scatter, method=args.method,
+                              design_life=args.design_life, corrosion=corrosion,
+                              td_cells=args.td_cells, td_duration=args.td_duration,
+                              seed=args.seed, progress=progress)
     print(format_fatigue(ds))
     if args.out:
         from .fd import to_netcdf

@@ -55,7 +55,15 @@ def to_netcdf(ds, path) -> Path:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run the analysis and print the table; returns the exit status."""
+    """Run the analysis and print the table; returns the exit status.  A first run after an
+    installation says that numba compiles the kernels (``--tension-model dynamic``: the FE
+    line kernels, about 30-40 s once)."""
+    from .compile_notice import compile_notice
+    with compile_notice("the statics and frequency-domain kernels"):
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     from ..analyses.fd_dataset import format_table
     from ..analyses.frequency_domain import frequency_domain
 

@@ -187,6 +187,8 @@ def read_results(folder, key: str = "RESULTS_DIR"):
         if ds is None:                     # e.g. a floatmoor fd --out file put beside the seeds
             ignored.append(f"{f.name} (variables {', '.join(names[:5])}...)")
             continue
+        from ..analyses.result_check import check_series_file
+        check_series_file(f, ds)           # NaN, sign-flipped tensions: refused naming the file
         ds.attrs["source_file"] = str(f)
         datasets.append(ds)
     if ignored and datasets:

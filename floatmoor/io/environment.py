@@ -60,7 +60,7 @@ from ..metocean.config import (
 )
 
 __all__ = ["load_environment", "parse_environment", "parse_waves", "parse_wave_systems",
-           "parse_wind", "parse_current",
+           "parse_wind", "parse_current", "check_sea_state",
            "describe_environment", "environment_models", "peak_wavelength",
            "BREAKING_STEEPNESS", "STEEP_SEA_STEEPNESS", "MAX_PLAUSIBLE_U10",
            "MAX_PLAUSIBLE_CURRENT"]
@@ -220,24 +220,8 @@ def _system_fields(node: Node, *, water_depth: float | None, gravity: float,
     if gamma is not None and gamma > 7.0:
         _warn(node, "gamma", f"gamma = {gamma:g} is outside the range 1-7 of measured seas")
     heading = node.angle_deg(heading_key, 0.0)
-
-    # steepness: refuse breaking seas, warn for unusually steep ones
-    length = peak_wavelength(tp, water_depth, gravity)
-    steepness = hs / length
-    where = "" if water_depth is None else f" in {water_depth:g} m depth"
-    if steepness > BREAKING_STEEPNESS:
-        raise node.error("hs", f"a sea state that does not break: Hs/Lp <= 1/10, i.e. Hs <= "
-                         f"{BREAKING_STEEPNESS * length:.3g} m for Tp = {tp:g} s{where}", hs,
-                         f"Hs/Lp = 1/{1.0 / steepness:.3g} with Lp = {length:.4g} m; "
-                         "are Hs and Tp swapped, or Tp given in Hz?")
-    if steepness > STEEP_SEA_STEEPNESS:
-        _warn(node, "hs", f"the sea state Hs = {hs:g} m, Tp = {tp:g} s is very steep: Hs/Lp = "
-              f"1/{1.0 / steepness:.3g} (Lp = {length:.4g} m{where}); severe seas have "
-              "1/16 to 1/20 (API RP 2MET)")
-    if water_depth is not None and 1.86 * hs > 0.78 * water_depth:
-        _warn(node, "hs", f"the most probable maximum wave 1.86 Hs = {1.86 * hs:.3g} m exceeds "
-              f"the depth-limited breaking height 0.78 d = {0.78 * water_depth:.3g} m; linear "
-              "wave theory is not valid there")
+    check_sea_state(node.file, node.key("hs"), hs, tp, water_depth=water_depth,
+                    gravity=gravity)
 
     spreading = node.str("spreading", "none", choices=SPREADING_FUNCTIONS)
     if spreading == "none":
@@ -285,6 +269,35 @@ def _discretisation(node: Node, tps: list, n_directions: int) -> dict:
             raise disc.error("omega_max", f"a number > omega_min = {omega_min:g} (in rad/s)",
                              omega_max)
     return {"omega_min": omega_min, "omega_max": omega_max, "n_frequencies": n_frequencies}
+
+
+def check_sea_state(file, key: str, hs: float, tp: float, *, water_depth: float | None = None,
+                    gravity: float = GRAVITY, stacklevel: int = 3) -> None:
+    """Refuse a sea state that cannot exist, warn for an unusually steep one (the rule of scene
+    files, applied also to the sea states of campaign contours and lists and of fatigue scatter
+    diagrams): a significant steepness Hs/Lp above :data:`BREAKING_STEEPNESS` (1/10; Lp the
+    wave length at Tp in ``water_depth``, deep water when None) is a SceneError naming ``file``
+    and ``key`` (the Hs of the sea state); above :data:`STEEP_SEA_STEEPNESS` (1/15), and a most
+    probable maximum wave 1.86 Hs above the depth-limited breaking height 0.78 d, a
+    FloatmoorWarning."""
+    length = peak_wavelength(tp, water_depth, gravity)
+    steepness = hs / length
+    where = "" if water_depth is None else f" in {water_depth:g} m depth"
+    if steepness > BREAKING_STEEPNESS:
+        raise SceneError(file, key, f"a sea state that does not break: Hs/Lp <= 1/10, i.e. Hs "
+                         f"<= {BREAKING_STEEPNESS * length:.3g} m for Tp = {tp:g} s{where}", hs,
+                         f"Hs/Lp = 1/{1.0 / steepness:.3g} with Lp = {length:.4g} m; "
+                         "are Hs and Tp swapped, or Tp given in Hz?")
+    if steepness > STEEP_SEA_STEEPNESS:
+        warnings.warn(f"{file}: {key}: the sea state Hs = {hs:g} m, Tp = {tp:g} s is very "
+                      f"steep: Hs/Lp = 1/{1.0 / steepness:.3g} (Lp = {length:.4g} m{where}); "
+                      "severe seas have 1/16 to 1/20 (API RP 2MET)", FloatmoorWarning,
+                      stacklevel=stacklevel)
+    if water_depth is not None and 1.86 * hs > 0.78 * water_depth:
+        warnings.warn(f"{file}: {key}: the most probable maximum wave 1.86 Hs = "
+                      f"{1.86 * hs:.3g} m exceeds the depth-limited breaking height 0.78 d = "
+                      f"{0.78 * water_depth:.3g} m; linear wave theory is not valid there",
+                      FloatmoorWarning, stacklevel=stacklevel)
 
 
 def parse_wind(node: Node) -> WindSpec:
