@@ -283,10 +283,12 @@ def run(args: argparse.Namespace) -> int:
 
     def progress(text):
         print(text, file=sys.stderr, flush=True)
+    from .compile_notice import compile_notice
     try:
-        res = run_decoupled(system, t, poses, options=options, lines=names, discard=discard,
-                            substeps=args.substeps, reference_tension=ref, progress=progress,
-                            **inputs)
+        with compile_notice("the finite-element line kernels"):
+            res = run_decoupled(system, t, poses, options=options, lines=names,
+                                discard=discard, substeps=args.substeps,
+                                reference_tension=ref, progress=progress, **inputs)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     print(f"FE lines: {options.integrator}, {res.attrs['substeps']} step(s) per sample, "
