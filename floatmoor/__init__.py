@@ -46,6 +46,8 @@ _LAZY = {
     "frequency_domain": "floatmoor.analyses.frequency_domain:frequency_domain",
     "frequency_domain_result": "floatmoor.analyses.frequency_domain:frequency_domain_result",
     "format_fd_table": "floatmoor.analyses.fd_dataset:format_table",
+    "fatigue_analysis": "floatmoor.analyses.fatigue:fatigue_analysis",
+    "convergence_study": "floatmoor.analyses.convergence:convergence_study",
     "FDOptions": "floatmoor.solvers.frequency_domain:FDOptions",
 }
 

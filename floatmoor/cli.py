@@ -221,6 +221,9 @@ def _environment_run(args: argparse.Namespace) -> int:
     from .io.analysis import check_time_steps
     check_time_steps(scene.file, duration, dt, key="--dt" if args.dt is not None else
                      "--duration" if args.duration is not None else "analysis.dt")
+    from .io.checks import check_dt_resolves_waves
+    check_dt_resolves_waves(scene.file, "--dt" if args.dt is not None else "analysis.dt", dt,
+                            scene.environment.waves)
     from .metocean.summary import environment_summary, format_summary
 
     summary = environment_summary(scene.environment, water_depth=scene.site.water_depth,

@@ -178,10 +178,17 @@ def test_daf_of_floatmoor_lines_and_override(flagship, tmp_path, capsys):
 
 @pytest.mark.parametrize("case, words", [
     ("other_scene", "the DAF of scene"), ("unknown_line", "line99"), ("huge", "(0, 10]"),
-    ("no_column", "columns line, daf")])
+    ("no_column", "columns line, daf"), ("selfcheck_failed", "self-check passed")])
 def test_bad_daf_files_exit_2(flagship, tmp_path, capsys, case, words):
     f = tmp_path / "daf.csv"
-    if case == "other_scene":
+    if case == "selfcheck_failed":
+        # a DAF of an FE line whose self-check failed (a wrong answer) is refused
+        f = tmp_path / "daf.nc"
+        xr.Dataset({"daf": ("line", [1.1]),
+                    "selfcheck": ("line", ["tension along the line 12500 kN above the bound"])},
+                   coords={"line": ["line7"]},
+                   attrs={"scene_name": "floatel-like-100yr-head-seas"}).to_netcdf(f)
+    elif case == "other_scene":
         f = tmp_path / "daf.nc"
         xr.Dataset({"daf": ("line", [1.1])}, coords={"line": ["line7"]},
                    attrs={"title": "floatmoor decoupled FE line analysis of another-scene"}

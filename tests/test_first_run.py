@@ -141,8 +141,9 @@ print(json.dumps(compiled))
 def test_seed_batch_compiles_the_time_loop_once(tmp_path):
     """Two seeds on two worker processes from an empty cache: one worker compiles the time loop
     and the other loads it from numba's cache once it is there (run_seeds' compile-once
-    start-up), instead of both compiling the same kernels at the same time.  Compile events
-    are recorded per process (the workers are forked with the listener)."""
+    start-up), instead of both compiling the same kernels at the same time; the statics
+    kernels the parent compiles when it checks the scene are not compiled again.  Compile
+    events are recorded per process (the workers are forked with the listener)."""
     log = tmp_path / "events"
     log.mkdir()
     out = _run(f"""
@@ -166,7 +167,12 @@ print(json.dumps([o.status for o in res.outcomes]))
     loops = [pid for pid, names in per_process.items()
              if "floatmoor.solvers.td_kernel.td_steps" in names]
     assert len(loops) == 1, per_process
-    others = {pid: names for pid, names in per_process.items() if pid != loops[0]}
-    assert not [n for names in others.values() for n in names
-                if n.startswith("floatmoor.solvers.") or n.startswith("floatmoor.mooring.")], \
-        others
+    # no floatmoor kernel compiled in two processes: the parent compiles the statics kernels
+    # when it checks the scene before any seed starts (they are then in the cache), one worker
+    # the time loop, the other loads everything
+    seen: dict[str, str] = {}
+    for pid, names in per_process.items():
+        for n in set(names):
+            if n.startswith("floatmoor.solvers.") or n.startswith("floatmoor.mooring."):
+                assert n not in seen, (n, seen.get(n), pid, per_process)
+                seen[n] = pid

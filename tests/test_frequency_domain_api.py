@@ -43,10 +43,12 @@ FIGURE_5_9 = [
 ]
 
 
-def _scene(tmp_path, vessel_dir, depth, environment, name="fd-test"):
+def _scene(tmp_path, vessel_dir, depth, environment, name="fd-test", forces=None):
     sc = {"name": name, "site": {"water_depth": depth, "water_density": 1025.0},
           "vessel": str(vessel_dir / "vessel.yaml"), "mooring": str(vessel_dir / "mooring.yaml"),
           "environment": environment}
+    if forces is not None:
+        sc["forces"] = forces
     p = tmp_path / "scene.yaml"
     p.write_text(yaml.safe_dump(sc, sort_keys=False))
     return p
@@ -64,8 +66,20 @@ FLOATEL_ENV = {
 
 @pytest.fixture(scope="module")
 def oc3(tmp_path_factory):
-    p = _scene(tmp_path_factory.mktemp("oc3"), OC3, 320.0, OC3_ENV, "oc3")
+    p = _scene(tmp_path_factory.mktemp("oc3"), OC3, 320.0, OC3_ENV, "oc3",
+               forces={"exclude": ["current"]})
     return p, frequency_domain(p)
+
+
+def test_current_without_coefficients_is_refused_as_in_the_time_domain(tmp_path):
+    """The OC3 vessel file has no current coefficients: a scene with current is refused by the
+    frequency domain as by the time domain (the same current model), naming the key; excluded
+    in the forces section, both run without it."""
+    p = _scene(tmp_path, OC3, 320.0, OC3_ENV, "oc3-current")
+    with pytest.raises(SceneError, match="current_coefficients"):
+        frequency_domain(p)
+    with pytest.raises(SceneError, match="current_coefficients"):
+        floatmoor.simulate(p, seed=1, duration=20.0, dt=0.1)
 
 
 def test_every_variable_has_units_and_long_name(oc3):
@@ -83,8 +97,9 @@ def test_oc3_head_seas_symmetry_and_combination(oc3):
     # head seas on an axisymmetric spar: no sway, roll, yaw response
     assert wf[1] < 1e-6 * wf[0] and wf[3] < 1e-6 * wf[4] and wf[5] < 1e-6
     # no drift data in the OC3 database and no wind: no LF excitation
-    assert "no mean_drift_force" in ds.attrs["notes"]
-    assert "no current_coefficients" in ds.attrs["notes"]  # the scene's current is not applied
+    assert "no wave drift force" in ds.attrs["notes"]
+    assert ds.attrs["drift_method"] == "none"
+    assert "current" not in ds.attrs["models"]  # excluded (forces: exclude), as in the TD
     assert np.all(ds["lf_std"].values < 1e-9)
     # eq. 2.49 by hand on the dataset's own columns
     exc = np.maximum(ds.lf_max + ds.wf_sig, ds.wf_max + ds.lf_sig)
@@ -309,30 +324,32 @@ def test_oc4_qtf_and_newman_agree_at_zero_difference_frequency():
     assert abs(b[1] / a[1] - 1.0) > 0.05
 
 
-def test_relative_flow_damping_against_finite_differences():
-    """B = -dF/dv of F = T(yaw) C(theta - yaw) |U e - v|^2 (coefficients on the body heading)
-    against central differences of that force in the surge/sway velocity, for an oblique
-    flow and a non-zero yaw."""
-    from floatmoor.analyses.fd_loads import relative_flow_damping, rot6
-    from floatmoor.hydro.vessel import CoefficientTable
+def test_relative_flow_damping_against_the_closed_form():
+    """The wind and current models' damping ``-dF/dv`` (central differences of their force,
+    used by both domains) against the closed form of F = T(yaw) C(theta - yaw) |U e - v|^2 at
+    v = 0: B[:, j] = T (2 U C e_j - U C' n_j), e = (cos, sin) and n = (sin, -cos) of the flow
+    heading, C' the slope of the (piecewise linear) table on the segment holding theta - yaw,
+    for an oblique flow and a non-zero yaw."""
+    from floatmoor.analyses.fd_loads import rot6
+    from floatmoor.forces.environment import flow_damping
     h = np.radians(np.arange(0.0, 360.0, 30.0))
     coef = np.zeros((h.size, 6))
     coef[:, 0] = 1500.0 * np.cos(h) * np.abs(np.cos(h))
     coef[:, 1] = 900.0 * np.sin(h) * np.abs(np.sin(h))
+    coef[:, 3] = -2.0e4 * np.sin(h)
     coef[:, 5] = 4.0e4 * np.sin(2 * h)
-    tab = CoefficientTable(heading=h, coefficients=coef, reference_height=10.0)
     U, heading, yaw = 30.0, math.radians(40.0), math.radians(3.0)
-
-    def force(v):
-        rel = U * np.array([math.cos(heading), math.sin(heading)]) - v
-        th = math.atan2(rel[1], rel[0])
-        return rot6(yaw) @ tab.at(th - yaw) * float(rel @ rel)
-    B = relative_flow_damping(tab, U, heading, yaw)
-    for j in range(2):
-        dv = np.zeros(2)
-        dv[j] = 1e-4
-        fd = -(force(dv) - force(-dv)) / 2e-4
-        np.testing.assert_allclose(B[:, j], fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max())
+    rel = heading - yaw                          # 37 deg: inside the 30-60 deg segment
+    f = (rel - h[1]) / (h[2] - h[1])
+    C = rot6(yaw) @ ((1 - f) * coef[1] + f * coef[2])
+    dC = rot6(yaw) @ ((coef[2] - coef[1]) / (h[2] - h[1]))
+    e = np.array([math.cos(heading), math.sin(heading)])
+    n = np.array([math.sin(heading), -math.cos(heading)])
+    expected = 2.0 * U * np.outer(C, e) - U * np.outer(dC, n)
+    B = flow_damping(U, heading, h, coef, yaw=yaw)
+    np.testing.assert_allclose(B[:, :2], expected, rtol=1e-6, atol=1e-9 * np.abs(expected).max())
+    assert np.all(B[:, 2:] == 0.0)
+    assert np.all(flow_damping(0.0, heading, h, coef, yaw=yaw) == 0.0)
 
 
 def test_failed_line_is_nan_and_neighbour_takes_more(tmp_path, oc3):
@@ -355,7 +372,7 @@ def test_scene_section_sets_options_and_cli_main(tmp_path, capsys):
     from floatmoor.cli import main
     sc = {"name": "oc3-fd-section", "site": {"water_depth": 320.0},
           "vessel": str(OC3 / "vessel.yaml"), "mooring": str(OC3 / "mooring.yaml"),
-          "environment": OC3_ENV,
+          "environment": OC3_ENV, "forces": {"exclude": ["current"]},
           "frequency_domain": {"duration": 3600.0, "lf_cutoff_period": 25.0}}
     p = tmp_path / "scene.yaml"
     p.write_text(yaml.safe_dump(sc, sort_keys=False))

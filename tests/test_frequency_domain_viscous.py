@@ -1,6 +1,7 @@
 """Viscous drift in the frequency domain: the correction formula (Wang (2016) eq. 6.6)
 feeds the FD mean and slow drift, its extra damping the FD linear damping; slender elements
-are refused loudly (a FloatmoorWarning: the FD has no Morison strips).
+carry their current load in the FD as in the TD (the same model), and the FD says loudly that
+their viscous wave drift is not in it (a FloatmoorWarning).
 
 Expected values: eq. 6.6 written out by hand below (Stansberg et al. 2015 as quoted in Wang (2016)
 section 6.2) integrated over the scene's wave spectrum with the FD mean drift formula
@@ -158,15 +159,35 @@ def test_fd_extra_damping_raises_surge_sway_linear_damping(tmp_path, runs):
                                                            rel=1e-12)
 
 
-def test_fd_warns_that_slender_elements_are_not_modelled(tmp_path, runs):
+def test_fd_slender_elements_carry_the_current_as_in_the_time_domain(tmp_path, runs):
+    """With slender elements the FD uses the models of the TD: the hull current coefficients
+    zeroed in the DOFs the strips carry (double counting, Wang (2016) section 6.1.2) and the
+    strips' current load at rest, whose mean forces equal the TD models' static-start forces
+    (``mean_force``) of the same scene; a warning says the viscous wave drift is not in it."""
+    from floatmoor.io.build import build
+    from floatmoor.solvers.time_domain import assemble
     _, pot, _ = runs
-    with pytest.warns(FloatmoorWarning, match=r"slender_elements\} is a time-domain model"):
-        ds = frequency_domain(_scene(tmp_path, "se", {"model": "slender_elements"}))
-    assert "not in the frequency domain" in ds.attrs["viscous_drift_model"]
+    p = _scene(tmp_path, "se", {"model": "slender_elements"})
+    with pytest.warns(FloatmoorWarning, match="not their viscous wave drift"):
+        ds = frequency_domain(p)
+    assert "no viscous wave drift" in ds.attrs["viscous_drift_model"]
     assert "slender_elements" in ds.attrs["notes"]
-    # no viscous drift and the hull current coefficients kept: the same as without the key
-    assert np.allclose(ds["mean"].values, pot["mean"].values, rtol=1e-9, atol=1e-12)
-    assert ds.mean_force_current.values[0] == pytest.approx(pot.mean_force_current.values[0])
+    assert abs(ds["mean"].values[5]) < 1e-9  # head seas: the TD's start heading
+    built = build(p)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FloatmoorWarning)
+        a = assemble(built, seed=1, dt=0.2, duration=10.0, options=built.scene.forces)
+    for name in ("current", "slender_elements"):
+        td = a.models[name].mean_force()
+        fd = ds.mean_force_model.sel(model=name).values
+        np.testing.assert_allclose(fd, td, rtol=1e-9, atol=1e-6 * np.abs(td).max())
+    # the strips carry the surge current force (the hull's is zeroed there), of the size of the
+    # hull coefficients' C V^2 (3.129e5 N s^2/m^2 x 0.94^2 = 276 kN, vessel.yaml)
+    assert ds.mean_force_current.values[0] == 0.0
+    strips = ds.mean_force_model.sel(model="slender_elements").values[0]
+    assert 0.5 * pot.mean_force_current.values[0] < strips < 2.0 * pot.mean_force_current.values[0]
+    # and their LF damping joins the current's (LF surge damping above the potential case's)
+    assert ds.lf_damping.values[0, 0] > pot.lf_damping.values[0, 0]
 
 
 def test_fd_qtf_drift_with_correction_formula_is_refused(tmp_path):

@@ -74,3 +74,18 @@ def test_seabed_friction_notebook_against_the_closed_form():
     for r in rows:
         # Y, T_FE, /, T_analytic, err %, Fy_FE, /, Fy_analytic, err %, Fy no friction
         assert abs(float(r[4])) < 0.5 and abs(float(r[8])) < 0.5, r
+
+
+@pytest.mark.slow  # reason: MoorDyn on a 132-segment line for 2400 s (about 2-3 minutes)
+def test_fe_slack_line_moordyn_notebook(monkeypatch):
+    """The slack-line notebook, shortened to 2400 s (``FE_SLACK_DURATION``): floatmoor's
+    fairlead and anchor mean, std and max within 5 % of MoorDyn's (the issue's tolerance; over
+    the notebook's 5000 s and the benchmark's 3 hours they agree within 1 %)."""
+    pytest.importorskip("moordyn")
+    monkeypatch.setenv("FE_SLACK_DURATION", "2400")
+    text = _text(run_notebook(NB / "fe_slack_line_moordyn.ipynb", timeout=1800))
+    for what in ("fairlead", "anchor"):
+        md = _row(text, f"{what} MoorDyn")
+        fm = _row(text, f"{what} floatmoor")
+        for a, b in zip(fm[:3], md[:3]):
+            assert abs(a / b - 1.0) < 0.05, (what, fm, md)

@@ -78,15 +78,14 @@ def test_bad_seed_and_dt_are_scene_errors(scene_file):
 
 
 def test_runner_parallel_resumable_and_failure_tolerant(scene_file, tmp_path, capsys):
-    """Three seeds on two workers; seed 2 cannot be written (its temp path is a folder): it is
-    recorded as failed with its error and the others finish; a second run skips the finished
-    seeds and retries seed 2 only."""
+    """Three seeds on two workers; seed 2 cannot be written (its file's path is a folder: the
+    finished temporary file cannot be renamed onto it): it is recorded as failed with its error
+    and the others finish; a second run skips the finished seeds and retries seed 2 only."""
     from floatmoor.analyses.runner import run_seeds, seed_file
 
     out = tmp_path / "out"
     out.mkdir()
     blocker = seed_file(out, "oc3-waves", 2)
-    blocker = blocker.with_name(blocker.name + ".tmp")
     blocker.mkdir()
     lines = []
     batch = run_seeds(scene_file, [1, 2, 3], out, workers=2, echo=lines.append, progress=False)
@@ -122,7 +121,7 @@ def test_run_command_table_and_exit_status(scene_file, tmp_path, capsys):
 
 def test_convergence_study_errors_shrink(scene_file):
     """Halving dt: the error of max offset / max tension against the finest run falls."""
-    from floatmoor.commands.convergence import convergence_study, format_table
+    from floatmoor.analyses.convergence import convergence_study, format_table
 
     rows = convergence_study(scene_file, duration=150.0, dt0=0.4, levels=3)
     assert [r["dt"] for r in rows] == [0.4, 0.2, 0.1]
@@ -174,7 +173,7 @@ def test_run_command_failed_seed_exit_status(scene_file, tmp_path, capsys):
     out = tmp_path / "o"
     out.mkdir()
     block = seed_file(out, "oc3-waves", 2)
-    block.with_name(block.name + ".tmp").mkdir()
+    block.mkdir()   # the finished seed cannot be renamed onto its path: seed 2 fails
     p = argparse.ArgumentParser()
     run_cmd.add_arguments(p)
     args = p.parse_args([str(scene_file), "--seeds", "1-2", "--out", str(out), "--workers", "1"])

@@ -59,6 +59,9 @@ VARIABLES: tuple[Variable, ...] = (
     Variable("mean_force_current", D, MIXED_FORCE, "mean current force C_cu V^2"),
     Variable("mean_force_drift", D, MIXED_FORCE,
              "mean wave drift force 2 int C_wa S dw (eq. 2.37)"),
+    Variable("mean_force_model", ("model", "dof"), MIXED_FORCE,
+             "mean force of each force model at rest at the mean heading (restoring "
+             "constants: in the statics)"),
     # motion statistics
     Variable("wf_std", D, MIXED_UNITS, "WF standard deviation (eq. 2.41)"),
     Variable("wf_tz", D, "s", "WF mean zero up-crossing period 2 pi sqrt(m0/m2)"),
@@ -76,11 +79,21 @@ VARIABLES: tuple[Variable, ...] = (
              "minimum: mean - max(LFmax + WFsig, WFmax + LFsig) (eq. 2.49 mirrored)"),
     Variable("governing_branch", D, "1", "eq. 2.49 branch: 1 LFmax + WFsig, 2 WFmax + LFsig"),
     # spectra and transfer functions
-    Variable("wave_spectrum", W, "m^2 s/rad", "wave elevation spectrum S_eta",
+    Variable("wave_spectrum", W, "m^2 s/rad", "wave elevation spectrum S_eta (all directions)",
              lambda r: r.model.wave_spectrum),
     Variable("rao", ("omega", "dof", "complex"), "m/m (translations), rad/m (rotations)",
-             "first-order motion RAO, exp(+i omega t) (eq. 2.40)",
-             lambda r: np.stack([r.solution.rao.real, r.solution.rao.imag], axis=-1)),
+             "first-order motion RAO, exp(+i omega t) (eq. 2.40); a sea of one direction",
+             lambda r: None if r.solution.rao is None else
+             np.stack([r.solution.rao.real, r.solution.rao.imag], axis=-1)),
+    Variable("rao_direction", ("wave_direction", "omega", "dof", "complex"),
+             "m/m (translations), rad/m (rotations)",
+             "first-order motion RAO of each direction of a sea of several directions "
+             "(responses add over the directions: sum_d |RAO_d|^2 S_d)",
+             lambda r: None if r.solution.rao is not None else
+             np.stack([r.solution.raos.real, r.solution.raos.imag], axis=-1)),
+    Variable("wave_spectrum_direction", ("wave_direction", "omega"), "m^2 s/rad",
+             "wave elevation spectrum of each direction (sea of several directions)",
+             lambda r: r.model.direction_spectra),
     Variable("wf_spectrum", ("omega", "dof"), SPECTRUM_UNITS,
              "WF response spectrum |H|^2 S (eq. 2.34)", lambda r: r.solution.wf_spectrum),
     Variable("lf_spectrum", ("mu", "dof"), SPECTRUM_UNITS, "LF response spectrum (eq. 2.44)",
@@ -167,7 +180,8 @@ VARIABLES: tuple[Variable, ...] = (
 
 def _viscous_attr(r: FDResult) -> str:
     if r.viscous_drift_model == "slender_elements":
-        return "slender_elements (not in the frequency domain: none)"
+        return ("slender_elements (frequency domain: their current load and its damping; no "
+                "viscous wave drift)")
     return r.viscous_drift_model
 
 
@@ -187,6 +201,7 @@ ATTRIBUTES: tuple[tuple[str, Callable[[FDResult], object]], ...] = (
      else r.lf_mooring_frequency),
     ("line_damping_iterations", lambda r: r.line_damping_iterations or 0),
     ("drift_method", lambda r: r.drift_method if r.has_waves else "none (no waves)"),
+    ("models", lambda r: ", ".join(r.models)),
     ("viscous_drift_model", _viscous_attr),
     ("lf_added_mass_source", lambda r: r.lf_added_mass_source),
     ("lf_cutoff_frequency", lambda r: float(r.model.mu[-1])),
@@ -220,7 +235,13 @@ def to_dataset(r: FDResult) -> xr.Dataset:
               "mu": ("mu", r.model.mu, {"units": "rad/s",
                                         "long_name": "low (difference) frequency"}),
               "line": list(r.line_names), "complex": ["re", "im"],
-              "lf_mode": np.arange(np.asarray(r.lf_natural_period).size)}
+              "lf_mode": np.arange(np.asarray(r.lf_natural_period).size),
+              "model": ("model", list(r.models), {"units": "", "long_name": "force model "
+                                                  "(the order of the time domain's terms)"})}
+    if r.model.direction_spectra is not None:
+        coords["wave_direction"] = ("wave_direction", np.asarray(r.model.directions, float),
+                                    {"units": "rad", "long_name": "direction of travel of the "
+                                     "waves (from +x towards +y)"})
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({name: get(r) for name, get in ATTRIBUTES})
     return ds

@@ -35,7 +35,7 @@ from ..mooring.fe.current_statics import MAX_STEP
 from ..mooring.fe.frequency_damping import fairlead_impedance
 from ..mooring.fe.from_system import spec_from_linedef
 from ..mooring.fe.line import FELine
-from ..solvers.frequency_domain import HORIZONTAL_DOFS, solve_frequency_domain
+from ..solvers.frequency_domain import HORIZONTAL_DOFS, solve_frequency_domain, wf_directions
 from .fd_line_dynamics import N_LINE_FREQUENCIES, coarse_grid
 
 __all__ = ["LineDampingResult", "MooringLineDamping",
@@ -132,7 +132,8 @@ class MooringLineDamping:
         self._drag = [None] * len(self.lines)
 
     def __call__(self, sol, model, omega: float, iterations: int = 0) -> LineDampingResult:
-        w, S, mu = model.omega, model.wave_spectrum, model.mu
+        w, mu = model.omega, model.mu
+        directions = wf_directions(model, sol)
         grid = np.unique(np.concatenate([[0.0], np.geomspace(mu[-1] / 100.0, mu[-1], N_MU),
                                          [omega]]))
         k_om = int(np.searchsorted(grid, omega))
@@ -147,8 +148,11 @@ class MooringLineDamping:
             if item is None:
                 continue
             line, J = item
-            h = sol.rao @ J.T                                # (n_w, 3) per unit amplitude
-            Sx_wf = h[:, :, None] * h[:, None, :].conj() * S[:, None, None]
+            Sx_wf = None
+            for rao, S in directions:                        # the directions' motions add
+                h = rao @ J.T                                # (n_w, 3) per unit amplitude
+                part = h[:, :, None] * h[:, None, :].conj() * S[:, None, None]
+                Sx_wf = part if Sx_wf is None else Sx_wf + part
             Sx_lf = np.einsum("ai,nij,bj->nab", J, sol.lf_cross_spectrum, J)
             bands = [coarse_grid(w, Sx_wf, N_LINE_FREQUENCIES),
                      coarse_grid(mu, Sx_lf, N_LINE_FREQUENCIES)]

@@ -31,6 +31,7 @@ from ..mooring.fe.body import scene_line_inputs
 from ..mooring.fe.frequency import frequency_response
 from ..mooring.fe.from_system import spec_from_linedef
 from ..mooring.fe.line import FELine
+from ..solvers.frequency_domain import wf_directions
 from .fd_maxima import tension_columns
 
 __all__ = ["FD_LINE_SEABED", "dynamic_line_columns", "dynamic_wf_tensions"]
@@ -77,15 +78,18 @@ def coarse_grid(w, Sx, n: int):
 
 
 def dynamic_wf_tensions(built, mean, rao, omega, wave_spectrum, *,
-                        seabed: str = FD_LINE_SEABED) -> dict:
+                        seabed: str = FD_LINE_SEABED, directions=None) -> dict:
     """WF fairlead tension std (N), Tz (s) and spectrum (n_w, n_lines) of every line; NaN for
-    failed lines."""
+    failed lines.  ``directions``: the (RAO, spectrum) pairs of a sea of several directions
+    (:func:`floatmoor.solvers.frequency_domain.wf_directions`) instead of ``rao`` and
+    ``wave_spectrum``."""
+    if directions is None:
+        directions = [(rao, wave_spectrum)]
     system = built.mooring
     lm = getattr(system, "line_models", None)
     spec_kw = lm.options.spec_kw(system.water_depth) if lm is not None else {}
     inputs = scene_line_inputs(built.scene, system)
     w = np.asarray(omega, float)
-    S = np.asarray(wave_spectrum, float)
     R = np.zeros((3, 3))
     rotation_matrix_into(mean[3], mean[4], mean[5], R)
     n = len(system.names)
@@ -103,8 +107,11 @@ def dynamic_wf_tensions(built, mean, rao, omega, wave_spectrum, *,
         line = FELine(spec)
         line.solve_static()
         arm = R @ np.asarray(ld.fairlead, float)
-        h = rao[:, :3] + np.cross(rao[:, 3:], arm)
-        Sx = h[:, :, None] * h[:, None, :].conj() * S[:, None, None]
+        Sx = None
+        for rao_d, S_d in directions:  # the fairlead motion of every direction adds
+            h = rao_d[:, :3] + np.cross(rao_d[:, 3:], arm)
+            part = h[:, :, None] * h[:, None, :].conj() * np.asarray(S_d, float)[:, None, None]
+            Sx = part if Sx is None else Sx + part
         wc, Sc = coarse_grid(w, Sx, N_LINE_FREQUENCIES)
         ds = frequency_response(line, wc, Sc, seabed=seabed, n_modes=0)
         # the linearised line's tension transfer, interpolated onto the FD grid
@@ -126,7 +133,8 @@ def dynamic_line_columns(built, mean, sol, model, lines: dict, duration: float) 
     with the dynamic WF tension: returns the FDResult fields to update (the WF std, Tz and
     maxima, eq. 2.49 total, safety factor) and the quasi-static WF std, Tz and the dynamic
     amplification beside them."""
-    dyn = dynamic_wf_tensions(built, mean, sol.rao, model.omega, model.wave_spectrum)
+    dyn = dynamic_wf_tensions(built, mean, None, model.omega, None,
+                              directions=wf_directions(model, sol))
     failed = np.asarray(lines["line_failed"], bool)
     qs_std = np.asarray(lines["tension_std_wf"], float)
     cols = tension_columns(lines["tension_static"], lines["tension_std_lf"],

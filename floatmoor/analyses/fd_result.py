@@ -32,7 +32,9 @@ class FDResult:
             ``equivalent_damping`` and the covariances.
 
     Mean position (eq. 2.39)
-        mean (6,); mean_force_wind, mean_force_current, mean_force_drift (6,) N, N m.
+        mean (6,); mean_force_wind, mean_force_current, mean_force_drift (6,) N, N m;
+        mean_force_model (n_models, 6) the mean force of every force model of ``models`` (the
+        restoring models' constants are not in it: they are part of the statics).
         With ``line_current_drag`` (None otherwise): mean_force_line_current (6,), the current
         drag's change of the mooring force at the mean position, and
         tension_static_line_current (n_lines,), its change of the static fairlead tensions
@@ -56,8 +58,9 @@ class FDResult:
         tension_max_total_catenary, safety_factor (figure 5.9 columns).
 
     Provenance
-        scene (file or name), scene_name, options, has_waves, drift_method (the resolved
-        ``newman`` or ``qtf``), viscous_drift_model, lf_added_mass_source, wave_heading (rad),
+        scene (file or name), scene_name, options, models (the force models, in the order of
+        the time domain's), has_waves, drift_method (the resolved ``newman``, ``qtf`` or
+        ``none``), viscous_drift_model, lf_added_mass_source, wave_heading (rad),
         wind_speed_at_coefficient_height, wind_coefficient_height (NaN without wind force),
         current_speed_surface, wave_spectrum_fraction_covered, linearisation_iterations,
         statics_iterations, notes (the warnings and remarks of the run), run_time_s.
@@ -74,6 +77,7 @@ class FDResult:
     mean_force_wind: np.ndarray
     mean_force_current: np.ndarray
     mean_force_drift: np.ndarray
+    mean_force_model: np.ndarray
     statics_iterations: int
     # low-frequency ingredients
     lf_drift_force_spectrum: np.ndarray
@@ -130,6 +134,7 @@ class FDResult:
     current_speed_surface: float
     wave_spectrum_fraction_covered: float
     linearisation_iterations: int
+    models: tuple = ()
     notes: tuple = ()
     run_time_s: float = float("nan")
     # tension_model: dynamic (None otherwise): the quasi-static WF tension beside the dynamic one

@@ -9,6 +9,17 @@
 :func:`frequency_domain` turns it into the Dataset (:mod:`floatmoor.analyses.fd_dataset`, one
 table of variables with units).
 
+The models are the time domain's: the scene's force models (:func:`floatmoor.forces.
+select_models`, the ``forces:`` section acting in both domains) each give their
+:class:`~floatmoor.forces.base.FDTerms` (``ForceModel.frequency_domain``) at the body heading;
+this module sums them into the statics of the mean position and the linear :class:`FDModel`.
+The rules that combine models (viscous drift, double counting of current) come from
+:func:`floatmoor.io.build.model_inputs` at each heading, as in the time domain.  The options
+``drift`` and ``wave_drift_damping`` of ``frequency_domain:`` may choose otherwise for the
+frequency domain alone (a note says so).  A sea of several wave systems or a spread sea is
+carried direction by direction (:func:`floatmoor.metocean.spectra.sea_directions`): the
+directions' first-order responses add, the slow drift couples them (Newman's approximation).
+
 What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
 --------------------------------------------------------------------------
 1. **Mean** (eq. 2.39): static equilibrium (:func:`floatmoor.solvers.statics.solve_equilibrium`,
@@ -39,9 +50,9 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
 3. **Low frequency** (eq. 2.35, 2.38, 2.44-2.48): surge, sway and yaw with mass M + A(0)
    (the database's ``zero_frequency_added_mass``, else A at its lowest frequency: see the
    attribute ``lf_added_mass_source``); heave, roll and pitch follow quasi-statically.  Damping:
-   vessel linear damping, quadratic damping linearised stochastically (iterated), wind and
-   current damping -dF/dv of F = C(theta_rel) |U - v|^2 at the mean velocities, optionally
-   Aranha's wave drift damping; with ``line_damping: fe`` (option, default ``none``) the
+   vessel linear damping, quadratic damping linearised stochastically (iterated; every entry of
+   the matrix), wind and current damping -dF/dv of F = C(theta_rel) |U - v|^2 at the mean
+   velocities, Aranha's wave drift damping with ``forces: wave_drift_damping``; with ``line_damping: fe`` (option, default ``none``) the
    mooring lines' LF impedance from their FE models under the WF and LF fairlead motion
    (drag damping and the drag's dynamic stiffening, frequency by frequency, iterated with the
    response: :mod:`~floatmoor.analyses.fd_line_damping`; Floatel-like 100-year case: 42 % of
@@ -77,9 +88,10 @@ What is computed (Wang (2016) section 2.2.2 eq. 2.34-2.49 and section 2.3)
    the slow-drift spectrum of item 3 (which then uses Newman's approximation: ``drift: qtf`` is
    refused, ``auto`` picks ``newman``); its ``extra_damping`` raises the surge and sway linear
    damping (:func:`floatmoor.forces.slender.viscous_linear_damping`, section 6.6).
-   ``model: slender_elements`` (Morison strips in the time loop) has no frequency-domain
-   counterpart: a :class:`FloatmoorWarning` says that the FD runs without viscous drift and with
-   the hull current coefficients.  Attribute ``viscous_drift_model``.
+   ``model: slender_elements`` (Morison strips in the time loop): the FD carries the strips'
+   current load and its LF damping (the model's ``frequency_domain``; the hull current
+   coefficients zeroed where the strips carry the current, as in the time domain), not their
+   viscous wave drift: a :class:`FloatmoorWarning` says so.  Attribute ``viscous_drift_model``.
 """
 
 from __future__ import annotations
@@ -95,34 +107,28 @@ import numpy as np
 import xarray as xr
 
 from ..core.errors import FloatmoorWarning, NumericalError, SceneError
-from ..forces.slender import (
-    corrected_drift_database,
-    refuse_qtf_with_correction,
-    viscous_linear_damping,
-)
-from ..hydro.database import interpolate_heading
+from ..forces import FDContext, model_class, select_models
+from ..forces.environment import Wind
+from ..forces.radiation import infinite_frequency_added_mass
+from ..forces.slender import refuse_qtf_with_correction
+from ..forces.spectral import wave_frequency_grid
 from ..io.build import BuiltScene, build
 from ..io.scene import Scene
-from ..metocean.current import current_speed
-from ..metocean.spectra import wave_spectrum
-from ..metocean.wind import wind_mean_speed, wind_spectrum
+from ..metocean.config import WaveSpec, total_hs, wave_systems
+from ..metocean.spectra import sea_directions
 from ..mooring.fe.current_statics import LineCurrentStatics
 from ..solvers.frequency_domain import (
     FDModel,
     FDOptions,
-    aranha_drift_damping,
-    gust_force_spectrum,
-    mean_drift_force,
-    newman_drift_spectrum,
-    qtf_drift_spectrum,
     response_std_tz,
     solve_frequency_domain,
+    wf_directions,
 )
 from ..solvers.statics import solve_equilibrium
 from .fd_dataset import to_dataset
 from .fd_line_damping import damping_ratio, iterate_line_damping, lf_tension_spectra
 from .fd_line_dynamics import dynamic_line_columns
-from .fd_loads import interp0, qtf_function, relative_flow_damping, rot6
+from .fd_loads import rot6
 from .fd_maxima import combine_maxima, rayleigh_maxima, tension_columns
 from .fd_result import FDResult
 
@@ -165,9 +171,11 @@ def frequency_domain(scene: Scene | BuiltScene | str | os.PathLike, *,
 
 
 def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
-                            options: FDOptions | None = None, **overrides) -> FDResult:
+                            options: FDOptions | None = None, models: list[str] | None = None,
+                            **overrides) -> FDResult:
     """The computation of :func:`frequency_domain` (same arguments), as an :class:`FDResult`
-    of numpy arrays (no xarray)."""
+    of numpy arrays (no xarray).  ``models`` (advanced): force-model names instead of the
+    scene's (:func:`floatmoor.forces.select_models`), as ``simulate(..., models=...)``."""
     t_start = time.perf_counter()
     built = scene if isinstance(scene, BuiltScene) else build(scene)
     sc = built.scene
@@ -179,20 +187,29 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
         raise SceneError(sc.file, "mooring", "a mooring section or file (the frequency domain "
                          "needs the mooring stiffness and the line tensions)")
     notes = _Notes()
-    viscous, viscous_model = _viscous_drift(sc, notes)
-    grid = _WaveGrid.of(built.vessel.database, sc.environment.waves, opt, notes)
-    loads = _MeanLoads(built, grid, viscous, notes)
+    forces = _forces_options(sc, opt, notes)
+    names = select_models(built, forces) if models is None else list(models)
+    if "mooring" not in names:
+        raise SceneError(sc.file, "forces.exclude", "the mooring model in the frequency domain "
+                         "(it gives the mean position, the stiffness and the tensions)",
+                         "mooring excluded")
+    sea = _Sea.of(built.vessel.database, sc.environment.waves, opt, notes)
+    if sea.waves is not None and not any(n.startswith("drift_") for n in names):
+        notes.append("no wave drift force (the database has no mean_drift_force, or "
+                     "forces: drift: none / exclude)")
+    system = _ModelSet(built, forces, names, sea, opt, notes)
     drag_lin = None
     if opt.line_current_drag:
-        eq, C_drift, mean_parts, drag_lin = _mean_position_line_current(built, loads, opt, notes)
+        eq, mean_parts, drag_lin = _mean_position_line_current(built, system, opt, notes)
     else:
-        eq, C_drift, mean_parts = _mean_position(built, loads, opt)
+        eq, mean_parts = _mean_position(built, system, opt)
     eq, moor = _fibre_dynamics(built, eq, notes)
     if drag_lin is not None:
         # the lines' current drag changes with the pose: its stiffness joins the mooring's
         eq = replace(eq, mooring_stiffness=eq.mooring_stiffness + drag_lin[0],
                      total_stiffness=eq.total_stiffness + drag_lin[0])
-    model, lf_parts = _linear_model(built, opt, grid, loads, eq, C_drift, viscous, notes)
+    terms = system.terms(float(eq.pose[5]), pose=eq.pose, linear=True)
+    model, lf_parts = _linear_model(built, sea, system.mu, terms, eq)
     sol = solve_frequency_domain(model)
     damping_parts, line_dyn = {}, None
     if opt.line_damping == "fe":
@@ -210,15 +227,19 @@ def frequency_domain_result(scene: Scene | BuiltScene | str | os.PathLike, *,
     if opt.tension_model == "dynamic":
         # WF tension from the FE lines in the frequency domain; LF stays quasi-static
         lines.update(dynamic_line_columns(built, mean, sol, model, lines, opt.duration))
+    viscous = getattr(getattr(forces, "viscous_drift", None), "model", "none")
+    wind_speed = terms["wind"].info["mean_speed"] if "wind" in terms else 0.0
     return FDResult(
         scene=str(sc.file) if sc.file else sc.name, scene_name=sc.name, options=opt,
         model=model, solution=sol, line_names=tuple(built.mooring.names), **mean_parts,
         statics_iterations=eq.iterations, **lf_parts, lf_natural_period=lf_periods, **motions,
-        **lines, has_waves=grid.waves is not None, viscous_drift_model=viscous_model,
-        wave_heading=grid.beta, wind_speed_at_coefficient_height=loads.U_w,
-        wind_coefficient_height=float(loads.z_wind) if loads.z_wind is not None else float("nan"),
-        current_speed_surface=loads.U_c, wave_spectrum_fraction_covered=grid.covered,
-        linearisation_iterations=sol.iterations, **damping_parts, notes=tuple(notes),
+        **lines, has_waves=sea.waves is not None, viscous_drift_model=viscous,
+        wave_heading=sea.heading, wind_speed_at_coefficient_height=wind_speed,
+        wind_coefficient_height=(Wind.reference_height(built) if "wind" in terms
+                                 else float("nan")),
+        current_speed_surface=terms["current"].info["mean_speed"] if "current" in terms else 0.0,
+        wave_spectrum_fraction_covered=sea.covered, linearisation_iterations=sol.iterations,
+        models=tuple(terms), **damping_parts, notes=tuple(notes),
         run_time_s=time.perf_counter() - t_start)
 
 
@@ -228,7 +249,7 @@ class _Notes(list):
     attributed to the first caller outside this package (the user's line)."""
 
     def warn(self, msg: str) -> None:
-        here = os.path.dirname(__file__) + os.sep
+        here = os.path.dirname(os.path.dirname(__file__)) + os.sep
         frame, level = sys._getframe(0), 1
         while frame is not None and frame.f_code.co_filename.startswith(here):
             frame, level = frame.f_back, level + 1
@@ -249,138 +270,143 @@ def _options_from(scene: Scene, options: FDOptions | None, overrides: dict) -> F
     return base
 
 
-def _viscous_drift(sc: Scene, notes: _Notes):
-    """The scene's viscous drift section and its model name (``none`` without one)."""
-    viscous = getattr(getattr(sc, "forces", None), "viscous_drift", None)
-    model = getattr(viscous, "model", "none") if viscous is not None else "none"
-    if model == "slender_elements":
-        notes.warn("forces: viscous_drift: {model: slender_elements} is a time-domain model: the "
-                   "frequency domain uses no viscous drift for it (potential-flow drift only, and "
-                   "the vessel's hull current coefficients in every DOF, without the time "
-                   "domain's double-counting rule); model: correction_formula gives an FD "
-                   "viscous drift")
-    return viscous, model
+def _forces_options(sc: Scene, opt: FDOptions, notes: _Notes):
+    """The scene's ``forces`` settings with the frequency domain's own choices of the drift
+    model and the wave drift damping (``frequency_domain: drift`` other than ``auto``,
+    ``wave_drift_damping`` true or false), which then differ from the scene's time domain."""
+    forces = getattr(sc, "forces", None)
+    changes = {}
+    if opt.drift != "auto":
+        refuse_qtf_with_correction(getattr(forces, "viscous_drift", None), opt.drift,
+                                   file=sc.file, key="frequency_domain.drift")
+        changes["drift"] = opt.drift
+    scene_wdd = bool(getattr(forces, "wave_drift_damping", False))
+    if opt.wave_drift_damping is not None and opt.wave_drift_damping != scene_wdd:
+        changes["wave_drift_damping"] = opt.wave_drift_damping
+        notes.append(f"wave drift damping {'on' if opt.wave_drift_damping else 'off'} in the "
+                     f"frequency domain alone (frequency_domain: wave_drift_damping); the "
+                     f"scene's time domain has it {'on' if scene_wdd else 'off'} "
+                     "(forces: wave_drift_damping)")
+    if not changes:
+        return forces
+    if forces is None:
+        from ..io.forces_section import ForcesSpec
+        forces = ForcesSpec(file=sc.file)
+    return replace(forces, **changes)
 
 
 @dataclass(frozen=True)
-class _WaveGrid:
-    """The WF grid ``w`` over the database's range ``w_db``, the wave spectrum ``S`` on it,
-    the fraction of m0 it covers and the wave heading ``beta`` (rad)."""
+class _Sea:
+    """The WF grid ``w`` over the database's range, the sea's energy by direction on it
+    (``directions`` rad, ``spectra`` (n_dir, n)), their sum ``S``, the fraction of m0 the grid
+    covers and the heading of the dominant system ``heading`` (rad)."""
 
     waves: object
-    w_db: np.ndarray
     w: np.ndarray
+    directions: np.ndarray
+    spectra: np.ndarray
     S: np.ndarray
     covered: float
-    beta: float
+    heading: float
 
     @classmethod
-    def of(cls, db, waves, opt: FDOptions, notes: _Notes) -> _WaveGrid:
-        w_db = np.asarray(db["omega"].values, float)
-        n_w = int(round((w_db[-1] - w_db[0]) / opt.d_omega)) + 1
-        w = np.linspace(w_db[0], w_db[-1], max(n_w, w_db.size))
+    def of(cls, db, waves, opt: FDOptions, notes: _Notes) -> _Sea:
+        w = wave_frequency_grid(db, opt.d_omega)
+        directions, spectra = sea_directions(waves, w)
         if waves is None:
-            return cls(None, w_db, w, np.zeros_like(w), 1.0, 0.0)
-        S = wave_spectrum(waves, w)
-        m0_true = (waves.hs / 4.0) ** 2
+            return cls(None, w, directions, spectra, np.zeros_like(w), 1.0, 0.0)
+        S = spectra[0] if spectra.shape[0] == 1 else spectra.sum(axis=0)
+        hs = total_hs(waves)
+        m0_true = (hs / 4.0) ** 2
         covered = float(np.trapezoid(S, w) / m0_true)
         if covered < 0.99:
-            notes.warn(f"the database frequencies {w_db[0]:.3g}-{w_db[-1]:.3g} rad/s hold only "
-                       f"{100 * covered:.1f} % of the wave spectrum's m0 (Hs {waves.hs:g} m, Tp "
-                       f"{waves.tp:g} s): WF responses and drift are underestimated")
-        return cls(waves, w_db, w, S, covered, float(waves.heading))
+            systems = wave_systems(waves)
+            what = (f"Hs {hs:g} m, Tp {systems[0].tp:g} s" if len(systems) == 1 else
+                    f"{len(systems)} wave systems, Hs {hs:.3g} m")
+            notes.warn(f"the database frequencies {w[0]:.3g}-{w[-1]:.3g} rad/s hold only "
+                       f"{100 * covered:.1f} % of the wave spectrum's m0 ({what}): WF "
+                       "responses and drift are underestimated")
+        dominant = waves if isinstance(waves, WaveSpec) else waves.dominant
+        return cls(waves, w, directions, spectra, S, covered, float(dominant.heading))
 
 
-class _MeanLoads:
-    """Mean wind, current and wave drift forces (earth axes) at a body yaw; the drift
-    coefficients are those of the viscous correction formula (eq. 6.6) when the scene selects
-    it, at that yaw."""
+class _ModelSet:
+    """The scene's force models for the frequency domain: :meth:`terms` gives every model's
+    :class:`~floatmoor.forces.base.FDTerms` at a body heading (the scene's rules that combine
+    models applied at that heading, :func:`floatmoor.io.build.model_inputs`)."""
 
-    def __init__(self, built: BuiltScene, grid: _WaveGrid, viscous, notes: _Notes):
-        sc, vessel = built.scene, built.vessel
-        env = sc.environment
-        self.built, self.grid, self.viscous, self.notes = built, grid, viscous, notes
-        self.db = vessel.database
-        self.correction = (getattr(viscous, "model", "none") == "correction_formula"
-                           and grid.waves is not None)
-        if grid.waves is not None and "mean_drift_force" not in self.db:
-            notes.append("the database has no mean_drift_force: no wave drift (mean or slowly "
-                         "varying)")
-        self.wind, self.cur = env.wind, env.current
-        self.wind_tab, self.cur_tab = vessel.wind_coefficients, vessel.current_coefficients
-        self.U_w, self.z_wind, self.U_c = 0.0, None, 0.0
-        if self.wind is not None:
-            if self.wind_tab is None:
-                notes.append("the scene has wind but the vessel file has no wind_coefficients: "
-                             "no wind force")
-            else:
-                self.z_wind = self.wind_tab.reference_height or self.wind.reference_height
-                self.U_w = wind_mean_speed(self.wind, self.z_wind)
-        if self.cur is not None:
-            if self.cur_tab is None:
-                notes.append("the scene has current but the vessel file has no "
-                             "current_coefficients: no current force")
-            else:
-                self.U_c = float(current_speed(self.cur, np.array([0.0]),
-                                               sc.site.water_depth)[0])
+    def __init__(self, built: BuiltScene, forces, names, sea: _Sea, opt: FDOptions,
+                 notes: _Notes):
+        self.built, self.forces, self.names, self.sea, self.opt, self.notes = \
+            built, forces, list(names), sea, opt, notes
+        self.models = {n: model_class(n, key="forces")() for n in self.names}
+        self.mu = np.linspace(0.0, 2.0 * math.pi / opt.lf_cutoff_period, opt.n_lf)
 
-    def drift_coefficients(self, yaw: float) -> np.ndarray:
-        """(n_w, 6) mean drift coefficients C_wa(w) on the WF grid, earth axes."""
-        db, g = self.db, self.grid
-        if "mean_drift_force" not in db or g.waves is None:
-            return np.zeros((g.w.size, 6))
-        # eq. 6.6 (viscous correction formula) when the scene selects it: the same corrected
-        # coefficients as the time domain's Newman drift, here at the body heading yaw
-        db_d = corrected_drift_database(self.built, self.viscous, db, yaw=yaw) \
-            if self.correction else db
-        c = interpolate_heading(db_d, "mean_drift_force", g.beta - yaw)  # (n_db, 6)
-        if np.any(np.isnan(c)):
-            bad = np.isnan(c).any(axis=1)
-            frac = float(np.trapezoid(np.where(interp0(g.w, g.w_db, bad.astype(float)) > 0,
-                                               g.S, 0), g.w)
-                         / max(np.trapezoid(g.S, g.w), 1e-300))
-            if frac > 0.01:
-                self.notes.warn(f"mean_drift_force is NaN where {100 * frac:.1f} % of the wave "
-                                "energy lies; taken as zero there")
-            c = np.nan_to_num(c)
-        # zero outside the database range (no extrapolation)
-        cw = interp0(g.w, g.w_db, c)
-        return cw @ rot6(yaw).T
-
-    def __call__(self, yaw: float):
-        """(wind, current, drift) forces (6,) and the drift coefficients at the yaw."""
-        T = rot6(yaw)
-        U_w, U_c = self.U_w, self.U_c
-        f_wind = T @ self.wind_tab.at(self.wind.heading - yaw) * U_w ** 2 if U_w > 0 \
-            else np.zeros(6)
-        f_cur = T @ self.cur_tab.at(self.cur.heading - yaw) * U_c ** 2 if U_c > 0 \
-            else np.zeros(6)
-        C = self.drift_coefficients(yaw)
-        f_drift = mean_drift_force(self.grid.w, self.grid.S, C)
-        return f_wind, f_cur, f_drift, C
+    def terms(self, yaw: float, *, pose=None, linear: bool = False) -> dict:
+        inputs = self.built.model_inputs(self.forces, self.names, yaw=yaw)
+        fd = FDContext(built=self.built, options=self.forces, inputs=inputs, omega=self.sea.w,
+                       mu=self.mu, directions=self.sea.directions, spectra=self.sea.spectra,
+                       yaw=float(yaw), pose=pose, linear=linear, notes=self.notes,
+                       fd_options=self.opt)
+        return {n: m.frequency_domain(fd) for n, m in self.models.items()}
 
 
-def _mean_position(built: BuiltScene, loads: _MeanLoads, opt: FDOptions):
+def _sum(arrays, shape):
+    """Sum of ``arrays`` in their order (the first array itself for one), zeros for none."""
+    arrays = [a for a in arrays if a is not None]
+    if not arrays:
+        return np.zeros(shape)
+    out = arrays[0]
+    for a in arrays[1:]:
+        out = out + a
+    return out
+
+
+def _static_loads(terms: dict):
+    """(restoring matrix, external force) of the statics from the models' terms: the
+    restoring terms' matrices and constants, and the mean forces of the others added in the
+    models' order (the arithmetic of the time domain's static start)."""
+    restoring = _sum([t.restoring for t in terms.values()], (6, 6))
+    const = _sum([t.const_force for t in terms.values()], (6,))
+    mean_env = np.zeros(6)
+    for t in terms.values():
+        if t.mean_force is not None:
+            mean_env += t.mean_force
+    return restoring, const + mean_env
+
+
+def _mean_fields(terms: dict) -> dict:
+    """The FDResult fields of the mean loads: wind, current and drift, and every model's."""
+    def mean(names):
+        for n in names:
+            if n in terms and terms[n].mean_force is not None:
+                return np.asarray(terms[n].mean_force, float)
+        return np.zeros(6)
+    return {"mean_force_wind": mean(("wind",)), "mean_force_current": mean(("current",)),
+            "mean_force_drift": mean(("drift_newman", "drift_qtf")),
+            "mean_force_model": np.array([np.zeros(6) if t.mean_force is None
+                                          else np.asarray(t.mean_force, float)
+                                          for t in terms.values()]).reshape(-1, 6)}
+
+
+def _mean_position(built: BuiltScene, system: _ModelSet, opt: FDOptions):
     """Static equilibrium under the mean loads (eq. 2.39), the yaw iterated for the relative
-    headings.  Returns the equilibrium, the drift coefficients of the last iteration and a dict of
-    FDResult fields."""
-    vessel = built.vessel
+    headings.  Returns the equilibrium and a dict of FDResult fields."""
     yaw = 0.0
     x0 = None
     for _ in range(opt.heading_iterations):
-        f_wind, f_cur, f_drift, C_drift = loads(yaw)
-        f_ext = built.static_force + f_wind + f_cur + f_drift
-        eq = solve_equilibrium(built.mooring, hydrostatic_stiffness=vessel.total_restoring,
-                               external_force=f_ext, x0=x0)
+        terms = system.terms(yaw)
+        C, f_ext = _static_loads(terms)
+        eq = solve_equilibrium(built.mooring, hydrostatic_stiffness=C, external_force=f_ext,
+                               x0=x0)
         x0 = eq.pose
         if abs(eq.pose[5] - yaw) < 1e-6:
             break
         yaw = float(eq.pose[5])
-    return eq, C_drift, {"mean": eq.pose.copy(), "mean_force_wind": f_wind,
-                         "mean_force_current": f_cur, "mean_force_drift": f_drift}
+    return eq, {"mean": eq.pose.copy(), **_mean_fields(terms)}
 
 
-def _mean_position_line_current(built: BuiltScene, loads: _MeanLoads, opt: FDOptions,
+def _mean_position_line_current(built: BuiltScene, system: _ModelSet, opt: FDOptions,
                                 notes: _Notes):
     """:func:`_mean_position` with the static current drag on the lines (``line_current_drag``):
     the fixed point p_{k+1} = equilibrium(F_ext(yaw_k) + dF(p_k)), dF the lines' current drag
@@ -395,8 +421,7 @@ def _mean_position_line_current(built: BuiltScene, loads: _MeanLoads, opt: FDOpt
     stiffness and the gradients of the tension increments; None without current)."""
     if getattr(built.scene.environment, "current", None) is None:
         notes.append("line_current_drag: the scene has no current (no drag on the lines)")
-        return (*_mean_position(built, loads, opt), None)
-    vessel = built.vessel
+        return (*_mean_position(built, system, opt), None)
     drag = None
     dF = np.zeros(6)
     x0 = None
@@ -404,10 +429,10 @@ def _mean_position_line_current(built: BuiltScene, loads: _MeanLoads, opt: FDOpt
     it = 0
     while it < LINE_CURRENT_MAX_ITER:
         it += 1
-        f_wind, f_cur, f_drift, C_drift = loads(yaw)
-        f_ext = built.static_force + f_wind + f_cur + f_drift + dF
-        eq = solve_equilibrium(built.mooring, hydrostatic_stiffness=vessel.total_restoring,
-                               external_force=f_ext, x0=x0)
+        terms = system.terms(yaw)
+        C, f_ext = _static_loads(terms)
+        eq = solve_equilibrium(built.mooring, hydrostatic_stiffness=C,
+                               external_force=f_ext + dF, x0=x0)
         if x0 is not None:
             dx = np.abs(eq.pose - x0)
             if dx[:3].max() < LINE_CURRENT_TOL[0] and dx[3:].max() < LINE_CURRENT_TOL[1]:
@@ -431,10 +456,9 @@ def _mean_position_line_current(built: BuiltScene, loads: _MeanLoads, opt: FDOpt
                  f"({inc.force[0] / 1e3:.1f} kN surge, {inc.force[1] / 1e3:.1f} kN sway; "
                  f"{it} equilibrium iterations); its stiffness in the linearisation "
                  f"({lin[0][0, 0] / 1e3:.1f} kN/m surge, {lin[0][1, 1] / 1e3:.1f} kN/m sway)")
-    return eq, C_drift, {"mean": eq.pose.copy(), "mean_force_wind": f_wind,
-                         "mean_force_current": f_cur, "mean_force_drift": f_drift,
-                         "mean_force_line_current": inc.force,
-                         "tension_static_line_current": inc.tension}, lin
+    return eq, {"mean": eq.pose.copy(), **_mean_fields(terms),
+                "mean_force_line_current": inc.force,
+                "tension_static_line_current": inc.tension}, lin
 
 
 def _fibre_dynamics(built: BuiltScene, eq, notes: _Notes):
@@ -453,87 +477,60 @@ def _fibre_dynamics(built: BuiltScene, eq, notes: _Notes):
                    total_stiffness=eq.total_stiffness - eq.mooring_stiffness + k), lin
 
 
-def _linear_model(built: BuiltScene, opt: FDOptions, grid: _WaveGrid, loads: _MeanLoads, eq,
-                  C_drift, viscous, notes: _Notes):
-    """The linearised system about the mean position (WF and LF ingredients, eq. 2.34-2.38).
+def _linear_model(built: BuiltScene, sea: _Sea, mu, terms: dict, eq):
+    """The linearised system about the mean position (WF and LF ingredients, eq. 2.34-2.38)
+    assembled from the models' terms at the mean heading.
 
     Returns the :class:`FDModel` and a dict of FDResult fields (force spectra, LF damping
     parts, the drift method and the source of A(0))."""
-    sc, vessel = built.scene, built.vessel
-    db, w, w_db, S, beta, waves = vessel.database, grid.w, grid.w_db, grid.S, grid.beta, grid.waves
+    vessel = built.vessel
+    w = sea.w
     yaw = float(eq.pose[5])
     T6 = rot6(yaw)
-    K = vessel.total_restoring + eq.mooring_stiffness
-
-    # -- wave frequency ------------------------------------------------------------------------
-    A_w = interp0(w, w_db, np.asarray(db["added_mass"].values, float))
-    B_w = interp0(w, w_db, np.asarray(db["radiation_damping"].values, float))
-    if waves is not None:
-        X = interpolate_heading(db, "excitation_force", beta - yaw)  # (n_db, 6) complex
-        X = interp0(w, w_db, X) @ T6.T
-    else:
-        X = np.zeros((w.size, 6), complex)
-    A_w = T6[None] @ A_w @ T6.T[None]
-    B_w = T6[None] @ B_w @ T6.T[None]
     M = T6 @ vessel.mass_matrix @ T6.T
-    if "zero_frequency_added_mass" in db:
-        A0 = np.asarray(db["zero_frequency_added_mass"].values, float)
-        a0_source = "database zero_frequency_added_mass"
-    else:
-        A0 = np.asarray(db["added_mass"].values[0], float)
-        a0_source = (f"added_mass at the lowest database frequency {w_db[0]:g} rad/s "
-                     "(no zero_frequency_added_mass in the database)")
-    A0 = T6 @ A0 @ T6.T
+    rad = [t for t in terms.values() if t.added_mass is not None]
+    if rad:
+        A_w, B_w, A0 = rad[0].added_mass, rad[0].radiation_damping, rad[0].lf_added_mass
+        a0_source = rad[0].info.get("lf_added_mass_source", "radiation model")
+    else:  # no radiation memory (forces: retardation: false): A_inf, as the time domain
+        A_inf = T6 @ infinite_frequency_added_mass(vessel.database) @ T6.T
+        A_w, B_w, A0 = np.broadcast_to(A_inf, (w.size, 6, 6)), np.zeros((w.size, 6, 6)), A_inf
+        a0_source = ("infinite_frequency_added_mass (no radiation model: forces: "
+                     "retardation: false)")
+    restoring, _ = _static_loads(terms)
+    K = _sum([restoring, eq.mooring_stiffness] + [t.stiffness for t in terms.values()],
+             (6, 6))
+    n_dir = sea.directions.size
+    X = _sum([t.wf_excitation for t in terms.values()], (max(n_dir, 1), w.size, 6))
+    X = np.asarray(X, complex)
+    multi = n_dir > 1
+    S_drift = _sum([terms[n].lf_force_spectrum for n in ("drift_newman", "drift_qtf")
+                    if n in terms], (mu.size, 6, 6))
+    S_gust = terms["wind"].lf_force_spectrum if "wind" in terms else np.zeros((mu.size, 6, 6))
+    drift = [n for n in ("drift_newman", "drift_qtf") if n in terms]
+    lf_parts = {"lf_drift_force_spectrum": S_drift, "lf_wind_force_spectrum": S_gust,
+                "lf_damping_wind": _lf_damping(terms, "wind"),
+                "lf_damping_current": _lf_damping(terms, "current"),
+                "lf_damping_wave_drift": _lf_damping(terms, "wave_drift_damping"),
+                "drift_method": terms[drift[0]].info["drift_method"] if drift else "none",
+                "lf_added_mass_source": a0_source}
+    model = FDModel(omega=w, wave_spectrum=sea.S, mass=M, added_mass=A_w, radiation_damping=B_w,
+                    excitation=X if multi else X[0], stiffness=K,
+                    linear_damping=_sum([t.damping for t in terms.values()], (6, 6)),
+                    quadratic_damping=_sum([t.quadratic_damping for t in terms.values()],
+                                           (6, 6)),
+                    lf_added_mass=A0,
+                    lf_extra_damping=_sum([t.lf_damping for t in terms.values()], (6, 6)),
+                    mu=mu, lf_force_spectrum=_sum([t.lf_force_spectrum for t in terms.values()],
+                                                  (mu.size, 6, 6)),
+                    direction_spectra=sea.spectra if multi else None,
+                    directions=sea.directions, yaw=yaw)
+    return model, lf_parts
 
-    # -- low frequency -------------------------------------------------------------------------
-    mu = np.linspace(0.0, 2.0 * math.pi / opt.lf_cutoff_period, opt.n_lf)
-    has_qtf = "difference_frequency_qtf" in db
-    drift_method = opt.drift
-    if loads.correction:
-        refuse_qtf_with_correction(viscous, drift_method, file=sc.file,
-                                   key="frequency_domain.drift")
-    if drift_method == "auto":
-        drift_method = "qtf" if has_qtf and not loads.correction else "newman"
-        if has_qtf and loads.correction:
-            notes.append("the correction formula (eq. 6.6) corrects the mean drift "
-                         "coefficients: slow drift by Newman's approximation, not the QTF")
-    if drift_method == "qtf" and not has_qtf:
-        raise SceneError(sc.file, "frequency_domain.drift", "newman or auto (the database has no "
-                         "difference_frequency_qtf)", "qtf")
-    if waves is None:
-        S_drift = np.zeros((mu.size, 6, 6))
-    elif drift_method == "qtf":
-        S_drift = qtf_drift_spectrum(w, S, qtf_function(db, beta - yaw, T6), mu)
-    else:
-        S_drift = newman_drift_spectrum(w, S, C_drift, mu)
-    wind, cur, U_w, U_c = loads.wind, loads.cur, loads.U_w, loads.U_c
-    S_gust = np.zeros((mu.size, 6, 6))
-    B_wind = np.zeros((6, 6))
-    if U_w > 0:
-        C_wi = T6 @ loads.wind_tab.at(wind.heading - yaw)
-        s_u = wind_spectrum(wind, mu / (2.0 * math.pi)) / (2.0 * math.pi) if wind.spectrum != \
-            "constant" else np.zeros_like(mu)
-        s_u = np.asarray(s_u, float)
-        S_gust = gust_force_spectrum(2.0 * U_w * C_wi, s_u)
-        B_wind = relative_flow_damping(loads.wind_tab, U_w, wind.heading, yaw)
-    B_cur = relative_flow_damping(loads.cur_tab, U_c, cur.heading, yaw) if U_c > 0 \
-        else np.zeros((6, 6))
-    B_drift = np.zeros((6, 6))
-    if opt.wave_drift_damping and waves is not None:
-        e = np.array([math.cos(beta), math.sin(beta)])
-        B_drift = aranha_drift_damping(w, S, C_drift[:, :2] @ e, sc.site.gravity, beta)
-    # the vessel's linear damping, raised in surge/sway by forces: viscous_drift: extra_damping
-    # with the correction formula (Wang (2016) section 6.6; as the time domain)
-    D_lin = viscous_linear_damping(viscous, np.asarray(vessel.linear_damping, float))
-    model = FDModel(omega=w, wave_spectrum=S, mass=M, added_mass=A_w, radiation_damping=B_w,
-                    excitation=X, stiffness=K, linear_damping=T6 @ D_lin @ T6.T,
-                    quadratic_damping=vessel.quadratic_damping, lf_added_mass=A0,
-                    lf_extra_damping=B_wind + B_cur + B_drift, mu=mu,
-                    lf_force_spectrum=S_drift + S_gust)
-    return model, {"lf_drift_force_spectrum": S_drift, "lf_wind_force_spectrum": S_gust,
-                   "lf_damping_wind": B_wind, "lf_damping_current": B_cur,
-                   "lf_damping_wave_drift": B_drift, "drift_method": drift_method,
-                   "lf_added_mass_source": a0_source}
+
+def _lf_damping(terms: dict, name: str) -> np.ndarray:
+    t = terms.get(name)
+    return np.zeros((6, 6)) if t is None or t.lf_damping is None else t.lf_damping
 
 
 def _line_damping(built: BuiltScene, mean, model, sol, notes: _Notes):
@@ -613,7 +610,8 @@ def _line_statistics(mooring, mean, sol, model: FDModel, duration: float,
     lines' static current drag increment (``line_current_drag``), added to the static tension
     and to the catenary tension at the most likely pose; ``gradient_offset`` (n_lines, 6): its
     gradient with the pose, added to the catenary's tension gradients."""
-    w, mu, S = model.omega, model.mu, model.wave_spectrum
+    w, mu = model.omega, model.mu
+    directions = wf_directions(model, sol)
     names = list(mooring.names)
     active = np.asarray(mooring.active, bool)
     fl = mooring.fairlead_positions(mean)
@@ -641,8 +639,12 @@ def _line_statistics(mooring, mean, sol, model: FDModel, duration: float,
     tangent = np.einsum("lk,lk->l", grad[:, :3], e)  # dT/du along the line, N/m
 
     def proj_wf(vecs):
-        h = sol.rao @ vecs.T  # (n_w, n_lines)
-        return np.abs(h) ** 2 * S[:, None]
+        out = None
+        for rao, S in directions:  # the directions' responses add
+            h = rao @ vecs.T  # (n_w, n_lines)
+            p = np.abs(h) ** 2 * S[:, None]
+            out = p if out is None else out + p
+        return out
 
     def proj_lf(vecs):
         return np.real(np.einsum("li,nij,lj->nl", vecs, sol.lf_cross_spectrum, vecs))

@@ -5,9 +5,20 @@
 * seeds run in worker processes (:class:`concurrent.futures.ProcessPoolExecutor`), one seed per
   task; a line is printed per finished seed (a tqdm bar when tqdm is installed and the output is
   a terminal);
-* a seed whose file already exists is skipped (resume an interrupted batch by running the same
-  command again); files are written to ``*.nc.tmp`` and renamed when complete, so a file that
-  exists is complete;
+* a seed whose file already exists, is whole, holds finite and plausible values
+  (:mod:`floatmoor.analyses.result_check`) and was computed from the same inputs (the
+  fingerprint of :mod:`floatmoor.analyses.fingerprint`) is skipped (resume an interrupted batch
+  by running the same command again); a file that fails a check is computed again, saying why;
+  files are written to ``*.nc.<pid>.tmp`` and renamed when complete, so a file that exists is
+  complete;
+* the scene is read, built and checked (:func:`floatmoor.io.plausibility.check_built`) in this
+  process before any seed starts: a mistake in it is one SceneError, not a failed seed each;
+* the output folder is locked while the batch writes into it
+  (:func:`floatmoor.analyses.folder_lock.folder_lock`): a second batch into it is refused;
+* a full disk stops the batch (:class:`~floatmoor.analyses.folder_lock.DiskFull`, naming the
+  folder and the free space; the finished seeds are kept);
+* the first seeds of a batch whose time loop is not in numba's cache yet say that numba
+  compiles it (once, 10-60 s) before the first result;
 * a failing seed never stops the others: its error is written to ``<name>_seed<NNNN>.error.txt``
   and reported at the end (and the file is removed when that seed later succeeds);
 * threads of the FE lines (``solver: {threads: N}`` or ``threads=``): each of the ``W`` worker
@@ -28,9 +39,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..core.errors import SceneError
+from .folder_lock import DiskFull, disk_full_error, folder_lock, temp_name
 
 __all__ = ["run_seeds", "SeedOutcome", "BatchResult", "seed_file", "BatchInterrupted",
-           "check_result_file"]
+           "check_result_file", "DiskFull"]
 
 FINGERPRINT_ATTR = "input_fingerprint"  # the same as floatmoor.analyses.fingerprint
 
@@ -50,19 +62,25 @@ class BatchInterrupted(KeyboardInterrupt):
 
 def check_result_file(path: Path):
     """The stored fingerprint (dict, or None when absent) of a complete result file; raises
-    OSError/ValueError when the file is unreadable or truncated (its last time step cannot be
-    read)."""
+    OSError/ValueError when the file is unreadable or truncated (a series cannot be read to its
+    end), a SceneError naming the file and variable when a value is not finite or not
+    plausible (:func:`floatmoor.analyses.result_check.check_series_file`: NaN, a negative
+    tension, a tension beyond 10 x MBS)."""
     import json
 
     import netCDF4
 
+    from .result_check import check_series_file
+
     with netCDF4.Dataset(path) as nc:
-        nc["motion"][-1, :]  # the last row is written last: a truncated file fails here
-        for name in ("line_tension",):
-            if name in nc.variables:
-                nc[name][-1, :]
+        nc.set_auto_mask(False)
+        check_series_file(path, nc)
         text = getattr(nc, FINGERPRINT_ATTR, None)
-    return None if text is None else json.loads(text)
+    try:
+        return None if text is None else json.loads(text)
+    except ValueError:
+        raise SceneError(path, FINGERPRINT_ATTR, "the JSON input fingerprint floatmoor "
+                         "writes", text) from None
 
 
 @dataclass(frozen=True)
@@ -79,6 +97,7 @@ class SeedOutcome:
     wall_time: float = 0.0
     summary: dict = field(default_factory=dict)
     warnings: tuple = ()
+    disk_full: bool = False
 
 
 @dataclass(frozen=True)
@@ -131,21 +150,27 @@ _compile_once = None  # in a worker: (ready Event, lead Lock), or None
 
 
 def _worker_init(ready=None, lead=None) -> None:
-    """Worker initializer: ignore Ctrl-C; keep the compile-once event and lock (or None)."""
+    """Worker initializer: ignore Ctrl-C, end with the parent, close the parent's folder lock;
+    keep the compile-once event and lock (or None)."""
     global _compile_once
+    from .folder_lock import die_with_parent, release_inherited
     _ignore_sigint()
+    release_inherited()
+    die_with_parent()
     _compile_once = (ready, lead) if ready is not None else None
 
 
-def _time_loop_cached() -> bool:
+def _time_loop_cached(finite_element: bool = False) -> bool:
     """True when numba's cache folder of this process already holds a time loop (a cache
-    filled by an earlier run: nothing to wait for)."""
+    filled by an earlier run: nothing to wait for); with ``finite_element`` the coupled FE
+    time loop too."""
     if os.environ.get("NUMBA_DISABLE_JIT", "0") not in ("", "0"):
         return True
     folder = os.environ.get("NUMBA_CACHE_DIR")
     if not folder or not Path(folder).is_dir():
         return False
-    return any(True for _ in Path(folder).glob("**/td_kernel.td_steps-*.nbi"))
+    names = ["td_kernel.td_steps"] + (["fe_coupling.td_fe_kernel"] if finite_element else [])
+    return all(any(True for _ in Path(folder).glob(f"**/{n}-*.nbi")) for n in names)
 
 
 def _ready_listener(ready):
@@ -233,12 +258,19 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
                                        if issubclass(w.category, FloatmoorWarning)))
         if fingerprint:
             ds.attrs[FINGERPRINT_ATTR] = fingerprint
-        tmp = out.with_name(out.name + ".tmp")
+        tmp = temp_name(out)
+        need = int(ds.nbytes) + (1 << 16)
         try:
+            from .folder_lock import check_free_space
+            check_free_space(out.parent, need, out.name)
             ds.to_netcdf(tmp)
             os.replace(tmp, out)
-        except BaseException:  # no partial file: interrupted or failed while writing
+        except BaseException as exc:  # no partial file: interrupted or failed while writing
             tmp.unlink(missing_ok=True)
+            if isinstance(exc, Exception):
+                full = disk_full_error(exc, out.parent, need, out.name)
+                if full is not None:
+                    raise full from None
             raise
         if err_file.exists():
             err_file.unlink()
@@ -251,12 +283,15 @@ def _run_one(scene_path: str, seed: int, out_path: str, overrides: dict,
         return SeedOutcome(seed, "done", out, wall_time=time.perf_counter() - t0,
                            summary=summary, warnings=messages)
     except Exception as exc:  # keep the batch going; record the error
-        text = f"{type(exc).__name__}: {exc}"
+        full = isinstance(exc, DiskFull)
+        text = exc.strerror if full else f"{type(exc).__name__}: {exc}"
         try:
-            err_file.write_text(text + "\n\n" + traceback.format_exc())
+            if not full:
+                err_file.write_text(text + "\n\n" + traceback.format_exc())
         except OSError:
             pass
-        return SeedOutcome(seed, "failed", out, error=text, wall_time=time.perf_counter() - t0)
+        return SeedOutcome(seed, "failed", out, error=text, wall_time=time.perf_counter() - t0,
+                           disk_full=full)
     finally:
         if role == "lead":  # also when the seed failed: the others compile for themselves
             from numba.core import event
@@ -293,13 +328,19 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     Raises
     ------
     SceneError
-        A bad scene file, or a duration not longer than the transient (before any seed runs);
-        files in ``out_dir`` computed from other inputs (unless ``force``), naming the
-        sections that differ.
+        A bad scene file (or a file it reads: vessel, database, mooring), a scene that fails
+        its plausibility checks, or a duration not longer than the transient (all before any
+        seed runs); files in ``out_dir`` computed from other inputs (unless ``force``), naming
+        the sections that differ; ``out_dir`` in use by another batch.
     BatchInterrupted
         Ctrl-C or SIGTERM: the seeds in flight are abandoned and listed in
         ``<out_dir>/interrupted.txt``; a rerun of the same command resumes.
+    DiskFull
+        No space left on the device: the finished seeds are kept, the others listed in
+        ``<out_dir>/interrupted.txt``.
     """
+    from ..io.build import build
+    from ..io.plausibility import check_built
     from ..io.scene import load_scene
     from .simulate import check_statistics_window
 
@@ -314,28 +355,55 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     import json
 
     from ..io.analysis import check_time_steps
-    from .fingerprint import differing_keys, scene_fingerprint
+    from .fingerprint import scene_fingerprint
     check_time_steps(scene.file, float(overrides.get("duration", an.duration)),
                      float(overrides.get("dt", an.dt)),
                      key="analysis.dt" if "dt" not in overrides else "dt")
+    if "dt" in overrides:   # the scene's own dt was checked when it was read
+        from ..io.checks import check_dt_resolves_waves
+        check_dt_resolves_waves(scene.file, "dt (--dt)", float(overrides["dt"]),
+                                scene.environment.waves)
+    # the vessel, database and mooring read and checked here, once: a mistake in them (a mass
+    # of 0, a line above its MBS at zero offset, ...) is a SceneError before any seed starts,
+    # not the same failure in every worker
+    built = build(scene)
+    check_built(built)
+    fe_lines = bool(getattr(getattr(built.mooring, "line_models", None), "any_finite_element",
+                            False))
     fp = scene_fingerprint(scene, overrides)
     fp_text = json.dumps(fp, sort_keys=True)
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
     seeds = [int(s) for s in seeds]
+    with folder_lock(out_dir, f"floatmoor run {Path(scene_path).name}"):
+        return _run_locked(scene, scene_path, seeds, out_dir, fp, fp_text, overrides, echo,
+                           progress, force, in_process, threads, workers, fe_lines)
+
+
+def _run_locked(scene, scene_path, seeds, out_dir, fp, fp_text, overrides, echo, progress,
+                force, in_process, threads, workers, fe_lines) -> BatchResult:
+    """:func:`run_seeds` with the folder locked."""
+    from .fingerprint import differing_keys
+    if (out_dir / "campaign.json").is_file() and not force:
+        raise SceneError(scene.file, "", f"an output folder for the seeds of a scene "
+                         f"({out_dir})", "the folder of a campaign (campaign.json)",
+                         "use another --out folder (or --force)")
     outcomes: dict[int, SeedOutcome] = {}
     todo = []
     foreign: dict[int, list[str]] = {}
     for s in seeds:
         path = seed_file(out_dir, scene.name, s)
-        stale = path.with_name(path.name + ".tmp")
-        if stale.is_file():  # left by a killed run
-            stale.unlink()
+        for stale in path.parent.glob(path.name + ".*tmp"):  # left by a killed run
+            if stale.is_file():
+                stale.unlink(missing_ok=True)
         if path.exists():
             try:
                 stored = check_result_file(path)
             except Exception as exc:  # truncated, corrupted, not netCDF: compute it again
-                if echo:
+                if echo and isinstance(exc, SceneError):
+                    echo(f"seed {s}: {path.name} holds values no finished run writes "
+                         f"({exc.key}: expected {exc.expected}, found {exc.found}), computing "
+                         "it again")
+                elif echo:
                     echo(f"seed {s}: {path.name} is unreadable or incomplete "
                          f"({type(exc).__name__}), computing it again")
                 todo.append((s, path))
@@ -360,9 +428,11 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
         raise SceneError(scene.file, "", f"a results folder holding results of this scene "
                          f"and models only ({out_dir})", SceneError.NOT_APPLICABLE,
                          hint=f"{len(foreign)} result file(s) there (e.g. seed {first}) were "
-                              f"computed from other inputs; they differ in: {', '.join(keys)}; "
-                              "use another --out folder, or --force to compute those seeds "
-                              "again")
+                              f"computed from other inputs; they differ in: {', '.join(keys)}"
+                              + ("" if keys != ["code"] else " (floatmoor or its numerical "
+                                 "libraries were updated since)")
+                              + "; use another --out folder, or --force to compute those "
+                              "seeds again")
 
     if workers is None:
         try:
@@ -406,17 +476,26 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
     run_kw = {"threads": threads, "thread_cap": cap}
     record = out_dir / "interrupted.txt"
     running: set[int] = set()
+    if todo and echo and not _time_loop_cached(fe_lines):
+        echo("compiling the time loop" + (" with its finite-element lines" if fe_lines else "")
+             + " (numba, once per installation and update of floatmoor: 10-60 s before the "
+             "first seed; `floatmoor compile` does it ahead)")
+    full: SeedOutcome | None = None
     with _interrupts_as_keyboard_interrupt():
         try:
             if in_process:
                 for s, path in todo:
                     running = {s}
-                    report(_run_one(src, s, os.fspath(path), overrides, fp_text, **run_kw))
+                    o = _run_one(src, s, os.fspath(path), overrides, fp_text, **run_kw)
+                    if o.disk_full:
+                        full = o
+                        break
+                    report(o)
                 running = set()
             elif todo:
                 mp_ctx = _worker_context()
                 init_args = ()
-                if workers > 1 and len(todo) > 1 and not _time_loop_cached():
+                if workers > 1 and len(todo) > 1 and not _time_loop_cached(fe_lines):
                     import multiprocessing
                     ctx = mp_ctx if mp_ctx is not None else multiprocessing.get_context()
                     init_args = (ctx.Event(), ctx.Lock())
@@ -428,11 +507,19 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
                     running = {s for s, _ in todo}
                     for fut in as_completed(futs):
                         s, path = futs[fut]
+                        if fut.cancelled():
+                            continue
                         try:
                             o = fut.result()
                         except Exception as exc:  # worker died (e.g. killed): record, go on
                             o = SeedOutcome(s, "failed", path, error=f"worker failed: {exc!r}")
                         running.discard(s)
+                        if o.disk_full:
+                            # every other seed would fail the same way: stop here
+                            full = full or o
+                            for f in futs:
+                                f.cancel()
+                            continue
                         report(o)
                 except KeyboardInterrupt:
                     _stop_pool(pool)
@@ -442,24 +529,40 @@ def run_seeds(scene_path, seeds, out_dir, *, workers: int | None = None, overrid
         except KeyboardInterrupt:
             if bar is not None:
                 bar.close()
-            # a seed whose file exists was finished (written whole, then renamed) even when
-            # its outcome had not reached this process yet
-            left = sorted(s for s, path in todo if s not in outcomes and not path.is_file())
-            for s, path in todo:
-                if s not in outcomes and path.is_file():
-                    outcomes[s] = SeedOutcome(s, "done", path)
-            for s in left:
-                p = seed_file(out_dir, scene.name, s)
-                if p.with_name(p.name + ".tmp").is_file():
-                    p.with_name(p.name + ".tmp").unlink()
-            record.write_text("seeds not computed (interrupted; run the same command again to "
-                              "compute them):\n" + "\n".join(str(s) for s in left) + "\n")
+            left = _abandon(todo, outcomes, out_dir, scene, record,
+                            "seeds not computed (interrupted; run the same command again to "
+                            "compute them)")
             raise BatchInterrupted([outcomes[s] for s in seeds if s in outcomes], left,
                                    record) from None
-    record.unlink(missing_ok=True)
     if bar is not None:
         bar.close()
+    if full is not None:
+        left = _abandon(todo, outcomes, out_dir, scene, record,
+                        "seeds not computed (the disk is full; free some space and run the "
+                        "same command again to compute them)")
+        done = sum(1 for o in outcomes.values() if o.status in ("done", "skipped"))
+        raise DiskFull(out_dir, f"{full.error}; {done} seed(s) finished and kept, "
+                       f"{len(left)} not computed (listed in {record}); free some space and "
+                       "run the same command again to compute them")
+    record.unlink(missing_ok=True)
     return BatchResult(tuple(outcomes[s] for s in seeds))
+
+
+def _abandon(todo, outcomes, out_dir, scene, record, title) -> list[int]:
+    """The seeds of ``todo`` left without a result (their temporary files removed), written
+    to ``record``; a seed whose file exists was finished (written whole, then renamed) even
+    when its outcome had not reached this process yet."""
+    left = sorted(s for s, path in todo if s not in outcomes and not path.is_file())
+    for s, path in todo:
+        if s not in outcomes and path.is_file():
+            outcomes[s] = SeedOutcome(s, "done", path)
+    for s in left:
+        p = seed_file(out_dir, scene.name, s)
+        for tmp in p.parent.glob(p.name + ".*tmp"):
+            if tmp.is_file():
+                tmp.unlink(missing_ok=True)
+    record.write_text(title + ":\n" + "\n".join(str(s) for s in left) + "\n")
+    return left
 
 
 def _stop_pool(pool) -> None:

@@ -2,19 +2,15 @@
 
 from __future__ import annotations
 
-import datetime as _dt
 import math
-import os
-import platform
 import time as _time
 import warnings
-from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from ..core.dofs import DOF_NAMES, DOF_UNITS, FORCE_UNITS
 from ..core.errors import FloatmoorWarning, SceneError
+from .td_dataset import TDRun, scene_text, to_dataset
 
 __all__ = ["simulate", "result_dataset", "scene_text", "check_statistics_window",
            "YAW_WARNING_DEG"]
@@ -36,23 +32,6 @@ def check_statistics_window(file, duration: float, transient: float, *,
                          "analysis.transient): the statistics window after the transient "
                          "would be empty", duration,
                          hint=f"give a duration > {transient:g} s or a shorter transient")
-
-
-def scene_text(scene) -> str:
-    """The scene file's text (YAML) when it has a file, else its ``describe()``."""
-    if scene.file is not None and Path(scene.file).is_file():
-        return Path(scene.file).read_text()
-    return scene.describe()
-
-
-def _versions() -> dict:
-    import numba
-    import scipy
-
-    from .. import __version__
-    return {"floatmoor": __version__, "numpy": np.__version__, "scipy": scipy.__version__,
-            "xarray": xr.__version__, "numba": numba.__version__,
-            "python": platform.python_version()}
 
 
 def simulate(scene, *, seed: int | None = None, duration: float | None = None,
@@ -203,145 +182,9 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     return ds
 
 
-def _relative_velocity_note(r) -> str:
-    mode = r.info.get("relative_velocity", "low_frequency")
-    flows = [m for m in ("wind", "current") if m in r.models]
-    if not flows:
-        return "no wind or current force"
-    what = " and ".join(flows)
-    if mode == "total":
-        return f"{what} relative to the total body velocity (Wang (2016) eq. 6.7 form)"
-    if r.info.get("wf_velocity_removed", False):
-        return (f"{what} relative to the low-frequency body velocity: the linear first-order "
-                "wave-frequency velocity (motion RAOs x the run's wave realisation) is removed "
-                "from the body velocity (Wang (2016) eq. 2.24, 2.26)")
-    return (f"{what} relative to the body velocity (no first-order waves: it is the "
-            "low-frequency velocity, Wang (2016) eq. 2.24, 2.26)")
-
-
-def _fe_selfcheck(r, built, transient: float) -> dict:
-    """Self-check variables (``selfcheck_*`` over ``line``, NaN / "-" for quasi-static lines;
-    :mod:`floatmoor.mooring.fe.selfcheck`) of the coupled FE lines over the statistics window,
-    with a FloatmoorWarning for a line that breaks a warning-level bound."""
-    from ..core.frames import rotation_matrix_into
-    from ..mooring.fe.selfcheck import line_selfcheck, selfcheck_variables, warn_broken
-
-    sel = r.time >= transient
-    if not np.any(sel):
-        sel = np.ones(r.time.size, bool)
-    R = np.zeros((3, 3))
-    rot = np.empty((r.time.size, 3, 3))
-    for k, p in enumerate(r.motion):
-        rotation_matrix_into(p[3], p[4], p[5], R)
-        rot[k] = R
-    dt = float(r.time[1] - r.time[0]) if r.time.size > 1 else 1.0
-    fe = dict(zip(r.fe_lines, r.fe_objects))
-    names = list(r.line_names)
-    checks = []
-    for j, name in enumerate(names):
-        ln = fe.get(name)
-        if ln is None:
-            checks.append(None)
-            continue
-        rb = np.asarray(built.mooring.lines[j].fairlead, float)
-        rf = r.motion[:, :3] + rot @ rb
-        speed = np.linalg.norm(np.diff(rf, axis=0), axis=1) / dt
-        checks.append(line_selfcheck(
-            ln, fairlead_tension=r.line_tension[sel, j],
-            max_tension=r.fe_records["max_tension_along_line"][sel, j],
-            fairlead_height=float(rf[sel, 2].max() - ln.r[0, 2]),
-            fairlead_speed=float(speed.max())))
-    warn_broken(names, checks, stacklevel=4)
-    return selfcheck_variables(checks)
-
-
 def result_dataset(r, built, *, seed: int, dt: float, duration: float, ramp: float,
                    transient: float) -> xr.Dataset:
-    """The :class:`~floatmoor.solvers.time_domain.TimeDomainResult` as an xarray Dataset."""
-    sc = built.scene
-    data = {
-        "motion": (("time", "dof"), r.motion,
-                   {"units": "m (surge, sway, heave), rad (roll, pitch, yaw)",
-                    "long_name": "pose of the body reference point (earth axes)"}),
-        "velocity": (("time", "dof"), r.velocity,
-                     {"units": "m/s (surge, sway, heave), rad/s (roll, pitch, yaw)",
-                      "long_name": "pose rate of the body reference point"}),
-    }
-    coords = {"time": ("time", r.time, {"units": "s", "long_name": "simulated time"}),
-              "dof": ("dof", list(DOF_NAMES), {"long_name": "degree of freedom",
-                                               "units": ", ".join(DOF_UNITS)})}
-    if r.line_names:
-        coords["line"] = ("line", list(r.line_names), {"long_name": "mooring line"})
-        data["line_tension"] = (("time", "line"), r.line_tension,
-                                {"units": "N", "long_name": "effective tension at the fairlead "
-                                 "(quasi-static catenary)"})
-        data["anchor_tension"] = (("time", "line"), r.anchor_tension,
-                                  {"units": "N", "long_name": "tension at the anchor"})
-        data["mbs"] = (("line",), np.asarray(built.mooring.mbs, float),
-                       built.mooring.mbs_attrs() if hasattr(built.mooring, "mbs_attrs") else
-                       {"units": "N", "long_name": "minimum breaking strength (weakest segment)"})
-        fe_lines = list(getattr(r, "fe_lines", []) or [])
-        if fe_lines:
-            data["line_tension"][2]["long_name"] = (
-                "effective tension at the fairlead (finite-element lines: FE end force; "
-                "others: quasi-static catenary)")
-            data["line_model"] = (("line",), np.array(
-                ["finite-element" if n in fe_lines else "quasi-static" for n in r.line_names]),
-                {"long_name": "line model"})
-            desc = {"max_tension_along_line": ("N", "largest element tension along the line "
-                                               "(finite-element lines; NaN: quasi-static)"),
-                    "grounded_length": ("m", "unstretched length from the anchor to the last "
-                                        "node in seabed contact (finite-element lines)"),
-                    "touchdown_tension": ("N", "tension of the element above the touchdown node "
-                                          "(finite-element lines)")}
-            for k, (unit, ln) in desc.items():
-                data[k] = (("time", "line"), r.fe_records[k], {"units": unit, "long_name": ln})
-            data.update(_fe_selfcheck(r, built, transient))
-    if r.wave_elevation is not None:
-        data["wave_elevation"] = (("time",), r.wave_elevation,
-                                  {"units": "m", "long_name": "undisturbed wave elevation at the "
-                                   "origin"})
-    if r.forces is not None:
-        coords["model"] = ("model", list(r.force_models), {"long_name": "force model"})
-        data["force"] = (("time", "model", "dof"), r.forces,
-                         {"units": ", ".join(FORCE_UNITS),
-                          "long_name": "generalized force of each model on the body (moments "
-                                       "about the displaced reference point, earth axes)"})
-    data["start_pose"] = (("dof",), r.x0, {"units": ", ".join(DOF_UNITS),
-                                           "long_name": "start pose (static equilibrium)"})
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update({
-        "title": f"floatmoor time-domain simulation of {sc.name}",
-        "scene": scene_text(sc),
-        "scene_name": sc.name,
-        "scene_file": "" if sc.file is None else os.fspath(sc.file),
-        "seed": int(seed),
-        "models": list(r.models),
-        "dt": float(dt),
-        "duration": float(duration),
-        "ramp": float(ramp),
-        "transient": float(transient),
-        "integrator": "classical Runge-Kutta 4, fixed step; trapezoidal radiation memory",
-        "relative_velocity": str(r.info.get("relative_velocity", "low_frequency")),
-        "relative_velocity_note": _relative_velocity_note(r),
-        "wave_force_frame": "first-order wave and drift forces are evaluated at the mean "
-                            "position (the origin) and the start heading (body yaw 0): they do "
-                            "not follow the body's yaw or offset",
-        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-    })
-    if getattr(r, "fe_lines", None):
-        ds.attrs["fe_lines"] = list(r.fe_lines)
-        ds.attrs["fe_coupling"] = ("finite-element lines coupled to the body: one "
-                                   "generalised-alpha advance of every FE line per body step "
-                                   "(staggered); within the RK4 step the FE force is the value "
-                                   "at the step start plus the change of the lines' "
-                                   "quasi-static catenary force (floatmoor/solvers/"
-                                   "fe_coupling.py)")
-        for k in ("fe_substeps", "fe_newton_iterations", "fe_step_halvings", "fe_threads"):
-            if k in r.info:
-                ds.attrs[k] = int(r.info[k])
-        if "fe_elements" in r.info:
-            ds.attrs["fe_elements"] = list(r.info["fe_elements"])
-    for k, v in _versions().items():
-        ds.attrs[f"version_{k}"] = v
-    return ds
+    """The :class:`~floatmoor.solvers.time_domain.TimeDomainResult` as an xarray Dataset (the
+    variable table of :mod:`floatmoor.analyses.td_dataset`)."""
+    return to_dataset(TDRun(r=r, built=built, seed=seed, dt=dt, duration=duration, ramp=ramp,
+                            transient=transient))

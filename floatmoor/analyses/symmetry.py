@@ -35,18 +35,16 @@ _TOL_M = 1e-6   # m: coordinates equal
 
 def symmetry_plane(environment) -> float | None:
     """Heading (rad) of the vertical symmetry plane of an environment through the origin: the
-    common heading of its waves, wind and current (opposite headings share a plane), or None
-    when they do not share one.  A calm environment (none of the three) gives 0 (x-z plane):
+    common heading of its waves (every wave system), wind and current (opposite headings share
+    a plane), or None when they do not share one.  A calm environment (none of the three) gives 0 (x-z plane):
     every plane through the origin is then a symmetry plane of the loads."""
     heads = []
-    for part in ("waves", "wind", "current"):
+    for part in ("waves", "wind", "current", "wave_systems"):
         c = getattr(environment, part, None)
-        if c is None:
-            continue
-        h = getattr(c, "heading", None)
-        if h is None:
-            continue
-        heads.append(float(h) % math.pi)
+        for item in (c if isinstance(c, (list, tuple)) else [c]):
+            h = getattr(item, "heading", None)
+            if h is not None:
+                heads.append(float(h) % math.pi)
     if not heads:
         return 0.0
     h0 = heads[0]

@@ -14,9 +14,17 @@ outcomes to the manifest and screens with the values the tasks return (files of 
 are read).  A worker that dies has its tasks rerun on another worker by
 the Dask scheduler (up to ``distributed.scheduler.allowed-failures`` times, then the task is
 recorded as failed); a task that raises inside floatmoor (e.g. NumericalError) is recorded as
-failed with its message and the others go on.  Rerunning the same command resumes: a task whose
-manifest row says done and whose file has the recorded size is skipped; anything else (missing,
-failed, half-written) runs again.
+failed with its message and the others go on.  Rerunning the same command resumes: a result
+is kept when its manifest row says done, its file has the recorded size (and SHA-256 with
+``verify``), was computed from the inputs of the case as it is now (the fingerprint digest of
+:func:`floatmoor.analyses.fingerprint.case_fingerprint`: base scene and the files it reads,
+the case's sea state, headings, condition and time settings from the campaign file and its
+contour or list, the storage settings, the code) and holds finite and plausible values
+(:func:`floatmoor.campaign.store.read_result`); anything else (missing, failed, half-written,
+stale, corrupted) runs again, and the run says which and why.  A folder holding another
+campaign's results is refused unless ``force``; the folder is locked while the campaign runs
+(:func:`floatmoor.analyses.folder_lock.folder_lock`); a full disk stops the campaign with
+:class:`~floatmoor.analyses.folder_lock.DiskFull` (finished results kept).
 """
 
 from __future__ import annotations
@@ -114,6 +122,13 @@ BLAS sums in a different order and changes the last bits of the statics and eige
 a serial run in a process with several BLAS threads would not be bit-identical to a cluster."""
 
 
+def _task_process_init() -> None:
+    """The serial executor's worker process ends with the campaign's process (a killed
+    campaign leaves no storm running beside the one that resumes it)."""
+    from ..analyses.folder_lock import die_with_parent
+    die_with_parent()
+
+
 class SerialExecutor:
     """One task after the other in one spawned worker process with :data:`SINGLE_THREAD_ENV`
     (a worker that dies is replaced and its task recorded as failed)."""
@@ -129,8 +144,12 @@ class SerialExecutor:
         if self.pool is None:
             import multiprocessing
             from concurrent.futures import ProcessPoolExecutor
-            self.pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
+            self.pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"),
+                                            initializer=_task_process_init)
         return self.pool
+
+    def cancel(self):
+        """Nothing to cancel: one task at a time, none submitted ahead."""
 
     def warm(self, fn, *args):
         """Nothing: the one process warms up in its first task (and serial runs stay the
@@ -222,7 +241,7 @@ class DaskExecutor:
 
     def map(self, fn, arg_list):
         from dask.distributed import as_completed
-        futs = {}
+        futs = self._futs = {}
         for args in arg_list:
             futs[self.client.submit(fn, *args, pure=False, retries=1)] = args
         for fut in as_completed(futs):
@@ -233,6 +252,13 @@ class DaskExecutor:
                 res = exc
             fut.release()
             yield args, res
+
+    def cancel(self):
+        """Cancel the tasks of the current :meth:`map` not finished yet."""
+        futs = list(getattr(self, "_futs", {}))
+        if futs:
+            self.client.cancel(futs)
+        self._futs = {}
 
     def close(self):
         for fut in getattr(self, "_warm", []):
@@ -255,7 +281,19 @@ def _fd_failed(cases, exc):
              "path": "", "error": f"{type(exc).__name__}: {exc}"} for c in cases]
 
 
-def _record(spec, cases, seeds, analysis, out_dir):
+def _record(spec, cases, seeds, analysis, out_dir, fps, lines, files):
+    """``campaign.json``: the campaign's parameters, the case list with the fingerprint digest
+    of each case's results (fd, td, series), the line names and the base scene's file and
+    code fingerprint (``base_inputs``)."""
+    from ..analyses.fingerprint import _file_hash
+    rows = []
+    for c in cases:
+        r = c.row()
+        r["fingerprints"] = {k: v[1] for k, v in fps[c.id].items()}
+        rows.append(r)
+    sources = {}
+    if spec.file:
+        sources["campaign_file"] = _file_hash(spec.file)
     store.write_record(out_dir, {
         "name": spec.name, "description": spec.description,
         "campaign_file": os.fspath(spec.file) if spec.file else "",
@@ -270,7 +308,8 @@ def _record(spec, cases, seeds, analysis, out_dir):
         "storage": {"mode": spec.storage.mode, "precision": spec.storage.precision,
                     "compression": spec.storage.compression,
                     "sampling": dict(spec.storage.sampling)},
-        "cases": [c.row() for c in cases]})
+        "lines": list(lines), "base_inputs": files, "sources": sources,
+        "cases": rows})
 
 
 def screen(spec, cases, out_dir, known: dict | None = None
@@ -347,126 +386,6 @@ def line_names(out_dir) -> list[str]:
     return list(rec.get("lines", []))
 
 
-def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | None = None,
-                 client=None, echo=print, bar: bool | None = None, verify: bool = False,
-                 seeds=None, analysis_overrides: dict | None = None,
-                 on_outcome=None) -> CampaignOutcome:
-    """Run (or resume) a campaign into ``out_dir``; see the module docstring.
-
-    ``campaign`` is a campaign file or a :class:`CampaignSpec`; ``seeds`` and
-    ``analysis_overrides`` (duration, dt, transient, ramp) replace the campaign's (smoke runs);
-    ``verify`` checks the SHA-256 of finished files before skipping them; ``on_outcome(dict)``
-    is called after each task outcome is in the manifest (progress hooks)."""
-    t_start = time.perf_counter()
-    spec = campaign if isinstance(campaign, CampaignSpec) else load_campaign(campaign)
-    out_dir = Path(out_dir).resolve()
-    out_dir.mkdir(parents=True, exist_ok=True)
-    for tmp in out_dir.rglob("*.tmp"):  # leftovers of interrupted writes
-        tmp.unlink()
-    cases = build_matrix(spec)
-    by_id = {c.id: c for c in cases}
-    seeds = tuple(int(s) for s in (seeds or spec.seeds))
-    analysis = campaign_analysis(spec, analysis_overrides)
-    old_inputs = _check_same_campaign(spec, analysis, out_dir)
-    _record(spec, cases, seeds, analysis, out_dir)
-    result = CampaignOutcome(out_dir=out_dir, n_cases=len(cases))
-    base_path = os.fspath(Path(spec.base_scene).resolve())
-    executor = make_executor(scheduler, workers, client)
-    try:
-        # each worker loads the base scene and the compiled kernels now, while the client
-        # reads the base scene itself and the manifest, not inside its first task
-        executor.warm(warm_worker, base_path, analysis)
-        import warnings
-
-        from ._api import load_scene
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            base = load_scene(spec.base_scene)
-        inputs = _check_same_inputs(spec, base, old_inputs, out_dir)
-        rec = store.read_record(out_dir)
-        rec["lines"] = [str(n.raw("name")) for n in base.mooring_node().item_nodes("lines")]
-        rec["base_inputs"] = inputs
-        store.write_record(out_dir, rec)
-        manifest = store.Manifest(out_dir)
-
-        # what the tasks of this run return for the screening (files of earlier runs are read)
-        tables = {"fd": {}, "td": {}, "series": {}}
-
-        def consume(label, fn, arg_list, n_of, kind):
-            total = sum(n_of(a) for a in arg_list)
-            result.skipped[kind] = result.skipped.get(kind, 0)
-            prog = Progress(label, total, echo, executor.workers, bar)
-            for args, res in executor.map(fn, arg_list):
-                outs = res if isinstance(res, list) else [res]
-                if isinstance(res, BaseException):
-                    outs = (_fd_failed(args[1], res) if kind == "fd" else
-                            [{"kind": kind, "case": args[1].id, "seed": int(args[2]),
-                              "status": "failed", "wall_time_s": 0.0, "path": args[5],
-                              "error": f"{type(res).__name__}: {res}"}])
-                for o in outs:
-                    table = o.pop("table", None)
-                    if table is not None and o["status"] == "done":
-                        tables[kind][o["case"] if kind == "fd" else (o["case"], o["seed"])] = table
-                    manifest.append(o, by_id[o["case"]].row())
-                    result.ran[kind] = result.ran.get(kind, 0) + 1
-                    result.task_time += float(o.get("wall_time_s", 0.0))
-                    if o["status"] != "done":
-                        result.failed.append((kind, o["case"], o["seed"], o["error"]))
-                    prog.update(o["status"] == "done", 1,
-                                "" if o["status"] == "done" else
-                                f"{o['case']} seed {o['seed']}: {o['error']}")
-                    if on_outcome is not None:
-                        on_outcome(o)
-            prog.close()
-
-        # the client's own imports for the screening (scipy.stats for the Gumbel fits) load in
-        # a thread while the workers run the frequency domain, not after it
-        preload = _preload("floatmoor.post.dnv_os_e301")
-        # (1) frequency domain, every case (also with time_domain all or none: the report
-        #     compares FD and TD)
-        latest = manifest.latest()
-        if True:
-            todo = []
-            for c in cases:
-                if manifest.is_done(latest.get(("fd", c.id, -1)), store.fd_path(out_dir, c.id),
-                                    verify):
-                    result.skipped["fd"] = result.skipped.get("fd", 0) + 1
-                else:
-                    todo.append(c)
-            size = max(1, min(32, len(todo) // (4 * executor.workers) or 1))
-            batches = [(base_path, todo[i:i + size], analysis, os.fspath(out_dir),
-                        spec.storage.compression) for i in range(0, len(todo), size)]
-            if echo:
-                echo(f"frequency domain: {len(todo)} case(s) to run, "
-                     f"{result.skipped.get('fd', 0)} done before")
-            consume("FD", run_fd_cases, batches, lambda a: len(a[1]), "fd")
-        # (2) screening
-        preload.join()
-        u, keep, _ = screen(spec, cases, out_dir, tables["fd"])
-        td_cases = [cases[i] for i in _most_critical_first(u, cases, keep)]
-        result.n_td_cases = len(td_cases)
-        if echo:
-            echo(f"screening ({spec.screening.time_domain}): {len(td_cases)} of {len(cases)} "
-                 f"case(s) to the time domain, {len(td_cases) * len(seeds)} storm(s)")
-        # (3) time domain
-        storms = _storm_args(td_cases, seeds, base_path, analysis, spec.storage, out_dir,
-                             manifest, verify, result, "td")
-        consume("TD", run_storm, storms, lambda a: 1, "td")
-        # (4) statistics mode: the series of the governing cases
-        if spec.storage.mode == "statistics" and td_cases:
-            gov = governing_cases(spec, td_cases, seeds, out_dir, tables["td"])
-            series = _storm_args(gov, seeds, base_path, analysis, spec.storage, out_dir,
-                                 manifest, verify, result, "series")
-            if echo:
-                echo(f"statistics mode: full series of {len(gov)} governing case(s)")
-            consume("series", run_storm, series, lambda a: 1, "series")
-        result.warmup = executor.warm_results()
-    finally:
-        executor.close()
-    result.wall_time = time.perf_counter() - t_start
-    return result
-
-
 def _preload(module: str):
     """Import ``module`` in a background thread (join it before use; an import error then
     surfaces at the ordinary import)."""
@@ -501,59 +420,315 @@ def _most_critical_first(u, cases, keep) -> list[int]:
     return [int(i) for i in idx[np.argsort(-score, kind="stable")]]
 
 
-def _check_same_campaign(spec, analysis, out_dir) -> dict | None:
-    """Refuse to resume into a folder of results made with other storm parameters (their files
-    would be taken as done).  Returns the base scene's input fingerprint recorded by the
-    earlier run (None for a new folder or a record written before fingerprints were kept),
-    for :func:`_check_same_inputs` once the base scene is loaded."""
+def run_campaign(campaign, out_dir, *, scheduler: str = "local", workers: int | None = None,
+                 client=None, echo=print, bar: bool | None = None, verify: bool = False,
+                 seeds=None, analysis_overrides: dict | None = None,
+                 on_outcome=None, force: bool = False) -> CampaignOutcome:
+    """Run (or resume) a campaign into ``out_dir``; see the module docstring.
+
+    ``campaign`` is a campaign file or a :class:`CampaignSpec`; ``seeds`` and
+    ``analysis_overrides`` (duration, dt, transient, ramp) replace the campaign's (smoke runs);
+    ``verify`` checks the SHA-256 of finished files before skipping them; ``on_outcome(dict)``
+    is called after each task outcome is in the manifest (progress hooks); ``force`` reuses a
+    folder holding another campaign's (or other) results, keeping the results whose inputs
+    match this campaign's cases.
+
+    Raises SceneError before anything runs (a mistake in the campaign or its base scene, a
+    time setting such as ``--duration`` that does not fit, ``out_dir`` in use by another
+    process or holding another campaign), and
+    :class:`~floatmoor.analyses.folder_lock.DiskFull` when the disk fills (the finished
+    results are kept and recorded)."""
+    import warnings
+
+    from ..analyses.folder_lock import folder_lock
+    from ._api import load_scene
+    from .spec import check_times
+    t_start = time.perf_counter()
+    spec = campaign if isinstance(campaign, CampaignSpec) else load_campaign(campaign)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        base = load_scene(spec.base_scene)
+    check_times(spec, base, analysis_overrides)   # --duration, --dt ...: before anything runs
+    out_dir = Path(out_dir).resolve()
+    with folder_lock(out_dir, f"floatmoor campaign {spec.name}"):
+        return _run_locked(spec, base, out_dir, t_start, scheduler=scheduler, workers=workers,
+                           client=client, echo=echo, bar=bar, verify=verify, seeds=seeds,
+                           analysis_overrides=analysis_overrides, on_outcome=on_outcome,
+                           force=force)
+
+
+def _run_locked(spec, base, out_dir, t_start, *, scheduler, workers, client, echo, bar, verify,
+                seeds, analysis_overrides, on_outcome, force) -> CampaignOutcome:
+    """:func:`run_campaign` with the folder locked."""
+    from .spec import check_storm_count
+    _check_folder(spec, out_dir, force, echo)
+    analysis = campaign_analysis(spec, analysis_overrides)
+    for tmp in out_dir.rglob("*.tmp"):  # leftovers of interrupted writes
+        if tmp.is_file():
+            tmp.unlink(missing_ok=True)
+    cases = build_matrix(spec)
+    by_id = {c.id: c for c in cases}
+    seeds = tuple(int(s) for s in (seeds or spec.seeds))
+    files, fps = _fingerprints(spec, base, cases, analysis)
+    lines = [str(n.raw("name")) for n in base.mooring_node().item_nodes("lines")]
+    _record(spec, cases, seeds, analysis, out_dir, fps, lines, files)
+    result = CampaignOutcome(out_dir=out_dir, n_cases=len(cases))
+    base_path = os.fspath(Path(spec.base_scene).resolve())
+    executor = make_executor(scheduler, workers, client)
+    try:
+        # each worker loads the base scene and the compiled kernels now, while the client
+        # reads the manifest and the finished results, not inside its first task
+        executor.warm(warm_worker, base_path, analysis)
+        manifest = store.Manifest(out_dir)
+        # the values the screening reads: returned by this run's tasks, or read (and checked)
+        # from the files of an earlier run
+        tables = {"fd": {}, "td": {}, "series": {}}
+
+        def consume(label, fn, arg_list, n_of, kind):
+            total = sum(n_of(a) for a in arg_list)
+            result.skipped[kind] = result.skipped.get(kind, 0)
+            prog = Progress(label, total, echo, executor.workers, bar)
+            full = None
+            for args, res in executor.map(fn, arg_list):
+                outs = res if isinstance(res, list) else [res]
+                if isinstance(res, BaseException):
+                    outs = (_fd_failed(args[1], res) if kind == "fd" else
+                            [{"kind": kind, "case": args[1].id, "seed": int(args[2]),
+                              "status": "failed", "wall_time_s": 0.0, "path": args[5],
+                              "error": f"{type(res).__name__}: {res}"}])
+                for o in outs:
+                    table = o.pop("table", None)
+                    key = o["case"] if kind == "fd" else (o["case"], o["seed"])
+                    if o["status"] == "done":
+                        o["fingerprint"] = fps[o["case"]][kind][1]
+                        if table is not None:
+                            tables[kind][key] = table
+                    manifest.append(o, by_id[o["case"]].row())
+                    result.ran[kind] = result.ran.get(kind, 0) + 1
+                    result.task_time += float(o.get("wall_time_s", 0.0))
+                    if o["status"] != "done":
+                        result.failed.append((kind, o["case"], o["seed"], o["error"]))
+                        if o.get("disk_full"):
+                            full = full or o
+                    prog.update(o["status"] == "done", 1,
+                                "" if o["status"] == "done" else
+                                f"{o['case']} seed {o['seed']}: {o['error']}")
+                    if on_outcome is not None:
+                        on_outcome(o)
+                if full is not None:
+                    break   # every other task would fail the same way
+            prog.close()
+            if full is not None:
+                executor.cancel()
+                _disk_full(out_dir, full, manifest)
+
+        # the client's own imports for the screening (scipy.stats for the Gumbel fits) load in
+        # a thread while the workers run the frequency domain, not after it
+        preload = _preload("floatmoor.post.dnv_os_e301")
+        # (1) frequency domain, every case (also with time_domain all or none: the report
+        #     compares FD and TD)
+        latest = manifest.latest()
+        todo = []
+        redo = _Redo("FD", echo)
+        for c in cases:
+            state, info = _resume_state("fd", c, -1, store.fd_path(out_dir, c.id), latest,
+                                        fps[c.id]["fd"], verify)
+            if state == "done":
+                result.skipped["fd"] = result.skipped.get("fd", 0) + 1
+                tables["fd"][c.id] = info
+            else:
+                redo.add(c.id, info)
+                todo.append(c)
+        redo.report()
+        size = max(1, min(32, len(todo) // (4 * executor.workers) or 1))
+        batches = [(base_path, todo[i:i + size], analysis, os.fspath(out_dir),
+                    spec.storage.compression, {c.id: fps[c.id]["fd"][0]
+                                               for c in todo[i:i + size]})
+                   for i in range(0, len(todo), size)]
+        if echo:
+            echo(f"frequency domain: {len(todo)} case(s) to run, "
+                 f"{result.skipped.get('fd', 0)} done before")
+        consume("FD", run_fd_cases, batches, lambda a: len(a[1]), "fd")
+        # (2) screening
+        preload.join()
+        u, keep, _ = screen(spec, cases, out_dir, tables["fd"])
+        td_cases = [cases[i] for i in _most_critical_first(u, cases, keep)]
+        result.n_td_cases = len(td_cases)
+        check_storm_count(spec, len(td_cases), len(seeds), "TD cases after the screening")
+        if echo:
+            echo(f"screening ({spec.screening.time_domain}): {len(td_cases)} of {len(cases)} "
+                 f"case(s) to the time domain, {len(td_cases) * len(seeds)} storm(s)")
+        # (3) time domain
+        storms = _storm_args(td_cases, seeds, base_path, analysis, spec.storage, out_dir,
+                             manifest, verify, result, "td", fps, tables, echo)
+        consume("TD", run_storm, storms, lambda a: 1, "td")
+        # (4) statistics mode: the series of the governing cases
+        if spec.storage.mode == "statistics" and td_cases:
+            gov = governing_cases(spec, td_cases, seeds, out_dir, tables["td"])
+            series = _storm_args(gov, seeds, base_path, analysis, spec.storage, out_dir,
+                                 manifest, verify, result, "series", fps, tables, echo)
+            if echo:
+                echo(f"statistics mode: full series of {len(gov)} governing case(s)")
+            consume("series", run_storm, series, lambda a: 1, "series")
+        result.warmup = executor.warm_results()
+    finally:
+        executor.close()
+    result.wall_time = time.perf_counter() - t_start
+    return result
+
+
+def _disk_full(out_dir, outcome, manifest):
+    """Stop the campaign on a full disk: every finished result is in the manifest."""
+    from ..analyses.folder_lock import DiskFull
+    done = sum(1 for r in manifest.latest().values() if r["status"] == "done")
+    msg = outcome["error"].removeprefix("DiskFull: ")
+    raise DiskFull(out_dir, f"{msg}; the campaign stopped: {done} finished result(s) kept "
+                   f"(manifest.csv); free some space and run the same command again to "
+                   "compute the rest")
+
+
+def _check_folder(spec, out_dir: Path, force: bool, echo) -> None:
+    """Refuse (unless ``force``) an output folder that holds another campaign's results, an
+    unreadable campaign record, or results that are not a campaign's (``floatmoor run``
+    seeds): their files would be taken for this campaign's."""
     from ..core.errors import SceneError
-    if not (Path(out_dir) / store.RECORD).is_file():
+    hint = ("use another --out folder, or --force to reuse it (a result whose inputs match a "
+            "case of this campaign is kept, the others are computed again)")
+    if (out_dir / store.RECORD).is_file():
+        try:
+            rec = store.read_record(out_dir)
+        except SceneError:
+            if force:
+                if echo:
+                    echo(f"--force: {out_dir / store.RECORD} is unreadable; written again")
+                return
+            raise
+        if rec.get("name") != spec.name:
+            if not force:
+                raise SceneError(spec.file, "name", f"the campaign whose results are in "
+                                 f"{out_dir} ({rec.get('name')!r}, campaign file "
+                                 f"{rec.get('campaign_file') or 'unknown'})", spec.name,
+                                 f"a folder holds the results of one campaign; {hint}")
+            if echo:
+                echo(f"--force: reusing the folder of the campaign {rec.get('name')!r}")
+        return
+    others = sorted(p.name for p in out_dir.glob("*.nc"))[:3]
+    if others and not force:
+        raise SceneError(spec.file, "", f"a new output folder or one of this campaign "
+                         f"({out_dir})", f"a folder of other results ({', '.join(others)}, "
+                         "no campaign record)", hint)
+
+
+def _fingerprints(spec, base, cases, analysis):
+    """The input fingerprints of every case's results: ``(files, {case id: {kind: (JSON,
+    digest)}})`` for the kinds fd, td and series (:func:`floatmoor.analyses.fingerprint.
+    case_fingerprint`); the files the base scene reads are hashed once."""
+    import json
+
+    from ..analyses.fingerprint import (
+        case_fingerprint,
+        file_sections,
+        fingerprint_digest,
+        scene_fingerprint,
+    )
+    from .matrix import case_scene
+    files = file_sections(base)
+    out = {}
+    for c in cases:
+        scene, _ = case_scene(base, c, analysis)
+        sfp = scene_fingerprint(scene, files=files)
+        out[c.id] = {}
+        for kind in ("fd", "td", "series"):
+            fp = case_fingerprint(scene, c.condition, files, kind=kind, storage=spec.storage,
+                                  compression=spec.storage.compression, scene_fp=sfp)
+            out[c.id][kind] = (json.dumps(fp, sort_keys=True), fingerprint_digest(fp))
+    return files, out
+
+
+class _Redo:
+    """The results a resume computes again, and why, said once per reason."""
+
+    def __init__(self, label, echo):
+        self.label, self.echo = label, echo
+        self.groups: dict[str, list[str]] = {}
+
+    def add(self, what: str, reason: str) -> None:
+        if reason:
+            self.groups.setdefault(reason, []).append(what)
+
+    def report(self) -> None:
+        if not self.echo:
+            return
+        for reason, items in self.groups.items():
+            shown = ", ".join(items[:4]) + (f" and {len(items) - 4} more" if len(items) > 4
+                                            else "")
+            self.echo(f"{self.label}: {len(items)} result(s) {reason}, computing them again: "
+                      f"{shown}")
+
+
+def _stored_fingerprint(path) -> dict | None:
+    import json
+
+    import netCDF4
+
+    from ..analyses.fingerprint import FINGERPRINT_ATTR
+    try:
+        with netCDF4.Dataset(path) as nc:
+            text = getattr(nc, FINGERPRINT_ATTR, None)
+        return None if text is None else json.loads(text)
+    except Exception:  # noqa: BLE001 - an unreadable file is computed again anyway
         return None
-    old = store.read_record(out_dir)
-    new = {"analysis": analysis, "storage": {"mode": spec.storage.mode,
-                                             "precision": spec.storage.precision,
-                                             "compression": spec.storage.compression,
-                                             "sampling": dict(spec.storage.sampling)},
-           "base_scene": os.fspath(spec.base_scene)}
-    for key, value in new.items():
-        if old.get(key) != value:
-            raise SceneError(spec.file, key, f"the {key} of the results already in {out_dir} "
-                             f"({old.get(key)})", value, "use another --out folder, or the "
-                             "same settings to resume")
-    return old.get("base_inputs")
 
 
-def _check_same_inputs(spec, base, old_inputs, out_dir) -> dict:
-    """The input fingerprint of the base scene (:func:`~floatmoor.analyses.fingerprint.
-    scene_fingerprint`: site, environment, analysis, forces, vessel and its hydrodynamic
-    database, mooring, by content); refuse to resume when it differs from the one recorded
-    with the results already in ``out_dir`` (an edited mooring or vessel file behind the same
-    base-scene path would otherwise mix old and new results in one report)."""
-    from ..analyses.fingerprint import differing_keys, scene_fingerprint
+def _resume_state(kind, case, seed, path, latest, fp, verify):
+    """``("done", table)`` for a finished result that may be kept: the manifest says done,
+    the file has the recorded size (and SHA-256 with ``verify``), was computed from the
+    inputs ``fp`` (JSON, digest) and holds checked values; else ``("todo", reason)``, the
+    reason empty for a result never finished."""
+    import json
+
+    from ..analyses.fingerprint import differing_keys
     from ..core.errors import SceneError
-    inputs = scene_fingerprint(base)
-    if old_inputs is not None and dict(old_inputs) != inputs:
-        raise SceneError(spec.file, "base_scene",
-                         "the inputs of the results already in the output folder",
-                         "changed: " + ", ".join(differing_keys(dict(old_inputs), inputs)),
-                         f"{spec.base_scene} or a file it reads was edited since the results "
-                         f"in {out_dir} were run; use another --out folder for the edited "
-                         "scene, or restore it to resume")
-    return inputs
+    row = latest.get((kind, case.id, int(seed)))
+    if row is None or row["status"] != "done":
+        return "todo", ""
+    if not path.is_file():
+        return "todo", "missing from the folder"
+    if row.get("fingerprint") != fp[1]:
+        stored = _stored_fingerprint(path)
+        if stored is None:
+            return "todo", "computed without a recorded input fingerprint"
+        diff = differing_keys(stored, json.loads(fp[0]))
+        return "todo", f"computed from other inputs (differ in: {', '.join(diff) or '?'})"
+    if str(path.stat().st_size) != str(row.get("bytes")):
+        return "todo", "half-written or changed since written (size)"
+    if verify:
+        from .tasks import file_digest
+        if file_digest(path) != row.get("sha256"):
+            return "todo", "changed since written (SHA-256)"
+    try:
+        values, _ = store.read_result(path, kind, case.id, seed, expected=fp[1])
+    except SceneError as exc:
+        return "todo", f"unusable ({exc.key or 'file'}: expected {exc.expected})"
+    names = store.FD_TABLE_VARS if kind == "fd" else store.TD_TABLE_VARS
+    return "done", {k: values[k] for k in names if k in values}
 
 
 def _storm_args(cases, seeds, base_path, analysis, storage, out_dir, manifest, verify, result,
-                kind):
+                kind, fps, tables, echo):
     latest = manifest.latest()
     out = []
+    redo = _Redo("TD" if kind == "td" else "series", echo)
     for c in cases:
         for s in seeds:
             p = store.storm_path(out_dir, c.id, s, kind)
-            if manifest.is_done(latest.get((kind, c.id, int(s))), p, verify):
+            state, info = _resume_state(kind, c, s, p, latest, fps[c.id][kind], verify)
+            if state == "done":
                 result.skipped[kind] = result.skipped.get(kind, 0) + 1
+                tables[kind][(c.id, int(s))] = info
                 continue
-            args = [base_path, c, int(s), analysis, storage, os.fspath(p)]
-            if kind == "series":
-                args.append(True)
-            out.append(tuple(args))
+            redo.add(f"{c.id} seed {s}", info)
+            out.append((base_path, c, int(s), analysis, storage, os.fspath(p),
+                        True if kind == "series" else None, fps[c.id][kind][0]))
+    redo.report()
     return out

@@ -1,15 +1,28 @@
 """The dry run: the campaign matrix, a short calibration run, wall time and storage estimates.
 
-Calibration (in this process, a few seconds): two frequency-domain cases (the second is timed;
-the first loads the database and the compiled kernels) and two short storms of the first case at
-the campaign's time step, of ``n1`` and ``n2`` steps, giving the storm cost ``a + b n`` (setup
-``a``, ``b`` per step).  The stored size of a storm is measured by writing the second storm with
-the campaign's storage options and scaling its series part to the full number of samples.
+Calibration (in this process, 10-30 s), in CPU seconds of this process (the wall time of a
+single-threaded task on an idle core: unlike the wall time it does not change with what else
+the machine runs, so consecutive dry runs agree): the frequency domain of up to four cases
+(the first loads the database and the compiled kernels; the median of the others is the FD
+case cost), then, with the kernels warm (short storms first compile or load them, untimed),
+storms of the first case as its campaign tasks run them, a short one (200 steps) and a long one
+(about :data:`CAL_LOOP_S` s), :data:`CAL_RUNS` times: a storm of ``n`` steps costs ``a + b n``
+(``b`` the time loop per step and the growth of the set-up with the duration, ``a`` the rest of
+the set-up), plus the writing of its result; the median ``a`` and ``b`` give the estimate, the
+spread of ``b`` its range (printed).  Measured on the Floatel example (2-core machine,
+``benchmarks/bench_dry_run.py``, benchmarks/RESULTS.md): within 30 % of the storms the campaign
+then runs.  The stored size of a storm is measured by writing a calibration storm with the
+campaign's storage options and scaling its series part to the full number of samples.
+
+The number of time-domain cases is exact when the frequency domain of every case is estimated
+to take at most ``fd_budget`` seconds here (it is then run and screened); otherwise the dry run
+gives the bounds and the time the exact count would need.
 """
 
 from __future__ import annotations
 
 import math
+import statistics
 import tempfile
 import time
 import warnings
@@ -20,6 +33,12 @@ from .matrix import build_matrix
 from .spec import CampaignSpec
 
 __all__ = ["Estimate", "estimate", "format_estimate"]
+
+CAL_RUNS = 3
+"""Timed calibration runs of the time loop."""
+
+CAL_LOOP_S = 1.0
+"""CPU seconds of the long calibration storm (its steps chosen from a probe storm)."""
 
 
 @dataclass
@@ -43,9 +62,17 @@ class Estimate:
     workers: int
     calibration_s: float
     mode: str
+    step_min_s: float = math.nan       # spread of the calibration runs (time per step)
+    step_max_s: float = math.nan
+    write_s: float = 0.0               # statistics and writing of one storm's result
 
     def storms(self, n_cases=None) -> int:
         return (self.n_td_cases if n_cases is None else n_cases) * self.n_seeds
+
+    def storm_range(self) -> tuple[float, float]:
+        """The storm cost at the fastest and the slowest calibration run (s)."""
+        rest = self.storm_setup_s + self.write_s
+        return rest + self.step_min_s * self.n_steps, rest + self.step_max_s * self.n_steps
 
     def wall_time(self, cores: int, n_td_cases: int | None = None) -> float:
         """FD of every case plus the storms, perfectly spread over ``cores`` (s)."""
@@ -65,12 +92,17 @@ class Estimate:
         return fd + n * self.n_seeds * self.stats_bytes + gov * self.n_seeds * self.storm_bytes
 
 
-def _analysis(spec, base, overrides):
-    an = {"duration": base.analysis.duration, "dt": base.analysis.dt,
-          "transient": base.analysis.transient, "ramp": base.analysis.ramp}
-    an.update(dict(spec.analysis))
-    an.update({k: v for k, v in (overrides or {}).items() if v is not None})
-    return an
+def _storm(_api, built, seed, solver, **kw):
+    """A storm of the built case scene as a campaign task runs it (the vessel and mooring built
+    once per worker, a fresh copy of the mooring per storm), timed in CPU seconds of this
+    process (the wall time of a storm on an idle core; unlike the wall time it does not
+    depend on what else the machine runs): (dataset, CPU s)."""
+    import copy
+    import dataclasses
+    c = time.process_time()
+    b = dataclasses.replace(built, mooring=copy.deepcopy(built.mooring))
+    ds = _api.simulate(b, seed=seed, solver=solver, **kw)
+    return ds, time.process_time() - c
 
 
 def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None,
@@ -79,50 +111,72 @@ def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None
     estimated to take at most ``fd_budget`` seconds here, it is run and screened for the exact
     number of TD cases."""
     from . import _api
+    from .engine import campaign_analysis
     from .matrix import case_scene
     from .screening import select_cases, utilisation
+    from .spec import check_times
     from .tasks import one_thread, storm_dataset, write_netcdf
 
     t0 = time.perf_counter()
-    cases = build_matrix(spec)
     seeds = tuple(seeds or spec.seeds)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         base = _api.load_scene(spec.base_scene)
-        an = _analysis(spec, base, overrides)
+        full_an = check_times(spec, base, overrides)   # refuses e.g. --duration < transient
+        an = campaign_analysis(spec, overrides)
+        cases = build_matrix(spec)
         fd_times = []
         fds = []
-        for c in cases[:2]:
+        for c in cases[:4]:
             scene, failed = case_scene(base, c, an)
-            t = time.perf_counter()
+            if c.condition.kind == "transient":
+                failed = list(c.condition.lines)
+            t = time.process_time()
             fds.append(_api.frequency_domain(_api.build(scene, failed_lines=failed)))
-            fd_times.append(time.perf_counter() - t)
-        fd_case = fd_times[-1]
+            fd_times.append(time.process_time() - t)
+        fd_case = statistics.median(fd_times[1:]) if len(fd_times) > 1 else fd_times[0]
         scene, failed = case_scene(base, cases[0], an)
-        dt = an["dt"]
-        n_steps = round(an["duration"] / dt)
-        n1, n2 = min(100, n_steps), min(300, n_steps)
+        dt = full_an["dt"]
+        n_steps = round(full_an["duration"] / dt)
         one = one_thread(scene)  # as the campaign's tasks run
-        _api.simulate(_api.build(scene, failed_lines=failed), seed=seeds[0], solver=one,
-                      duration=n1 * dt, dt=dt, transient=0.0)  # warm-up: compiled kernels, database
-        t = time.perf_counter()
-        _api.simulate(_api.build(scene, failed_lines=failed), seed=seeds[0], duration=n1 * dt,
-                      dt=dt, transient=0.0, solver=one)
-        t1 = time.perf_counter() - t
-        t = time.perf_counter()
-        ds = _api.simulate(_api.build(scene, failed_lines=failed), seed=seeds[0],
-                           duration=n2 * dt, dt=dt, transient=0.0, solver=one)
-        t2 = time.perf_counter() - t
-    step = (t2 - t1) / max(n2 - n1, 1)
-    if not step > 0.1 * t2 / n2:  # timing noise of a loaded machine: the safe upper bound
-        step = t2 / n2
-    setup = max(t2 - step * n2, 0.0)
+        built = _api.build(scene, failed_lines=failed)
+        # warm-up: the compiled kernels (compiled or loaded from numba's cache), the database
+        n0 = min(200, n_steps)
+        for _ in range(2):
+            _, c0 = _storm(_api, built, seeds[0], one, duration=n0 * dt, dt=dt, transient=0.0)
+        _, c_probe = _storm(_api, built, seeds[0], one, duration=min(n_steps, 10 * n0) * dt,
+                            dt=dt, transient=0.0)
+        per = max((c_probe - c0) / max(min(n_steps, 10 * n0) - n0, 1), 1e-7)
+        n_cal = min(n_steps, max(2 * n0, round(CAL_LOOP_S / per)))
+        # a storm costs a + b n CPU seconds for n steps: b the time loop per step and the
+        # growth of the set-up with the duration (wave and wind realisations, force series),
+        # a the rest of the set-up; from a short and a long storm, CAL_RUNS times
+        steps, setups = [], []
+        for _ in range(CAL_RUNS):
+            _, c_short = _storm(_api, built, seeds[0], one, duration=n0 * dt, dt=dt,
+                                transient=0.0)
+            ds, c_long = _storm(_api, built, seeds[0], one, duration=n_cal * dt, dt=dt,
+                                transient=0.0)
+            b = max(c_long - c_short, 0.0) / max(n_cal - n0, 1)
+            steps.append(b)
+            setups.append(max(c_short - b * n0, 0.0))
+        setup = statistics.median(setups)
     with tempfile.TemporaryDirectory() as tmp:
+        keep = spec.storage.mode == "full"
+        times = []
+        for i in range(2):  # the first write loads the netCDF machinery: the second is timed
+            t = time.process_time()
+            out = write_netcdf(storm_dataset(ds, cases[0], seeds[0], spec.storage, 0.0, keep),
+                               Path(tmp) / f"storm{i}.nc", compression=spec.storage.compression)
+            times.append(time.process_time() - t)
         full = write_netcdf(storm_dataset(ds, cases[0], seeds[0], spec.storage, 0.0, True),
                             Path(tmp) / "full.nc", compression=spec.storage.compression)
         stats = write_netcdf(storm_dataset(ds, cases[0], seeds[0], spec.storage, 0.0, False),
                              Path(tmp) / "stats.nc", compression=spec.storage.compression)
-    storm_bytes = stats["bytes"] + (full["bytes"] - stats["bytes"]) * n_steps / n2
+    del out
+    write_s = times[-1] * (n_steps / n_cal if keep else 1.0)
+    step = statistics.median(steps)
+    storm_bytes = stats["bytes"] + (full["bytes"] - stats["bytes"]) * n_steps / n_cal
     n_td = None
     nl = int(fds[0]["mbs"].size)
     lo = hi = len(cases)
@@ -144,8 +198,8 @@ def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None
                     u[i] = utilisation(fd["tension_static"].values,
                                        fd["tension_max_total"].values, fd["mbs"].values,
                                        c.limit_state, spec.design)
-            keep, _ = select_cases(u, [c.limit_state for c in cases], spec.screening)
-            n_td = int(keep.sum())
+            keep_cases, _ = select_cases(u, [c.limit_state for c in cases], spec.screening)
+            n_td = int(keep_cases.sum())
     else:
         n_td = len(cases)
     return Estimate(
@@ -153,10 +207,11 @@ def estimate(spec: CampaignSpec, *, workers: int = 1, seeds=None, overrides=None
         n_headings=len(spec.wave_headings_deg) * len(spec.wind_offsets_deg)
         * len(spec.current_offsets_deg), n_conditions=len(spec.conditions),
         n_cases=len(cases), n_seeds=len(seeds), n_td_cases=n_td, td_cases_min=lo,
-        td_cases_max=hi, fd_case_s=fd_case, storm_s=setup + step * n_steps,
+        td_cases_max=hi, fd_case_s=fd_case, storm_s=setup + step * n_steps + write_s,
         storm_setup_s=setup, step_s=step, n_steps=n_steps, storm_bytes=storm_bytes,
         stats_bytes=float(stats["bytes"]), fd_bytes=30e3, workers=workers,
-        calibration_s=time.perf_counter() - t0, mode=spec.storage.mode)
+        calibration_s=time.perf_counter() - t0, mode=spec.storage.mode,
+        step_min_s=min(steps), step_max_s=max(steps), write_s=write_s)
 
 
 def _hms(s: float) -> str:
@@ -190,10 +245,16 @@ def format_estimate(e: Estimate) -> str:
         f"FD cases: {e.n_cases}",
         f"TD cases after screening: {td}",
         f"storms: {e.storms(n_td)}" + ("" if e.n_td_cases is not None else " (at most)"),
-        (f"calibration ({e.calibration_s:.1f} s): FD case {e.fd_case_s:.2f} s; storm "
-         f"{e.storm_s:.1f} s ({e.storm_setup_s:.2f} s setup + {e.n_steps} steps x "
-         f"{e.step_s * 1e6:.0f} us)"),
+        (f"calibration ({e.calibration_s:.1f} s, kernels warm; CPU time, the wall time on "
+         f"idle cores): FD case {e.fd_case_s:.2f} s; storm {e.storm_s:.1f} s "
+         f"({e.storm_setup_s:.2f} s setup + {e.n_steps} steps x {e.step_s * 1e6:.0f} us + "
+         f"{e.write_s:.2f} s writing; {e.storm_range()[0]:.1f}-{e.storm_range()[1]:.1f} s "
+         f"over the {CAL_RUNS} calibration runs)"),
     ]
+    if e.n_td_cases is None:
+        lines.append(f"the exact TD count needs the FD of all {e.n_cases} cases: about "
+                     f"{_hms(e.n_cases * e.fd_case_s)} here (--fd-budget "
+                     f"{math.ceil(e.n_cases * e.fd_case_s * 1.2)} runs it)")
     cores = sorted({1, e.workers, 2, 64, 512})
     lines.append("estimated wall time: " + ", ".join(
         f"{_hms(e.wall_time(c, n_td))} on {c} core(s)" for c in cores)

@@ -19,7 +19,13 @@ __all__ = ["Case", "build_matrix", "case_scene"]
 
 
 def _deg_tag(x: float) -> str:
-    s = f"{x % 360.0:05.1f}" if x >= 0 else f"{x:+06.1f}"
+    """An angle as a file-name-safe tag: ``015p0`` for 15 deg (0.1 deg steps, as before), with
+    up to three decimals when finer (``000p04``), ``m030p0`` for -30 deg (an offset)."""
+    v = x % 360.0 if x >= 0 else x
+    if abs(round(v, 1) - v) < 1e-9:
+        s = f"{v:05.1f}" if x >= 0 else f"{v:+06.1f}"
+    else:
+        s = (f"{v:07.3f}" if x >= 0 else f"{v:+08.3f}").rstrip("0")
     return s.replace(".", "p").replace("-", "m").replace("+", "")
 
 
@@ -57,16 +63,32 @@ class Case:
 
 
 def build_matrix(spec: CampaignSpec) -> list[Case]:
-    """Every case: sea states x wave headings x wind offsets x current offsets x conditions."""
+    """Every case: sea states x wave headings x wind offsets x current offsets x conditions.
+
+    Case identifiers name the result files, so two cases with one identifier would overwrite
+    each other's results: a collision is a SceneError naming the campaign file and both cases
+    (:func:`floatmoor.campaign.spec.load_campaign` refuses repeated directions, sea states
+    and conditions first, so this is a last guard)."""
+    from ..core.errors import SceneError
     out = []
+    seen: dict[str, Case] = {}
     for i, ss in enumerate(spec.sea_states):
         for w in spec.wave_headings_deg:
             for dw in spec.wind_offsets_deg:
                 for dc in spec.current_offsets_deg:
                     for c in spec.conditions:
-                        out.append(Case(index=len(out), sea_state_index=i, sea_state=ss,
-                                        wave_heading_deg=w, wind_heading_deg=w + dw,
-                                        current_heading_deg=w + dc, condition=c))
+                        case = Case(index=len(out), sea_state_index=i, sea_state=ss,
+                                    wave_heading_deg=w, wind_heading_deg=w + dw,
+                                    current_heading_deg=w + dc, condition=c)
+                        other = seen.get(case.id)
+                        if other is not None:
+                            raise SceneError(spec.file, "headings", "cases with distinct "
+                                             "identifiers (each names its result files)",
+                                             f"{case.id} twice", f"case {other.index + 1} "
+                                             f"{other.row()} and case {case.index + 1} "
+                                             f"{case.row()}")
+                        seen[case.id] = case
+                        out.append(case)
     return out
 
 
@@ -74,17 +96,36 @@ def case_scene(base, case: Case, analysis: dict | None = None):
     """(scene, failed_lines) of ``case`` derived from the base :class:`~floatmoor.io.scene.Scene`.
 
     The base scene's wave spectrum keeps its type and discretisation; Hs, Tp and gamma come
-    from the sea state.  Components absent from the base scene stay absent.  ``analysis``
-    overrides the base scene's ``analysis`` fields (duration, dt, transient, ramp).
+    from the sea state.  A sea state of several wave systems replaces the base scene's waves
+    by its systems (discretisation kept), each turned by the case's wave heading; a base scene
+    of several systems needs such sea states (SceneError otherwise).  Components absent from
+    the base scene stay absent.  ``analysis`` overrides the base scene's ``analysis`` fields
+    (duration, dt, transient, ramp).
     """
+    from ..core.errors import SceneError
+    from ..metocean.config import WaveSpec, WaveSystems
     from . import _api
 
     env = base.environment
     rep = {}
-    if env.waves is not None:
-        rep["waves"] = dataclasses.replace(env.waves, hs=case.sea_state.hs, tp=case.sea_state.tp,
-                                           gamma=case.sea_state.gamma,
-                                           heading=math.radians(case.wave_heading_deg))
+    heading = math.radians(case.wave_heading_deg)
+    ss = case.sea_state
+    if env.waves is not None and ss.systems:
+        w = env.waves
+        rep["waves"] = WaveSystems(
+            systems=tuple(dataclasses.replace(s, heading=heading + s.heading)
+                          for s in ss.systems), names=tuple(ss.system_names),
+            omega_min=w.omega_min, omega_max=w.omega_max, n_frequencies=w.n_frequencies,
+            random_amplitudes=w.random_amplitudes)
+    elif env.waves is not None and not isinstance(env.waves, WaveSpec):
+        raise SceneError(base.file, "environment.waves", "one sea state in the base scene of a "
+                         "campaign whose sea states are Hs and Tp (or sea states given as "
+                         "systems: for a base scene of several wave systems)",
+                         f"{len(env.waves.systems)} wave systems",
+                         hint=f"sea state {ss.name!r}")
+    elif env.waves is not None:
+        rep["waves"] = dataclasses.replace(env.waves, hs=ss.hs, tp=ss.tp, gamma=ss.gamma,
+                                           heading=heading)
     if env.wind is not None:
         rep["wind"] = dataclasses.replace(env.wind, heading=math.radians(case.wind_heading_deg))
     if env.current is not None:

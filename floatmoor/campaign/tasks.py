@@ -45,31 +45,119 @@ import numpy as np
 
 from .store import FD_TABLE_VARS, TD_TABLE_VARS
 
-__all__ = ["file_digest", "run_fd_cases", "run_storm", "storm_dataset", "warm_worker",
-           "write_netcdf"]
+__all__ = ["check_inputs", "file_digest", "run_fd_cases", "run_storm", "storm_dataset",
+           "warm_worker", "write_netcdf"]
 
 _VOLATILE_ATTRS = ("created", "run_time_s", "setup_time_s", "real_time_factor", "scene_file",
                    "run_date_utc")
 
 
 @functools.lru_cache(maxsize=4)
-def _base_scene(path: str, mtime: float):
+def _load_base(path: str, stamp: tuple):
     from . import _api
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return _api.load_scene(path)
 
 
+@functools.lru_cache(maxsize=4)
+def _environment_file(path: str, base_stat: tuple):
+    return _load_base(path, (base_stat,)).environment.source
+
+
+def _current_base(path: str):
+    """The base scene as its files are now: cached while the scene file and the environment
+    file it reads are unchanged (the case scenes keep the base environment's spectrum and
+    discretisation)."""
+    st = _stat(path)
+    env = _environment_file(path, st)
+    return _load_base(path, (st, _stat(env)) if env else (st,))
+
+
+def _stat(path) -> tuple:
+    try:
+        st = os.stat(path)
+        return (os.fspath(path), st.st_mtime_ns, st.st_size)
+    except OSError:
+        return (os.fspath(path), -1, -1)
+
+
+@functools.lru_cache(maxsize=8)
+def _vessel_database(vessel: str, vessel_stat: tuple):
+    from ..core.config import Node
+    try:
+        node = Node.load(vessel)
+        return os.fspath(node.path_value("database")) if "database" in node else None
+    except Exception:  # noqa: BLE001 - a bad vessel file is reported by the task
+        return None
+
+
+def _inputs_key(base_path: str) -> tuple:
+    """The state (path, modification time, size) of the base scene and of every file it reads
+    (vessel, database, mooring, line-type library): the key of this worker's caches, so that
+    a file edited while a worker lives is read again, never taken from the cache."""
+    scene = _current_base(base_path)
+    files = [base_path] + ([scene.environment.source] if scene.environment.source else [])
+    if scene.vessel is not None:
+        files.append(scene.vessel)
+        db = _vessel_database(os.fspath(scene.vessel), _stat(scene.vessel))
+        if db is not None:
+            files.append(db)
+    if isinstance(scene.mooring, Path):
+        files.append(scene.mooring)
+        lib = _library_of(os.fspath(scene.mooring), _stat(scene.mooring))
+        if lib is not None:
+            files.append(lib)
+    return tuple(_stat(f) for f in files)
+
+
+@functools.lru_cache(maxsize=8)
+def _library_of(mooring: str, mooring_stat: tuple):
+    from ..analyses.fingerprint import _mooring_library
+    return _mooring_library(Path(mooring))
+
+
+@functools.lru_cache(maxsize=8)
+def _file_sections(base_path: str, key: tuple) -> dict:
+    from ..analyses.fingerprint import file_sections
+    return file_sections(_current_base(base_path))
+
+
+def check_inputs(base_path: str, fingerprint: str) -> None:
+    """SceneError when the files the base scene reads (and the code) differ, in this worker,
+    from those the client fingerprinted (``fingerprint``, the task's JSON): a file edited
+    while the campaign ran, or a worker with another floatmoor; the result would not be what
+    its fingerprint says."""
+    if not fingerprint:
+        return
+    import json
+
+    from ..analyses.fingerprint import differing_keys
+    from ..core.errors import SceneError
+    fp = json.loads(fingerprint)
+    mine = _file_sections(base_path, _inputs_key(base_path))
+    theirs = {k: fp[k] for k in mine.keys() | fp.keys()
+              if k in ("code", "vessel", "vessel.database", "mooring",
+                       "mooring.line_type_library") and k in fp}
+    diff = differing_keys(mine, theirs)
+    if diff:
+        raise SceneError(base_path, "", "the inputs the campaign started with",
+                         "changed: " + ", ".join(diff), "a file the base scene reads was "
+                         "edited while the campaign ran (or this worker runs another "
+                         "floatmoor); rerun the campaign to compute the case with the files "
+                         "as they are now")
+
+
 def _scene_for(base_path: str, case, analysis: dict):
     from .matrix import case_scene
-    base = _base_scene(base_path, os.path.getmtime(base_path))
+    base = _current_base(base_path)
     return case_scene(base, case, analysis)
 
 
 @functools.lru_cache(maxsize=32)
-def _built_base(path: str, mtime: float, failed: tuple):
+def _built_base(path: str, key: tuple, failed: tuple):
     from . import _api
-    return _api.build(_base_scene(path, mtime), failed_lines=list(failed))
+    return _api.build(_current_base(path), failed_lines=list(failed))
 
 
 def _built_for(base_path: str, case, analysis: dict, failed_override=None):
@@ -84,7 +172,7 @@ def _built_for(base_path: str, case, analysis: dict, failed_override=None):
     scene, failed = _scene_for(base_path, case, analysis)
     if failed_override is not None:
         failed = failed_override
-    built = _built_base(base_path, os.path.getmtime(base_path), tuple(failed or ()))
+    built = _built_base(base_path, _inputs_key(base_path), tuple(failed or ()))
     mooring = None if built.mooring is None else copy.deepcopy(built.mooring)
     if mooring is not None and case.condition.fibre_bound:
         mooring = mooring.with_fibre_bound(case.condition.fibre_bound)
@@ -104,9 +192,8 @@ def warm_worker(base_path: str, analysis: dict) -> dict:
     out = {"pid": os.getpid(), "error": ""}
     try:
         from . import _api
-        mtime = os.path.getmtime(base_path)
-        base = _base_scene(base_path, mtime)
-        built = _built_base(base_path, mtime, ())
+        base = _current_base(base_path)
+        built = _built_base(base_path, _inputs_key(base_path), ())
         out["scene_s"] = time.perf_counter() - t0
         an = dict(analysis or {})
         dt = float(an.get("dt", base.analysis.dt))
@@ -160,20 +247,31 @@ def _local_write_lock():
 
 
 def write_netcdf(ds, path: Path, *, compression: int = 4) -> dict:
-    """Write ``ds`` atomically (temp file + rename), zlib/shuffle on the variables of
-    :data:`COMPRESS_MIN_SIZE` elements or more; returns size and digest."""
+    """Write ``ds`` atomically (temp file of this process + rename), zlib/shuffle on the
+    variables of :data:`COMPRESS_MIN_SIZE` elements or more; returns size and digest.  A full
+    disk raises :class:`~floatmoor.analyses.folder_lock.DiskFull` (the netCDF library's own
+    error does not say so); no partial file is left."""
+    from ..analyses.folder_lock import disk_full_error, temp_name
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     enc = {}
     for k, v in ds.variables.items():
         if v.dtype.kind in "fiu" and compression > 0 and v.size >= COMPRESS_MIN_SIZE:
             enc[k] = {"zlib": True, "complevel": int(compression), "shuffle": True}
-    tmp = path.with_name(path.name + ".tmp")
-    with _local_write_lock():
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=enc)
-    digest = file_digest(tmp)
-    size = tmp.stat().st_size
-    os.replace(tmp, path)
+    tmp = temp_name(path)
+    try:
+        with _local_write_lock():
+            ds.to_netcdf(tmp, engine="netcdf4", encoding=enc)
+        digest = file_digest(tmp)
+        size = tmp.stat().st_size
+        os.replace(tmp, path)
+    except Exception as exc:
+        tmp.unlink(missing_ok=True)
+        full = disk_full_error(exc, path.parent, int(ds.nbytes) // (4 if enc else 1),
+                               path.name)
+        if full is not None:
+            raise full from None
+        raise
     return {"bytes": size, "sha256": digest}
 
 
@@ -194,7 +292,18 @@ def _table(ds, names) -> dict:
 
 
 def _error_text(exc) -> str:
+    from ..analyses.folder_lock import DiskFull
+    if isinstance(exc, DiskFull):
+        return f"DiskFull: {exc.strerror}"
     return f"{type(exc).__name__}: {exc}".replace("\n", " ")
+
+
+def _failure_extra(exc) -> dict:
+    from ..analyses.folder_lock import DiskFull
+    out = {"traceback": traceback.format_exc()}
+    if isinstance(exc, DiskFull):
+        out["disk_full"] = True
+    return out
 
 
 # -- frequency domain ---------------------------------------------------------------------------
@@ -212,17 +321,23 @@ def _fd_dataset(fd, case):
     return ds
 
 
-def run_fd_cases(base_path: str, cases, analysis: dict, out_dir: str, compression: int = 4):
+def run_fd_cases(base_path: str, cases, analysis: dict, out_dir: str, compression: int = 4,
+                 fingerprints: dict | None = None):
     """Frequency-domain analysis of each case in ``cases`` into ``out_dir/fd/<case>.nc``.
 
     A transient condition (line breaking during the storm) is screened with the mooring after
-    the failure (the frequency domain has no transient).  Returns one outcome dict per case."""
+    the failure (the frequency domain has no transient).  ``fingerprints`` maps a case id to
+    the JSON input fingerprint stored in its file (the inputs are checked against it first,
+    :func:`check_inputs`).  Returns one outcome dict per case."""
+    from ..analyses.fingerprint import FINGERPRINT_ATTR
     from . import _api
     results = []
     for case in cases:
         t0, c0 = time.perf_counter(), time.process_time()
         path = Path(out_dir) / "fd" / f"{case.id}.nc"
+        fp = (fingerprints or {}).get(case.id, "")
         try:
+            check_inputs(base_path, fp)
             failed = list(case.condition.lines) if case.condition.kind == "transient" else None
             built, _ = _built_for(base_path, case, analysis, failed)
             t_solve, c_solve = time.perf_counter(), time.process_time()
@@ -231,12 +346,14 @@ def run_fd_cases(base_path: str, cases, analysis: dict, out_dir: str, compressio
                 fd = _api.frequency_domain(built)
             t_solve, c_solve = time.perf_counter() - t_solve, time.process_time() - c_solve
             ds = _fd_dataset(fd, case)
+            if fp:
+                ds.attrs[FINGERPRINT_ATTR] = fp
             info = write_netcdf(ds, path, compression=compression)
             info.update(solve_s=t_solve, solve_cpu_s=c_solve, table=_table(ds, FD_TABLE_VARS))
             results.append(_outcome("fd", case, -1, path, "done", t0, extra=info, c0=c0))
         except Exception as exc:  # noqa: BLE001 - recorded; the campaign goes on
             results.append(_outcome("fd", case, -1, path, "failed", t0, _error_text(exc),
-                                    {"traceback": traceback.format_exc()}, c0))
+                                    _failure_extra(exc), c0))
     return results
 
 
@@ -319,13 +436,17 @@ def one_thread(scene):
 
 
 def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path: str,
-              keep_series: bool | None = None) -> dict:
-    """Simulate one storm (``case``, ``seed``) and write ``out_path``; never raises."""
+              keep_series: bool | None = None, fingerprint: str = "") -> dict:
+    """Simulate one storm (``case``, ``seed``) and write ``out_path`` with the JSON input
+    ``fingerprint`` (the inputs checked against it first, :func:`check_inputs`); never
+    raises."""
+    from ..analyses.fingerprint import FINGERPRINT_ATTR
     from ..core.errors import FloatmoorWarning
     from . import _api
     t0, c0 = time.perf_counter(), time.process_time()
     keep = storage.mode == "full" if keep_series is None else keep_series
     try:
+        check_inputs(base_path, fingerprint)
         built, failed = _built_for(base_path, case, analysis)
         scene = built.scene
         with warnings.catch_warnings(record=True) as caught:
@@ -342,6 +463,8 @@ def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path
                               limits=getattr(scene, "limits", None), failed=failed or ())
         if failed:
             out.attrs["failed_lines"] = list(failed)
+        if fingerprint:
+            out.attrs[FINGERPRINT_ATTR] = fingerprint
         info = write_netcdf(out, Path(out_path), compression=storage.compression)
         info.update(simulate_s=sim_time, simulate_cpu_s=sim_cpu,
                     table=_table(out, TD_TABLE_VARS))
@@ -350,5 +473,4 @@ def run_storm(base_path: str, case, seed: int, analysis: dict, storage, out_path
                         "done", t0, extra=info, c0=c0)
     except Exception as exc:  # noqa: BLE001 - NumericalError and the rest: recorded
         return _outcome("td" if keep_series is None else "series", case, int(seed), out_path,
-                        "failed", t0, _error_text(exc), {"traceback": traceback.format_exc()},
-                        c0)
+                        "failed", t0, _error_text(exc), _failure_extra(exc), c0)

@@ -4,7 +4,10 @@ The frequency domain screens every case of the matrix (sea states x headings x c
 time domain runs the storms of the cases that can govern, on a Dask ``LocalCluster`` of this
 machine (default), an existing Dask scheduler (``--scheduler tcp://HOST:8786``) or serially in
 one worker process (``--scheduler serial``).  Rerunning the same command resumes: only missing,
-failed or half-written results run again.  ``--dry-run`` prints the matrix, a wall-time estimate
+failed, half-written, corrupted or stale results (computed from other inputs: an edited
+campaign file, contour, base scene or file it reads, another floatmoor) run again, and the run
+says which and why.  An --out folder holding another campaign's results is refused unless
+``--force``; a folder in use by another campaign or run is refused.  ``--dry-run`` prints the matrix, a wall-time estimate
 from a short calibration run and the storage the campaign will need, and runs nothing else.
 The campaign file format: :mod:`floatmoor.campaign.spec`.  Report: ``floatmoor report DIR``.
 """
@@ -40,6 +43,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="replace the storm duration (s, smoke runs)")
     p.add_argument("--verify", action="store_true",
                    help="check the SHA-256 of finished files before skipping them on resume")
+    p.add_argument("--force", action="store_true",
+                   help="reuse an --out folder that holds another campaign's (or other) "
+                        "results: results whose inputs match a case of this campaign are "
+                        "kept, the others computed again (default: refuse)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -70,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out) if args.out else Path("results") / spec.name
     r = run_campaign(spec, out, scheduler=args.scheduler, workers=args.workers,
                      seeds=seeds, analysis_overrides=overrides, verify=args.verify,
-                     echo=lambda s: print(s, flush=True))
+                     echo=lambda s: print(s, flush=True), force=args.force)
     ran = ", ".join(f"{k} {v}" for k, v in r.ran.items()) or "nothing"
     skipped = ", ".join(f"{k} {v}" for k, v in r.skipped.items() if v) or "none"
     print(f"{r.n_cases} case(s), {r.n_td_cases} in the time domain; ran: {ran}; already done: "

@@ -1,6 +1,7 @@
 """``floatmoor convergence SCENE.yaml``: error against run time for halving time steps.
 
-Runs the same seed at dt = 0.4, 0.2, 0.1, ... s (``--levels``) and prints, for the maximum
+Runs the analysis :func:`floatmoor.analyses.convergence.convergence_study`: the same seed at
+dt = 0.4, 0.2, 0.1, ... s (``--levels``), and prints, for the maximum
 horizontal offset and the maximum line tension (after the transient), the relative error
 against the finest run next to the wall time of the time loop; ``--plot FILE`` draws both
 (matplotlib, optional).  ``--solver catenary=predictor,memory=state_space`` also runs every
@@ -57,85 +58,6 @@ def parse_solver_option(text: str):
     return SolverSpec(**kw)
 
 
-def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, echo=None,
-                      solver=None):
-    """Run the halving sequence; returns a list of dicts (dt, solver, max_offset,
-    max_tension, wall_time, error_offset, error_tension; errors relative to the finest exact
-    run).  With ``solver`` (a :class:`~floatmoor.io.solver_section.SolverSpec`) every dt is
-    also run with those options; their rows carry ``difference``, the larger relative
-    difference of the max offset and max tension from the exact run at the same dt."""
-    import warnings
-
-    import numpy as np
-
-    from ..analyses.simulate import simulate
-    from ..io.solver_section import SolverSpec
-
-    exact = SolverSpec()
-    specs = [exact] if solver is None or solver.exact else [exact, solver]
-    rows = []
-    for k in range(levels):
-        dt = dt0 / 2 ** k
-        for spec in specs:
-            name = "exact" if spec is exact else spec.describe()
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                try:
-                    ds = simulate(scene, seed=seed, duration=duration, dt=dt, solver=spec)
-                except Exception as exc:  # too large a dt may be refused: report it, go on
-                    rows.append({"dt": dt, "solver": name,
-                                 "error": f"{type(exc).__name__}: {exc}"})
-                    if echo:
-                        echo(f"dt {dt:g} s ({name}): {type(exc).__name__}: {exc}")
-                    continue
-            sel = ds["time"].values >= ds.attrs["transient"]
-            m = ds["motion"].values[sel]
-            row = {"dt": dt, "solver": name,
-                   "max_offset": float(np.hypot(m[:, 0], m[:, 1]).max()),
-                   "max_tension": float(ds["line_tension"].values[sel].max())
-                   if "line_tension" in ds else float("nan"),
-                   "wall_time": float(ds.attrs["run_time_s"])}
-            rows.append(row)
-            if echo:
-                echo(f"dt {dt:g} s ({name}) done in {row['wall_time']:.2f} s")
-    ok = [r for r in rows if "error" not in r and r["solver"] == "exact"]
-    if ok:
-        ref = ok[-1]
-        same = {r["dt"]: r for r in ok}
-        for r in rows:
-            if "error" in r:
-                continue
-            r["error_offset"] = abs(r["max_offset"] / ref["max_offset"] - 1.0)
-            r["error_tension"] = abs(r["max_tension"] / ref["max_tension"] - 1.0)
-            e = same.get(r["dt"])
-            if r["solver"] != "exact" and e is not None:
-                r["difference"] = max(abs(r["max_offset"] / e["max_offset"] - 1.0),
-                                      abs(r["max_tension"] / e["max_tension"] - 1.0))
-    return rows
-
-
-def format_table(rows) -> str:
-    options = any(r.get("solver", "exact") != "exact" for r in rows)
-    out = [f"{'dt (s)':>8s}{'max offset (m)':>16s}{'error':>10s}{'max tension (kN)':>18s}"
-           f"{'error':>10s}{'wall (s)':>10s}" + ("  solver (difference from exact)"
-                                                   if options else "")]
-    for r in rows:
-        if "error" in r:
-            out.append(f"{r['dt']:8.4f}  {r['error']}")
-            continue
-        line = (f"{r['dt']:8.4f}{r['max_offset']:16.3f}{100 * r['error_offset']:9.3f}%"
-                f"{r['max_tension'] / 1e3:18.1f}{100 * r['error_tension']:9.3f}%"
-                f"{r['wall_time']:10.2f}")
-        if options:
-            line += f"  {r.get('solver', 'exact')}"
-            if "difference" in r:
-                line += f" ({100 * r['difference']:.2g} %)"
-        out.append(line)
-    out.append("errors relative to the finest time step" + (" of the exact path" if options
-                                                            else ""))
-    return "\n".join(out)
-
-
 def plot(rows, path) -> None:
     from matplotlib.figure import Figure
 
@@ -163,6 +85,7 @@ def plot(rows, path) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..analyses.convergence import convergence_study, format_table
     from ..cli import EXIT_OK, UsageError
     from ..io.scene import load_scene
 

@@ -22,9 +22,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--duration", type=positive_float, default=None, metavar="S",
                    help="storm duration for the Rayleigh maxima, s (default 10800)")
     p.add_argument("--drift", choices=("auto", "newman", "qtf"), default=None,
-                   help="slowly varying drift: full QTF when present (auto), Newman, or QTF")
+                   help="slowly varying drift: the scene's choice (auto: the full QTF when "
+                        "present), Newman, or QTF; other than auto: in the FD alone")
     p.add_argument("--wave-drift-damping", action="store_true",
-                   help="add Aranha's wave drift damping to the LF system")
+                   help="add Aranha's wave drift damping to the LF system (the scene key "
+                        "forces: wave_drift_damping puts it in both domains)")
     p.add_argument("--lf-cutoff", type=positive_float, default=None, metavar="S",
                    help="LF cut-off period, s (default 30)")
     p.add_argument("--tension-model", choices=("quasi_static", "dynamic"), default=None,
@@ -53,7 +55,15 @@ def to_netcdf(ds, path) -> Path:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run the analysis and print the table; returns the exit status."""
+    """Run the analysis and print the table; returns the exit status.  A first run after an
+    installation says that numba compiles the kernels (``--tension-model dynamic``: the FE
+    line kernels, about 30-40 s once)."""
+    from .compile_notice import compile_notice
+    with compile_notice("the statics and frequency-domain kernels"):
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     from ..analyses.fd_dataset import format_table
     from ..analyses.frequency_domain import frequency_domain
 

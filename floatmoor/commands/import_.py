@@ -24,6 +24,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .argtypes import positive_float
+
 HELP = "import a MoorDyn, MAP++ or OpenFAST model as floatmoor files"
 
 
@@ -33,11 +35,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", metavar="FILE", help="the input file (.dat, or .fst for openfast)")
     p.add_argument("--out", required=True, metavar="PATH",
                    help="mooring.yaml to write (moordyn, map) or output folder (openfast)")
-    p.add_argument("--water-depth", type=float, default=None, metavar="M",
-                   help="water depth, m (default: the file's, else the deepest anchor)")
-    p.add_argument("--water-density", type=float, default=None, metavar="KG/M3",
+    p.add_argument("--water-depth", type=positive_float, default=None, metavar="M",
+                   help="water depth, m (default: the file's, else the deepest anchor; a "
+                        "MAP++ file with nodes at Z = depth needs it)")
+    p.add_argument("--water-density", type=positive_float, default=None, metavar="KG/M3",
                    help="water density (default: the file's, else 1025)")
-    p.add_argument("--gravity", type=float, default=None, metavar="M/S2",
+    p.add_argument("--gravity", type=positive_float, default=None, metavar="M/S2",
                    help="gravity (default: the file's, else 9.80665)")
     p.add_argument("--model", choices=["quasi-static", "finite-element"], default="quasi-static",
                    help="line model written into the mooring file (default quasi-static)")

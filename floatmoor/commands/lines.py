@@ -113,8 +113,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--lines", default=None, metavar="NAMES",
                    help="comma-separated line names (default: all active lines)")
     p.add_argument("--out", default=None, metavar="FILE",
-                   help="netCDF output (default: <motion file>_lines.nc next to the motion file, "
-                        "or lines_harmonic.nc in the current folder)")
+                   help="netCDF output (default: lines/<motion file>_lines.nc in the motion "
+                        "file's folder, outside the seed files `floatmoor report` reads; "
+                        "lines_harmonic.nc in the current folder for --harmonic)")
     p.add_argument("--duration", type=positive_float, default=None, metavar="S",
                    help="use only the first S seconds of the motion (harmonic: default 10 longest "
                         "periods plus the ramp)")
@@ -254,7 +255,7 @@ def run(args: argparse.Namespace) -> int:
             ref = None
         discard = transient if args.discard is None else args.discard
         source = f"motion of {mpath} (seed {attrs.get('seed', '?')})"
-        out = Path(args.out) if args.out else mpath.with_name(mpath.stem + "_lines.nc")
+        out = Path(args.out) if args.out else mpath.parent / "lines" / (mpath.stem + "_lines.nc")
     else:
         comps = args.harmonic
         check_harmonic_amplitudes(comps, site.water_depth, UsageError)
@@ -282,10 +283,12 @@ def run(args: argparse.Namespace) -> int:
 
     def progress(text):
         print(text, file=sys.stderr, flush=True)
+    from .compile_notice import compile_notice
     try:
-        res = run_decoupled(system, t, poses, options=options, lines=names, discard=discard,
-                            substeps=args.substeps, reference_tension=ref, progress=progress,
-                            **inputs)
+        with compile_notice("the finite-element line kernels"):
+            res = run_decoupled(system, t, poses, options=options, lines=names,
+                                discard=discard, substeps=args.substeps,
+                                reference_tension=ref, progress=progress, **inputs)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     print(f"FE lines: {options.integrator}, {res.attrs['substeps']} step(s) per sample, "
@@ -301,7 +304,8 @@ def run(args: argparse.Namespace) -> int:
               f"max difference {rel:.2e} of the max")
         res.attrs["qs_vs_run_max_relative_difference"] = rel
     res.attrs.update({"title": f"floatmoor decoupled FE line analysis of {scene.name}",
-                      "scene_file": str(scene.file), "driving_motion": source})
+                      "scene_name": scene.name, "scene_file": str(scene.file),
+                      "driving_motion": source})
     out.parent.mkdir(parents=True, exist_ok=True)
     res.to_netcdf(out)
     print(f"written: {out}")

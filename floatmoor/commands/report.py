@@ -187,6 +187,8 @@ def read_results(folder, key: str = "RESULTS_DIR"):
         if ds is None:                     # e.g. a floatmoor fd --out file put beside the seeds
             ignored.append(f"{f.name} (variables {', '.join(names[:5])}...)")
             continue
+        from ..analyses.result_check import check_series_file
+        check_series_file(f, ds)           # NaN, sign-flipped tensions: refused naming the file
         ds.attrs["source_file"] = str(f)
         datasets.append(ds)
     if ignored and datasets:
@@ -413,6 +415,14 @@ def read_daf(path, lines, scene: str):
                                f"the DAF of scene {other!r}")
         names = [str(v) for v in ds["line"].values]
         vals = [float(v) for v in ds["daf"].values]
+        if "selfcheck" in ds:
+            # a DAF whose FE line broke a bound of its self-check is no number to design with
+            failed = {str(n): str(c) for n, c in zip(ds["line"].values, ds["selfcheck"].values)
+                      if str(c) not in ("ok", "-")}
+            if failed:
+                raise _scene_error(path, "selfcheck", "finite-element lines whose self-check "
+                                   "passed (floatmoor lines prints it)",
+                                   "; ".join(f"{n}: {c}" for n, c in failed.items()))
         where = f"{path} (floatmoor lines"
         if ds.attrs.get("driving_motion"):
             where += f", driven by the {ds.attrs['driving_motion']}"

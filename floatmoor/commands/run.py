@@ -1,10 +1,14 @@
 """``floatmoor run SCENE.yaml --seeds 1-20 --out DIR``: time-domain storms, one netCDF per seed.
 
-Seeds run in parallel on the local cores (worker processes); a seed whose file exists, is
-readable and was computed from the same inputs (the fingerprint of scene and models stored in
-it) is skipped (resumable); files from other inputs are refused (exit status 2 naming the
-differing sections) unless ``--force``; an unreadable or truncated file is computed again; a
-failed seed is reported and the others go on (exit status 3 naming the failed seeds).  Ctrl-C
+Seeds run in parallel on the local cores (worker processes); the scene and the files it reads
+are checked before any seed starts (a mistake in them: exit status 2); a seed whose file
+exists, is readable, holds finite and plausible values and was computed from the same inputs
+(the fingerprint of scene, files and code stored in it) is skipped (resumable); files from
+other inputs are refused (exit status 2 naming the differing sections) unless ``--force``; an
+unreadable, truncated or corrupted file is computed again; a failed seed is reported and the
+others go on (exit status 3 naming the failed seeds).  The output folder is locked while the
+run writes into it: a second run into it is refused (exit status 2).  A full disk stops the
+run with a message saying so (exit status 2; the finished seeds are kept).  Ctrl-C
 or SIGTERM stops the workers at once, keeps only complete files, lists the seeds not computed
 in ``interrupted.txt``, prints the command that resumes, and exits with status 130.  At the
 end a short table of the finished seeds: mean, std and max of the horizontal offset and of the
@@ -150,10 +154,14 @@ def _run_batch(args, seeds, out, overrides, resume_out=None) -> int:
     (``resume_out``: the ``--out`` of the command that resumes it, default ``out``)."""
     from ..analyses.runner import BatchInterrupted, run_seeds
     from ..cli import EXIT_INTERRUPTED, EXIT_NUMERICAL_ERROR, EXIT_OK
+    from .compile_notice import compile_notice
     try:
-        batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
-                          echo=lambda s: print(s, flush=True), force=args.force,
-                          in_process=False, threads=args.threads)
+        # this process checks the scene (statics kernels); the workers say their own compile
+        with compile_notice("the statics kernels", echo=lambda s: print(s, flush=True),
+                            report_end=False):
+            batch = run_seeds(args.scene, seeds, out, workers=args.workers, overrides=overrides,
+                              echo=lambda s: print(s, flush=True), force=args.force,
+                              in_process=False, threads=args.threads)
     except BatchInterrupted as exc:
         done = [o.seed for o in exc.finished]
         print(f"floatmoor: interrupted: {len(done)} seed(s) finished, {len(exc.interrupted)} "

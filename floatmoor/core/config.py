@@ -156,8 +156,15 @@ def _check_yaml_tree(root, path: Path) -> None:
 def parse_yaml_text(text: str, path: Path | str | None = None):
     """Parse YAML ``text`` safely: duplicate keys, recursive or exploding aliases, excessive
     nesting and oversized numbers are refused with a :class:`SceneError` naming ``path`` (and the
-    line), before any value is constructed."""
-    loader = _UniqueKeyLoader(text)
+    line), before any value is constructed; so is a control character (binary data)."""
+    try:
+        loader = _UniqueKeyLoader(text)
+    except yaml.reader.ReaderError as exc:  # a control character (binary data, a stray BEL)
+        line = text.count("\n", 0, exc.position) + 1
+        column = exc.position - (text.rfind("\n", 0, exc.position) + 1) + 1
+        raise SceneError(path, f"line {line}, column {column}", "a YAML text file (printable "
+                         "characters only)", f"the control character #x{exc.character:02x}",
+                         "a binary file, or a stray control character: remove it") from None
     try:
         try:
             root = loader.get_single_node()

@@ -1,24 +1,36 @@
 """The force-model interface, the registry and the kernel assembly.
 
 Every force on the floater (hydrostatics, mooring, radiation memory, damping, waves, wind,
-current) is a :class:`ForceModel`:
+current) is a :class:`ForceModel`, one file in ``floatmoor/forces/`` serving both domains:
 
-* ``setup(ctx)`` turns the built scene (:class:`SetupContext`) into frozen parameters and plain
-  arrays, once.  After setup the model does not change (``_frozen``).
+* ``wanted(built, options)`` (class method) whether a scene asks for the model: the time and
+  the frequency domain choose their models with it (:func:`select_models`, in the registry's
+  order, which is the order of the time loop's terms).
+* ``setup(ctx)`` (time domain) turns the built scene (:class:`SetupContext`) into frozen
+  parameters and plain arrays, once.  After setup the model does not change (``_frozen``).
 * ``force(t, pose, velocity, out)`` adds the model's generalized force (N, N m; moments about the
   displaced body reference point, earth axes) into ``out``.  It is the readable Python reference
   of what the time-domain kernel computes for that model; tests compare the two.
-* ``stiffness(pose)`` (optional) the analytic Jacobian ``-dF/dpose`` (6x6).
-* ``damping_linearized(...)`` (optional) for the frequency domain.
+* ``contribute(asm)`` adds the model's force terms to the :class:`KernelAssembly`, each of one
+  kind (:mod:`floatmoor.forces.terms`: restoring, mooring, damping, quadratic damping, memory,
+  relative flow, low-frequency damping, strips, series) with ``asm.add_<kind>(name, ...)``.  A
+  model that the scene does not name is never constructed, so it adds no term and the kernel
+  does no work for it.
+* ``frequency_domain(fd)`` (frequency domain) the model's :class:`FDTerms` about the mean
+  position (:class:`FDContext`): its mean force, its linearised stiffness and damping (WF and
+  LF, or LF only), a quadratic damping matrix for the stochastic linearisation, its WF
+  excitation and its LF force spectrum.  The default reads the model's own time-domain terms
+  of the linear kinds (restoring, damping, quadratic damping) as they are, so a model of those
+  kinds needs no frequency-domain code; a model with terms of another kind and no
+  ``frequency_domain`` is refused by the frequency domain (SceneError naming it).
+* ``stiffness(pose)`` (optional) the analytic Jacobian ``-dF/dpose`` (6x6);
+  ``damping_linearized(...)`` (optional) ``-dF/dv``, which the model's ``frequency_domain``
+  uses.
 * ``mean_force()`` the force at rest averaged over time (wind and current at their mean speed,
   mean wave drift), used for the static start.  The constants and matrices of ``restoring``
   terms already enter the static start (:attr:`KernelAssembly.const_force`,
   :attr:`KernelAssembly.restoring`): such a model keeps ``mean_force`` zero.
 * ``channels()`` the output channels the model can report (``force`` by default).
-* ``contribute(asm)`` adds the model's force terms to the :class:`KernelAssembly`, each of one
-  kind (:mod:`floatmoor.forces.terms`: restoring, mooring, damping, quadratic damping, memory,
-  relative flow, strips, series) with ``asm.add_<kind>(name, ...)``.  A model that the scene
-  does not name is never constructed, so it adds no term and the kernel does no work for it.
 
 Models are registered by name in :data:`REGISTRY` with :func:`register`; :func:`model_class`
 turns a name into its class and raises :class:`~floatmoor.core.errors.SceneError` listing the
@@ -33,11 +45,13 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..core.errors import SceneError
+from ..core.frames import yaw_rotation6
 from .terms import (
     KINDS,
     SINGLE_TERM_KINDS,
     FlowTerms,
     ForceTerms,
+    LFDampingTerms,
     MatrixTerms,
     MemoryTerm,
     RestoringTerms,
@@ -46,7 +60,8 @@ from .terms import (
     empty_strips,
 )
 
-__all__ = ["REGISTRY", "ForceModel", "KernelAssembly", "SetupContext", "model_class", "register"]
+__all__ = ["REGISTRY", "GROUPS", "ForceModel", "KernelAssembly", "SetupContext", "FDContext",
+           "FDTerms", "model_class", "register", "select_models"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -97,6 +112,137 @@ class SetupContext:
         return r
 
 
+@dataclass(frozen=True, kw_only=True)
+class FDContext:
+    """What a force model may read in the frequency domain (plain data, nothing changes later).
+
+    built, options, inputs : as in :class:`SetupContext` (``inputs`` at the body heading
+        ``yaw``: the scene's rules that combine models, e.g. the drift coefficients of the
+        correction formula at that heading).
+    omega : (n,) the wave-frequency grid (rad/s) over the hydrodynamic database's range.
+    mu : (m,) the low-frequency grid (rad/s), 0 to the LF cut-off.
+    directions : (n_dir,) directions of travel (rad, earth) of the sea's energy: every wave
+        system and, with spreading, each of its directions (equal directions merged);
+        spectra : (n_dir, n) the one-sided elevation spectrum of each direction on ``omega``
+        (m^2 s/rad); their sum is the sea's spectrum.  n_dir = 0 without waves.
+    yaw : the mean body heading (rad).  pose : (6,) the mean pose, or None while the mean
+        position is iterated.
+    linear : False while the mean position is iterated (only ``const_force``, ``restoring``
+        and ``mean_force`` of the terms are read: a model may leave out the rest), True at the
+        mean position.
+    notes : the run's remarks (``append(text)``, ``warn(text)`` also shows a warning) or None.
+    fd_options : the :class:`floatmoor.solvers.frequency_domain.FDOptions` of the run.
+    """
+
+    built: Any
+    options: Any = None
+    inputs: Any = None
+    omega: np.ndarray
+    mu: np.ndarray
+    directions: np.ndarray
+    spectra: np.ndarray
+    yaw: float = 0.0
+    pose: Any = None
+    linear: bool = False
+    notes: Any = None
+    fd_options: Any = None
+
+    @property
+    def has_waves(self) -> bool:
+        return self.directions.size > 0
+
+    @property
+    def rotation(self) -> np.ndarray:
+        """(6, 6) yaw-following frame -> earth axes at the mean heading."""
+        return yaw_rotation6(self.yaw)
+
+    @property
+    def gravity(self) -> float:
+        return float(self.built.scene.site.gravity)
+
+    def note(self, text: str) -> None:
+        if self.notes is not None:
+            self.notes.append(text)
+
+    def warn(self, text: str) -> None:
+        if self.notes is not None:
+            self.notes.warn(text)
+
+    def setup_context(self) -> SetupContext:
+        """A one-step :class:`SetupContext` without waves at the mean heading, for the
+        time-domain setup of a model whose terms are read as they are (default
+        :meth:`ForceModel.frequency_domain`)."""
+        return SetupContext(built=self.built, seed=0, dt=1.0, n_steps=1, yaw0=float(self.yaw),
+                            options=self.options, inputs=self.inputs)
+
+
+@dataclass(frozen=True, kw_only=True)
+class FDTerms:
+    """A force model's contribution to the frequency domain (:meth:`ForceModel.
+    frequency_domain`), about the mean position, SI units, earth axes unless said; None: none.
+
+    const_force (6,), restoring (6, 6) : a ``restoring`` term (``F_0 - C x``): ``F_0`` joins
+        the static balance and ``C`` the hydrostatic restoring of the statics (as the time
+        domain's static start) and the linear stiffness.
+    mean_force (6,) : the time-mean force at rest at the mean heading (wind and current at
+        their mean speed, mean wave drift).
+    stiffness (6, 6) : linearised ``-dF/dx`` at the mean beyond ``restoring``.
+    damping (6, 6) : linear damping ``-dF/dv`` on the wave- and low-frequency motion.
+    lf_damping (6, 6) : damping on the low-frequency motion only (wind, current, wave drift
+        damping).
+    quadratic_damping (6, 6) : ``B`` of ``F_i = -sum_j B_ij nu_j |nu_j|`` on the yaw-frame
+        velocity; the solver linearises it stochastically on the total velocity (every entry).
+    wf_excitation (n_dir, n, 6) complex : first-order force per unit wave amplitude of each
+        direction of :class:`FDContext` (exp(+i w t)).
+    lf_force_spectrum (m, 6, 6) : slowly varying force cross-spectra (N^2 s/rad ...).
+    added_mass, radiation_damping (n, 6, 6) : the frequency-dependent radiation on the WF grid
+        and lf_added_mass (6, 6) in the LF system (radiation model; without it A_inf is used).
+    info : named values for the result (e.g. the drift method, the mean wind speed).
+    """
+
+    const_force: np.ndarray | None = None
+    restoring: np.ndarray | None = None
+    mean_force: np.ndarray | None = None
+    stiffness: np.ndarray | None = None
+    damping: np.ndarray | None = None
+    lf_damping: np.ndarray | None = None
+    quadratic_damping: np.ndarray | None = None
+    wf_excitation: np.ndarray | None = None
+    lf_force_spectrum: np.ndarray | None = None
+    added_mass: np.ndarray | None = None
+    radiation_damping: np.ndarray | None = None
+    lf_added_mass: np.ndarray | None = None
+    info: dict = field(default_factory=dict)
+
+    @classmethod
+    def from_assembly(cls, name: str, asm: KernelAssembly, yaw: float) -> FDTerms:
+        """The terms of the linear kinds that ``name`` added to ``asm``, as they are: a
+        restoring term's constant and matrix, a damping matrix turned to earth axes at ``yaw``
+        (``T B T^T``), a quadratic damping matrix (yaw frame).  SceneError for a term of
+        another kind (no frequency-domain form without the model's own ``frequency_domain``)."""
+        const = restoring = damping = quadratic = None
+        T = yaw_rotation6(yaw)
+        for kind in KINDS:
+            for owner, payload in asm.terms[kind]:
+                if owner != name:
+                    continue
+                if kind == "restoring":
+                    const, restoring = payload
+                elif kind == "damping":
+                    damping = T @ payload @ T.T
+                elif kind == "quadratic_damping":
+                    quadratic = payload
+                else:
+                    raise SceneError(None, "forces", "force models with a frequency-domain "
+                                     "form (terms of the kinds restoring, damping, quadratic "
+                                     "damping, or a frequency_domain of their own)",
+                                     f"model {name!r} with a {kind} term",
+                                     hint="exclude it (forces: exclude) to run the frequency "
+                                          "domain without it")
+        return cls(const_force=const, restoring=restoring, damping=damping,
+                   quadratic_damping=quadratic)
+
+
 class ForceModel:
     """Base class of all force models (see the module docstring for the contract)."""
 
@@ -115,6 +261,24 @@ class ForceModel:
 
     def contribute(self, asm: KernelAssembly) -> None:  # pragma: no cover
         raise NotImplementedError
+
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        """Whether the built scene (:class:`floatmoor.io.build.BuiltScene`) with its ``forces``
+        settings ``options`` (or None) asks for this model; False unless the model says."""
+        return False
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """The model's :class:`FDTerms` about the mean position (:class:`FDContext`).  Default:
+        a fresh instance set up for one step at the mean heading (:meth:`FDContext.
+        setup_context`) and its terms of the linear kinds as they are
+        (:meth:`FDTerms.from_assembly`)."""
+        ctx = fd.setup_context()
+        m = type(self)()
+        m.setup(ctx)
+        asm = KernelAssembly(n_samples=ctx.n_samples, sample_dt=ctx.sample_dt)
+        m.contribute(asm)
+        return FDTerms.from_assembly(self.name, asm, fd.yaw)
 
     def mean_force(self) -> np.ndarray:
         """Time-mean force at rest (N, N m); zero unless the model says otherwise."""
@@ -140,7 +304,14 @@ class ForceModel:
 
 
 REGISTRY: dict[str, type[ForceModel]] = {}
-"""Force-model classes by name."""
+"""Force-model classes by name, in the order of registration: the order in which both domains
+assemble a scene's models (:func:`select_models`) and the time loop sums their terms within a
+kind (the import order of :mod:`floatmoor.forces`; the bit-identity digests pin it)."""
+
+GROUPS = {"drift": ("drift_newman", "drift_qtf"),
+          "damping": ("damping_linear", "damping_quadratic"),
+          "waves": ("wave1", "drift_newman", "drift_qtf", "wave_drift_damping")}
+"""Names that exclude several models at once (``forces: {exclude: [drift]}``)."""
 
 
 def register(cls: type[ForceModel]) -> type[ForceModel]:
@@ -162,6 +333,25 @@ def model_class(name: str, *, file=None, key: str = "forces") -> type[ForceModel
                          name) from None
 
 
+def select_models(built, options=None) -> list[str]:
+    """Names of the models a built scene asks for (each class's :meth:`ForceModel.wanted`), in
+    the registry's order, less those named in ``forces: exclude`` (model or group names;
+    SceneError for an unknown name).  Both domains assemble these models."""
+    exclude = set(getattr(options, "exclude", ()) or ())
+    drop = set()
+    for name in exclude:
+        if name in GROUPS:
+            drop.update(GROUPS[name])
+        elif name in REGISTRY:
+            drop.add(name)
+        else:
+            raise SceneError(getattr(options, "file", None), "forces.exclude",
+                             "force model names: " + ", ".join(sorted(set(REGISTRY) | set(GROUPS))),
+                             name)
+    return [name for name, cls in REGISTRY.items()
+            if name not in drop and cls.wanted(built, options)]
+
+
 def _sum(arrays, shape):
     """Sum of ``arrays`` in their order (the array itself for one: no arithmetic)."""
     if not arrays:
@@ -179,7 +369,8 @@ class KernelAssembly:
 
     ``inertia`` M + A_inf (6, 6); ``wf_velocity`` (n_samples, 6) the linear wave-frequency body
     velocity removed from the body velocity in the relative-flow terms when
-    ``has_wf_velocity``.  Units SI; matrices 6x6 about the body reference point.
+    ``has_wf_velocity`` and in the low-frequency damping terms when ``lf_wf_velocity``.  Units
+    SI; matrices 6x6 about the body reference point.
     """
 
     n_samples: int
@@ -187,6 +378,10 @@ class KernelAssembly:
     inertia: np.ndarray = field(default_factory=lambda: np.zeros((6, 6)))
     wf_velocity: np.ndarray = field(default_factory=lambda: np.zeros((0, 6)))
     has_wf_velocity: bool = False
+    lf_wf_velocity: bool = False
+    """The ``lf_damping`` terms act on the pose rate less ``wf_velocity`` (set with the
+    series); independent of ``has_wf_velocity``, which is the relative-flow terms' choice
+    (``forces: relative_velocity``)."""
     terms: dict = field(default_factory=lambda: {k: [] for k in KINDS})
     """kind -> list of (model name, arrays) in the order of contribution."""
 
@@ -243,6 +438,11 @@ class KernelAssembly:
                                           np.asarray(table_heading, float),
                                           np.asarray(table, float)))
 
+    def add_lf_damping(self, name: str, matrix) -> None:
+        """``-matrix (x' - x'_WF)`` (N s/m ...): earth axes, on the low-frequency pose rate
+        (the pose rate less the linear wave-frequency velocity, when the run has one)."""
+        self._add("lf_damping", name, np.asarray(matrix, float).reshape(6, 6))
+
     def add_strips(self, name: str, arrays: tuple) -> None:
         """A strip set: the packed arrays (fel, iel, eta, u, a, par, cur, ramp) of
         :func:`floatmoor.forces.slender_kernels.slender_packed_into`."""
@@ -282,6 +482,11 @@ class KernelAssembly:
     @property
     def damping_quadratic(self) -> np.ndarray:
         return _sum([m for _, m in self.terms["quadratic_damping"]], (6, 6))
+
+    @property
+    def damping_lf(self) -> np.ndarray:
+        """Total low-frequency damping (6, 6) of the ``lf_damping`` terms (earth axes)."""
+        return _sum([m for _, m in self.terms["lf_damping"]], (6, 6))
 
     @property
     def has_damping_quadratic(self) -> bool:
@@ -334,8 +539,11 @@ class KernelAssembly:
         wf = self.wf_velocity if self.has_wf_velocity else np.zeros((1, 6))
         flow = FlowTerms(speed, varies, np.array([p[1] for p in flows], float).reshape(n), th,
                          tab, nh, bool(self.has_wf_velocity), c(wf, float))
+        lf_wf = self.wf_velocity if self.lf_wf_velocity else np.zeros((1, 6))
+        lf = LFDampingTerms(c(np.array([m for _, m in t["lf_damping"]]).reshape(-1, 6, 6)),
+                            bool(self.lf_wf_velocity), c(lf_wf, float))
         strips = (StripTerm(True, *(c(a) for a in t["strips"][0][1])) if t["strips"]
                   else empty_strips())
         series = (c(np.array([s for _, s in t["series"]])) if t["series"]
                   else np.zeros((0, 1, 6)))
-        return ForceTerms(rest, damp, quad, mem, flow, strips, series)
+        return ForceTerms(rest, damp, quad, mem, flow, lf, strips, series)

@@ -15,6 +15,14 @@ realised from the scene's spectrum (NPD by default) by
 period >= the duration), seed stream derived from the run seed; ``r`` the ramp.
 
 Current: the speed at the still-water line (``z = 0``) of the scene's profile, constant in time.
+
+Frequency domain (:meth:`_FlowModel.frequency_domain`, the same coefficient tables, speeds and
+kernel :func:`~floatmoor.forces.kernels.relative_flow_force_into`): the mean force at rest at
+the mean body heading (Wang (2016) eq. 2.39), the damping ``-dF/dv`` of the horizontal
+velocity at rest by central differences of that force (LF motion only; Wang (2016) eq. 2.24,
+2.26 relative to the LF velocity), and for wind the gust force spectrum ``b b^T S_u(mu)`` with
+``b = dF/dU = 2 U C`` along the wind (the scene's gust spectrum at the coefficients' reference
+height, as the time domain's realisation).
 """
 
 from __future__ import annotations
@@ -27,21 +35,15 @@ from ..core.errors import SceneError
 from ..metocean.current import current_speed
 from ..metocean.realisation import realise_wind
 from ..metocean.wind import wind_mean_speed, wind_spectrum
-from .base import ForceModel, KernelAssembly, SetupContext, register
+from .base import FDContext, FDTerms, ForceModel, KernelAssembly, SetupContext, register
 from .kernels import relative_flow_force_into
-from .series import complex_envelope, grid_for
+from .series import complex_envelope, derived_seed, grid_for
+from .spectral import gust_force_spectrum
 from .terms import as_kernel_array
 
 __all__ = ["Wind", "Current", "derived_seed"]
 
 WIND_STREAM = 1
-
-
-def derived_seed(seed: int, stream: int) -> int:
-    """An independent 32-bit seed for stream ``stream`` of a run seed (stream 0 = the seed)."""
-    if stream == 0:
-        return int(seed)
-    return int(np.random.SeedSequence([int(seed), int(stream)]).generate_state(1)[0])
 
 
 def _table(vessel, attr, what):
@@ -53,7 +55,54 @@ def _table(vessel, attr, what):
             np.ascontiguousarray(tab.coefficients, float))
 
 
+def flow_force(speed: float, heading: float, table_heading, table, *, yaw: float = 0.0,
+               vx: float = 0.0, vy: float = 0.0) -> np.ndarray:
+    """``C(theta_rel) |U - v|^2`` (6,) (N, N m; earth axes) of a flow of ``speed`` (m/s) towards
+    ``heading`` (rad) on a body at heading ``yaw`` moving with (vx, vy) (m/s, earth axes)."""
+    out = np.zeros(6)
+    coef = np.zeros(6)
+    relative_flow_force_into(float(speed), float(heading), float(vx), float(vy), float(yaw),
+                             1.0, as_kernel_array(table_heading, float),
+                             as_kernel_array(table, float), coef, out)
+    return out
+
+
+def flow_damping(speed: float, heading: float, table_heading, table, *,
+                 yaw: float = 0.0) -> np.ndarray:
+    """``-dF/dv`` (6, 6) of :func:`flow_force` at rest, columns surge and sway (earth axes), by
+    central differences of the exact force (N s/m); zero without flow."""
+    D = np.zeros((6, 6))
+    if not speed > 0.0:
+        return D
+    th = as_kernel_array(table_heading, float)
+    tab = as_kernel_array(table, float)
+    dv = 1e-4 * max(1.0, speed)
+    for k in (0, 1):
+        v = np.zeros(2)
+        v[k] = dv
+        fp = flow_force(speed, heading, th, tab, yaw=yaw, vx=v[0], vy=v[1])
+        fm = flow_force(speed, heading, th, tab, yaw=yaw, vx=-v[0], vy=-v[1])
+        D[:, k] = -(fp - fm) / (2 * dv)
+    return D
+
+
 class _FlowModel(ForceModel):
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """Mean force at rest at the mean heading; at the mean position also the damping of
+        the LF motion and (wind) the gust force spectrum (module docstring)."""
+        th, tab, speed, heading = self.flow_inputs(fd.built, fd.inputs)
+        mean = flow_force(speed, heading, th, tab, yaw=fd.yaw)
+        info = {"mean_speed": speed}
+        if not fd.linear:
+            return FDTerms(mean_force=mean, info=info)
+        spectrum = self._force_spectrum(fd, th, tab, speed, heading)
+        return FDTerms(mean_force=mean, lf_damping=flow_damping(speed, heading, th, tab,
+                                                                 yaw=fd.yaw),
+                       lf_force_spectrum=spectrum, info=info)
+
+    def _force_spectrum(self, fd, th, tab, speed, heading):
+        return None
+
     def _tables(self):
         """Writeable copies of the (frozen) coefficient tables: the argument types of the time
         loop's call, so that relative_flow_force_into is compiled once."""
@@ -81,23 +130,9 @@ class _FlowModel(ForceModel):
         return out
 
     def damping_linearized(self, yaw: float = 0.0):
-        """-dF/dv (6x6) at rest, by central differences of the exact force (N s/m)."""
-        D = np.zeros((6, 6))
-        th, tab = self._tables()
-        for k in (0, 1):
-            dv = 1e-4 * max(1.0, self.mean_speed)
-            fp = np.zeros(6)
-            fm = np.zeros(6)
-            v = np.zeros(6)
-            v[k] = dv
-            coef = np.zeros(6)
-            relative_flow_force_into(self.mean_speed, self.heading, v[0], v[1], yaw, 1.0,
-                                     th, tab, coef, fp)
-            v[k] = -dv
-            relative_flow_force_into(self.mean_speed, self.heading, v[0], v[1], yaw, 1.0,
-                                     th, tab, coef, fm)
-            D[:, k] = -(fp - fm) / (2 * dv)
-        return D
+        """-dF/dv (6x6) at rest, by central differences of the exact force (N s/m)
+        (:func:`flow_damping`)."""
+        return flow_damping(self.mean_speed, self.heading, *self._tables(), yaw=yaw)
 
 
 @register
@@ -105,12 +140,39 @@ class Wind(_FlowModel):
     name = "wind"
     description = "wind (mean + gust), quadratic in the relative velocity"
 
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return built.scene.environment.wind is not None
+
+    @staticmethod
+    def reference_height(built) -> float:
+        """Height (m) of the vessel's wind coefficients (else the scene's wind reference)."""
+        return float(built.vessel.wind_coefficients.reference_height
+                     or built.scene.environment.wind.reference_height)
+
+    @classmethod
+    def flow_inputs(cls, built, inputs=None):
+        """(table headings, table, mean speed at the coefficients' height, heading)."""
+        spec = built.scene.environment.wind
+        th, tab = _table(built.vessel, "wind_coefficients", "wind")
+        return th, tab, float(wind_mean_speed(spec, cls.reference_height(built))), \
+            float(spec.heading)
+
+    def _force_spectrum(self, fd, th, tab, speed, heading):
+        """Gust force spectrum b b^T S_u(mu), b = dF/dU = 2 U C along the wind."""
+        from dataclasses import replace
+        spec = fd.built.scene.environment.wind
+        if speed <= 0.0 or spec.spectrum == "constant":
+            return np.zeros((fd.mu.size, 6, 6))
+        spec_ref = replace(spec, reference_height=self.reference_height(fd.built))
+        s_u = np.asarray(wind_spectrum(spec_ref, fd.mu / (2.0 * math.pi)), float) / (2.0 * math.pi)
+        C = flow_force(1.0, heading, th, tab, yaw=fd.yaw)  # C(theta) turned to earth axes
+        return gust_force_spectrum(2.0 * speed * C, s_u)
+
     def setup(self, ctx: SetupContext):
         spec = ctx.built.scene.environment.wind
-        v = ctx.built.vessel
-        self.table_heading, self.table = _table(v, "wind_coefficients", "wind")
-        ref = v.wind_coefficients.reference_height or spec.reference_height
-        mean = float(wind_mean_speed(spec, float(ref)))
+        self.table_heading, self.table, mean, _ = self.flow_inputs(ctx.built)
+        ref = self.reference_height(ctx.built)
         h = ctx.sample_dt
         duration = ctx.n_steps * ctx.dt
         gust = np.zeros(ctx.n_samples)
@@ -155,17 +217,27 @@ class Current(_FlowModel):
     name = "current"
     description = "current, quadratic in the relative velocity"
 
-    def setup(self, ctx: SetupContext):
-        scene = ctx.built.scene
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return built.scene.environment.current is not None
+
+    @classmethod
+    def flow_inputs(cls, built, inputs=None):
+        """(table headings, table, speed at z = 0, heading); the table of the scene's rules
+        (``inputs.current_table``: double counting with slender elements, Wang (2016) section
+        6.1.2) when given."""
+        scene = built.scene
         spec = scene.environment.current
-        v = ctx.built.vessel
-        self.table_heading, self.table = _table(v, "current_coefficients", "current")
-        inputs = ctx.inputs  # the scene's rules (double counting, Wang (2016) section 6.1.2)
+        th, tab = _table(built.vessel, "current_coefficients", "current")
         if inputs is not None and inputs.current_table is not None:
-            self.table = np.ascontiguousarray(inputs.current_table, float)
-        self.mean_speed = float(np.asarray(current_speed(spec, np.array([0.0]),
-                                                          scene.site.water_depth)).reshape(-1)[0])
-        self.heading = float(spec.heading)
+            tab = np.ascontiguousarray(inputs.current_table, float)
+        speed = float(np.asarray(current_speed(spec, np.array([0.0]),
+                                               scene.site.water_depth)).reshape(-1)[0])
+        return th, tab, speed, float(spec.heading)
+
+    def setup(self, ctx: SetupContext):
+        self.table_heading, self.table, self.mean_speed, self.heading = \
+            self.flow_inputs(ctx.built, ctx.inputs)
         self._freeze()
 
     def _speed_at(self, t):

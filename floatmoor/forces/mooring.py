@@ -8,6 +8,13 @@ moment about the displaced reference point) at the current pose: fairleads move 
 Line failure (transient ALS): ``forces.line_failure`` names lines and the time (s) at which each
 breaks; from that time on the line is inactive.  Lines listed as ``failed_lines`` in the mooring
 section are removed from the start (by :func:`floatmoor.io.build.build`).
+
+Frequency domain: the same :class:`~floatmoor.mooring.MooringSystem` gives the mean position
+(the static balance under the other models' mean forces, as the time domain's static start),
+its tangent stiffness there and the line tensions
+(:mod:`floatmoor.analyses.frequency_domain`); :meth:`QuasiStaticMooring.frequency_domain` adds
+nothing more.  Line failure times are a time-domain event: the frequency domain sees the
+intact system (a failed line is removed with ``failed_lines``).
 """
 
 from __future__ import annotations
@@ -17,7 +24,7 @@ import math
 import numpy as np
 
 from ..core.errors import SceneError
-from .base import ForceModel, KernelAssembly, SetupContext, register
+from .base import FDContext, FDTerms, ForceModel, KernelAssembly, SetupContext, register
 
 __all__ = ["QuasiStaticMooring"]
 
@@ -26,6 +33,15 @@ __all__ = ["QuasiStaticMooring"]
 class QuasiStaticMooring(ForceModel):
     name = "mooring"
     description = "quasi-static catenary lines at the instantaneous fairlead positions"
+
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return built.mooring is not None
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """No terms of its own: the frequency domain takes the mooring through the statics
+        (module docstring)."""
+        return FDTerms()
 
     def setup(self, ctx: SetupContext):
         system = ctx.built.mooring

@@ -11,6 +11,12 @@ velocity history interpolated linearly between steps (second order in dt).
 
 ``A_inf``: the database's ``infinite_frequency_added_mass`` when present, else the least-squares
 fit of Ogilvie's relation (:func:`floatmoor.hydro.fit_infinite_frequency_added_mass`).
+
+Frequency domain (:meth:`Radiation.frequency_domain`): what the memory reproduces, the
+database's A(w) and B(w) linearly interpolated on the WF grid (Wang (2016) eq. 2.40) and the
+zero-frequency added mass A(0) in the LF system (the database's ``zero_frequency_added_mass``,
+else A at its lowest frequency), turned to earth axes at the mean heading.  Without the model
+(``forces: {retardation: false}``) both domains use A_inf and no radiation damping.
 """
 
 from __future__ import annotations
@@ -21,7 +27,7 @@ import numpy as np
 
 from ..hydro.memory_fit import FIT_REL_TOL, fit_exponentials
 from ..hydro.retardation import cutoff_time, fit_infinite_frequency_added_mass, retardation_function
-from .base import ForceModel, KernelAssembly, SetupContext, register
+from .base import FDContext, FDTerms, ForceModel, KernelAssembly, SetupContext, register
 from .kernels import to_earth, to_yaw_frame
 
 __all__ = ["Radiation", "infinite_frequency_added_mass", "retardation_matrix"]
@@ -88,6 +94,30 @@ def infinite_frequency_added_mass(db) -> np.ndarray:
 class Radiation(ForceModel):
     name = "radiation"
     description = "radiation memory (retardation functions, Cummins equation)"
+
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return ("radiation_damping" in built.vessel.database
+                and bool(getattr(options, "retardation", True)))
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """A(w), B(w) on the WF grid and A(0) (module docstring), earth axes at ``fd.yaw``."""
+        from .spectral import interp0
+        db = fd.built.vessel.database
+        w_db = np.asarray(db["omega"].values, float)
+        T = fd.rotation
+        A_w = interp0(fd.omega, w_db, np.asarray(db["added_mass"].values, float))
+        B_w = interp0(fd.omega, w_db, np.asarray(db["radiation_damping"].values, float))
+        if "zero_frequency_added_mass" in db:
+            A0 = np.asarray(db["zero_frequency_added_mass"].values, float)
+            source = "database zero_frequency_added_mass"
+        else:
+            A0 = np.asarray(db["added_mass"].values[0], float)
+            source = (f"added_mass at the lowest database frequency {w_db[0]:g} rad/s "
+                      "(no zero_frequency_added_mass in the database)")
+        return FDTerms(added_mass=T[None] @ A_w @ T.T[None],
+                       radiation_damping=T[None] @ B_w @ T.T[None], lf_added_mass=T @ A0 @ T.T,
+                       info={"lf_added_mass_source": source})
 
     def setup(self, ctx: SetupContext):
         db = ctx.built.vessel.database

@@ -17,7 +17,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FrequencyGrid", "grid_for", "complex_envelope", "harmonic_sum"]
+from ..metocean.realisation import derived_seed
+
+__all__ = ["FrequencyGrid", "grid_for", "complex_envelope", "harmonic_sum", "derived_seed"]
 
 
 @dataclass(frozen=True)

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import FloatmoorWarning, SceneError
-from .base import ForceModel, KernelAssembly, SetupContext, register
+from .base import FDContext, FDTerms, ForceModel, KernelAssembly, SetupContext, register
 from .series import FrequencyGrid
 from .slender_kernels import local_axes, slender_force_into
 
@@ -363,6 +363,55 @@ class SlenderElements(ForceModel):
     name = "slender_elements"
     description = "slender elements: Morison drag strips, current + waves - body velocity"
 
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return getattr(getattr(options, "viscous_drift", None), "model",
+                       "none") == "slender_elements"
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """The strips in the current alone, body at rest at the mean heading: their mean force
+        (the time domain's :meth:`mean_force`) and, at the mean position, the damping of the LF
+        motion ``-dF/dv`` (surge, sway, yaw rate; central differences).  Their viscous wave
+        drift (drag on the wave kinematics and the WF body motion) is a time-domain effect:
+        the frequency domain says so with a warning."""
+        spec = getattr(fd.options, "viscous_drift", None)
+        v = fd.built.vessel
+        from .slender_config import parse_slender_elements
+        drag = dict(getattr(spec, "drag", {}) or {})
+        elements = parse_slender_elements(v.slender_elements, file=v.file,
+                                          key="slender_elements", scale=drag or None)
+        geom = slender_geometry(elements, station_spacing=getattr(spec, "station_spacing", 10.0))
+        dlev = float(getattr(spec, "level_step", 3.0))
+        nl = int(math.ceil(-(geom.z_min - 5.0) / dlev)) + 1
+        table = KinematicsTable(eta=np.zeros((2, geom.stations.shape[0]), np.float32),
+                                u=np.zeros((2, geom.stations.shape[0], nl, 3), np.float32),
+                                H=1.0, lev0=-(nl - 1) * dlev, dlev=dlev,
+                                depth=float(fd.built.scene.site.water_depth), wheeler=False)
+        cz, cs, chead = _current_profile(fd.built.scene, table.lev0)
+        pose = np.zeros(6)
+        pose[5] = fd.yaw
+
+        def force(vel):
+            return slender_force(geom, table, 0.0, pose, vel[:3], np.array([0.0, 0.0, vel[5]]),
+                                 current_z=cz, current_speed=cs, current_heading=chead,
+                                 wave_factor=0.0)
+
+        mean = force(np.zeros(6))
+        if not fd.linear:
+            return FDTerms(mean_force=mean)
+        fd.warn("forces: viscous_drift: {model: slender_elements}: the frequency domain carries "
+                "the slender elements' current load and its damping, not their viscous wave "
+                "drift (drag on the wave kinematics and the WF motion: a time-domain effect); "
+                "model: correction_formula gives an FD viscous drift")
+        dv = 1e-4 * max(1.0, float(np.max(cs, initial=0.0)))
+        radius = max(1.0, float(np.max(np.abs(np.vstack([geom.p1[:, :2], geom.p2[:, :2]])))))
+        D = np.zeros((6, 6))
+        for k, h in ((0, dv), (1, dv), (5, dv / radius)):
+            e = np.zeros(6)
+            e[k] = h
+            D[:, k] = -(force(e) - force(-e)) / (2.0 * h)
+        return FDTerms(mean_force=mean, lf_damping=D)
+
     def setup(self, ctx: SetupContext):
         from .slender_config import parse_slender_elements
         spec = viscous_spec(ctx)
@@ -492,6 +541,12 @@ def corrected_drift_database(built, spec, db=None, *, yaw: float = 0.0):
     env = scene.environment
     if env.waves is None:
         return db
+    from ..metocean.config import WaveSpec
+    if not isinstance(env.waves, WaveSpec):
+        raise SceneError(scene.file, "forces.viscous_drift.model", "one sea state for the "
+                         "correction formula (eq. 6.6 is written with the Hs of one sea)",
+                         f"{len(env.waves.systems)} wave systems",
+                         hint="use model: slender_elements, or none")
     U = spec.current_speed
     head = 0.0
     if env.current is not None:

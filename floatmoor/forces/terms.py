@@ -18,6 +18,8 @@ point; ``T`` turns the yaw-following frame into earth axes):
                        yaw-frame velocity history (one term)
 ``relative_flow``      ``C(theta_rel) |U - v|^2``: a flow speed (series or constant), heading and
                        body-axis coefficient table (wind, current)
+``lf_damping``         ``-B (x' - x'_WF)``: matrix in earth axes on the low-frequency pose rate,
+                       the pose rate less the linear wave-frequency velocity (wave drift damping)
 ``strips``             drag strips on the hull (slender elements; one strip set)
 ``series``             a force precomputed at the half-step samples (waves, drift)
 
@@ -35,11 +37,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["KINDS", "FlowTerms", "ForceTerms", "MatrixTerms", "MemoryTerm", "RestoringTerms",
-           "StripTerm", "NoStrips", "as_kernel_array"]
+__all__ = ["KINDS", "FlowTerms", "ForceTerms", "LFDampingTerms", "MatrixTerms", "MemoryTerm",
+           "RestoringTerms", "StripTerm", "NoStrips", "as_kernel_array"]
 
 KINDS = ("restoring", "mooring", "damping", "quadratic_damping", "memory", "relative_flow",
-         "strips", "series")
+         "lf_damping", "strips", "series")
 """The kinds of force term, in the order the kernel evaluates and sums them."""
 
 SINGLE_TERM_KINDS = ("mooring", "memory", "strips")
@@ -99,6 +101,16 @@ class FlowTerms(NamedTuple):
     wf_velocity: np.ndarray
 
 
+class LFDampingTerms(NamedTuple):
+    """``lf_damping`` kind, n terms: ``matrix`` (n, 6, 6) in earth axes on the pose rate less,
+    when ``has_wf``, the linear wave-frequency velocity ``wf_velocity`` (n_samples, 6) (earth
+    axes; the array the relative-flow terms use)."""
+
+    matrix: np.ndarray
+    has_wf: bool
+    wf_velocity: np.ndarray
+
+
 class StripTerm(NamedTuple):
     """``strips`` kind: ``on`` and the packed arrays of
     :func:`floatmoor.forces.slender_kernels.slender_packed_into`."""
@@ -133,6 +145,7 @@ class ForceTerms(NamedTuple):
     quadratic_damping: MatrixTerms
     memory: MemoryTerm
     flow: FlowTerms
+    lf_damping: LFDampingTerms
     strips: StripTerm | NoStrips
     series: np.ndarray
 

@@ -28,7 +28,22 @@ amplitude) and the off-diagonal QTF approximated by T_jk = (D_j + D_k)/2::
            = Re[ A_D,i(t) conj(A(t)) ],   A = sum a_k e^{i theta_k},  A_D,i = sum a_k D_i,k e^{i theta_k}
 
 which holds the mean drift ``sum a_k^2 D_k`` and only difference-frequency terms (no sum
-frequencies).  Cross-direction terms under spreading use the same arithmetic mean.
+frequencies).  Cross-direction terms (spreading, several wave systems) use the same arithmetic
+mean.
+
+Several wave systems (:class:`~floatmoor.metocean.config.WaveSystems`): each system is realised
+with its own seed stream (the first system the run's seed itself) on one common FFT grid, and
+the components of all systems are summed by every force (:func:`wave_components`).
+
+Which drift model a scene gets (:func:`drift_method`): ``forces: drift`` when given, else the
+full QTF when the database has one, the sea has one direction and the correction formula is
+off, Newman's approximation when the database has mean drift coefficients, else none.
+
+Frequency domain (each model's ``frequency_domain``, on the FD's grid and directions): the
+excitation per unit amplitude of every direction (first order); the mean drift
+``2 sum_d int C_d S_d dw`` and the slow-drift spectrum of Newman's approximation across the
+directions (:func:`floatmoor.forces.spectral.newman_drift_spectrum_directions`) or of the QTF
+(one direction; its mean drift from the QTF's diagonal, as the time domain's).
 """
 
 from __future__ import annotations
@@ -40,14 +55,24 @@ import numpy as np
 
 from ..core.errors import SceneError
 from ..hydro.database import interpolate_heading
-from ..metocean.realisation import WaveRealisation, realise_waves
-from ..metocean.spectra import default_omega_range
-from .base import ForceModel, KernelAssembly, SetupContext, register
+from ..metocean.config import WaveSpec, wave_systems
+from ..metocean.realisation import WAVE_SYSTEM_STREAM, WaveRealisation, realise_waves, system_seed
+from ..metocean.spectra import default_omega_range, spreading_directions
+from .base import FDContext, FDTerms, ForceModel, KernelAssembly, SetupContext, register
 from .series import FrequencyGrid, complex_envelope, grid_for
+from .spectral import (
+    interp0,
+    mean_drift_force,
+    newman_drift_spectrum_directions,
+    qtf_drift_spectrum,
+    qtf_function,
+)
 
 __all__ = ["WaveComponents", "wave_components", "FirstOrderWave", "DriftNewman", "DriftQTF",
-           "qtf_pair_sum",
-           "body_axes_to_earth", "transfer_at"]
+           "qtf_pair_sum", "drift_method", "fd_drift_coefficients", "sea_is_unidirectional",
+           "body_axes_to_earth", "transfer_at", "WAVE_SYSTEM_STREAM"]
+
+
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,13 +98,58 @@ class WaveComponents:
 
 def wave_components(spec, *, duration: float, seed: int, h: float, water_depth: float,
                     gravity: float) -> WaveComponents:
-    """Realise ``spec`` on an FFT grid with sampling step ``h`` (s) (see the module docstring)."""
+    """Realise the sea ``spec`` (a :class:`~floatmoor.metocean.config.WaveSpec`, or several
+    systems, :class:`~floatmoor.metocean.config.WaveSystems`) on an FFT grid with sampling step
+    ``h`` (s) (see the module docstring).
+
+    Several systems share one grid: its bins start at the lowest system's lower frequency, its
+    step is at most 2 pi / duration (or the sea's ``n_frequencies`` over the whole band), and
+    each system is realised over the bins that cover its own band, with its own seed stream
+    (system k >= 1: :data:`WAVE_SYSTEM_STREAM` + k)."""
+    systems = wave_systems(spec)
+    if len(systems) == 1:
+        return _single_system_components(systems[0], duration=duration, seed=seed, h=h,
+                                         water_depth=water_depth, gravity=gravity)
+    bands = [_band(s) for s in systems]
+    lo = min(b[0] for b in bands)
+    hi = max(b[1] for b in bands)
+    n_freq = getattr(spec, "n_frequencies", None)
+    if n_freq is not None:
+        grid = grid_for(lo, (hi - lo) / int(n_freq), h, 0.0)
+    else:
+        grid = grid_for(lo, 2.0 * math.pi / duration, h, duration)
+    parts = []
+    for k, (sys_k, (lo_k, hi_k)) in enumerate(zip(systems, bands)):
+        i0 = int(math.floor((lo_k - lo) / grid.dw + 1e-9))
+        i1 = max(i0 + 1, int(math.ceil((hi_k - lo) / grid.dw - 1e-9)))
+        parts.append(realise_waves(sys_k, duration=duration,
+                                   seed=system_seed(seed, k),
+                                   water_depth=water_depth, n_frequencies=i1 - i0,
+                                   omega_min=lo + i0 * grid.dw, omega_max=lo + i1 * grid.dw,
+                                   random_frequencies=False, g=gravity))
+    real = WaveRealisation(
+        omega=np.concatenate([r.omega for r in parts]),
+        amplitude=np.concatenate([r.amplitude for r in parts]),
+        phase=np.concatenate([r.phase for r in parts]),
+        direction=np.concatenate([r.direction for r in parts]),
+        k=np.concatenate([r.k for r in parts]), water_depth=parts[0].water_depth,
+        domega=grid.dw, spec=None, seed=int(seed), duration=float(duration))
+    return WaveComponents(realisation=real, grid=grid)
+
+
+def _band(spec: WaveSpec) -> tuple[float, float]:
+    """The frequency band (rad/s) of a system: its discretisation's, else the default."""
     lo_d, hi_d = default_omega_range(spec)
     lo = lo_d if spec.omega_min is None else float(spec.omega_min)
     hi = hi_d if spec.omega_max is None else float(spec.omega_max)
     if not 0.0 < lo < hi:
         raise SceneError(None, "waves.omega_min/omega_max", "0 < omega_min < omega_max (rad/s)",
                          (lo, hi))
+    return lo, hi
+
+
+def _single_system_components(spec, *, duration, seed, h, water_depth, gravity):
+    lo, hi = _band(spec)
     if spec.n_frequencies is not None:
         dw_max = (hi - lo) / int(spec.n_frequencies)
         grid = grid_for(lo, dw_max, h, 0.0)
@@ -92,6 +162,38 @@ def wave_components(spec, *, duration: float, seed: int, h: float, water_depth: 
                          n_frequencies=n, omega_min=lo, omega_max=lo + n * grid.dw,
                          random_frequencies=False, g=gravity)
     return WaveComponents(realisation=real, grid=grid)
+
+
+def sea_is_unidirectional(waves) -> bool:
+    """True when every component of the sea ``waves`` travels in one direction (the systems
+    share their heading and none is spread)."""
+    dirs = set()
+    for s in wave_systems(waves):
+        d, _ = spreading_directions(s)
+        dirs.update(round(math.remainder(float(b), 2.0 * math.pi), 9) for b in d)
+    return len(dirs) <= 1
+
+
+def drift_method(built, options) -> str:
+    """The drift model a scene gets: ``qtf``, ``newman`` or ``none`` (module docstring).  The
+    correction formula with ``drift: qtf`` is a SceneError
+    (:func:`floatmoor.forces.slender.refuse_qtf_with_correction`)."""
+    from .slender import refuse_qtf_with_correction
+    waves = built.scene.environment.waves
+    if waves is None:
+        return "none"
+    db = built.vessel.database
+    drift = getattr(options, "drift", None)
+    correction = refuse_qtf_with_correction(getattr(options, "viscous_drift", None), drift,
+                                            file=getattr(options, "file", None),
+                                            key="forces.drift")
+    if drift is not None:
+        return drift
+    if "difference_frequency_qtf" in db and not correction and sea_is_unidirectional(waves):
+        return "qtf"
+    if "mean_drift_force" in db:
+        return "newman"
+    return "none"
 
 
 def transfer_at(db, variable: str, omega, direction, *, file=None) -> np.ndarray:
@@ -146,6 +248,29 @@ def body_axes_to_earth(f: np.ndarray, yaw: float) -> np.ndarray:
     return out
 
 
+def fd_drift_coefficients(fd: FDContext, db) -> np.ndarray:
+    """(n_dir, n, 6) mean drift coefficients C_wa(w) of every direction of ``fd`` on its WF
+    grid, earth axes at the mean heading, zero outside the database's frequencies; NaN taken as
+    zero, with a warning where it holds more than 1 % of a direction's wave energy."""
+    w_db = np.asarray(db["omega"].values, float)
+    T = fd.rotation
+    out = np.zeros((fd.directions.size, fd.omega.size, 6))
+    for d, beta in enumerate(fd.directions):
+        c = interpolate_heading(db, "mean_drift_force", float(beta) - fd.yaw)  # (n_db, 6)
+        if np.any(np.isnan(c)):
+            bad = np.isnan(c).any(axis=1)
+            S = fd.spectra[d]
+            frac = float(np.trapezoid(np.where(interp0(fd.omega, w_db, bad.astype(float)) > 0,
+                                               S, 0), fd.omega)
+                         / max(np.trapezoid(S, fd.omega), 1e-300))
+            if frac > 0.01:
+                fd.warn(f"mean_drift_force is NaN where {100 * frac:.1f} % of the wave energy "
+                        "lies; taken as zero there")
+            c = np.nan_to_num(c)
+        out[d] = interp0(fd.omega, w_db, c) @ T.T
+    return out
+
+
 def _check_range(comp: WaveComponents, db, vessel_file, what: str):
     w_db = np.asarray(db["omega"].values, float)
     r = comp.realisation
@@ -182,6 +307,27 @@ class FirstOrderWave(_SeriesModel):
     name = "wave1"
     description = "first-order wave excitation (transfer functions x wave realisation)"
 
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return built.scene.environment.waves is not None
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """The excitation per unit amplitude of every direction of ``fd`` on its grid, at the
+        heading relative to the mean body heading, earth axes (Wang (2016) eq. 2.40)."""
+        if not (fd.linear and fd.has_waves):
+            return FDTerms()
+        v = fd.built.vessel
+        db = v.database
+        if "excitation_force" not in db:
+            raise SceneError(v.file, "database", "a database with excitation_force for waves")
+        w_db = np.asarray(db["omega"].values, float)
+        T = fd.rotation
+        X = np.zeros((fd.directions.size, fd.omega.size, 6), complex)
+        for d, beta in enumerate(fd.directions):
+            Xd = interpolate_heading(db, "excitation_force", float(beta) - fd.yaw)  # (n_db, 6)
+            X[d] = interp0(fd.omega, w_db, Xd) @ T.T
+        return FDTerms(wf_excitation=X)
+
     def setup(self, ctx: SetupContext):
         v = ctx.built.vessel
         comp = ctx.waves
@@ -207,15 +353,42 @@ class DriftNewman(_SeriesModel):
     name = "drift_newman"
     description = "mean + slow wave drift, Newman's approximation of the mean drift coefficients"
 
-    def setup(self, ctx: SetupContext):
-        v = ctx.built.vessel
-        comp = ctx.waves
-        inputs = ctx.inputs  # the scene's rules (correction formula, Wang (2016) eq. 6.6)
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return drift_method(built, options) == "newman"
+
+    @staticmethod
+    def _database(v, inputs):
         db = v.database if inputs is None or inputs.drift_database is None \
             else inputs.drift_database
         if "mean_drift_force" not in db:
             raise SceneError(v.file, "database", "a database with mean_drift_force for the "
                              "drift model (or exclude drift in the forces section)")
+        return db
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """Mean drift ``2 sum_d int C_d S_d dw`` (eq. 2.37) and, at the mean position, the
+        slow-drift force spectrum of Newman's approximation over all pairs of directions
+        (eq. 2.38, :func:`~floatmoor.forces.spectral.newman_drift_spectrum_directions`); the
+        coefficients those of the scene's rules (correction formula at the mean heading)."""
+        if not fd.has_waves:
+            return FDTerms()
+        db = self._database(fd.built.vessel, fd.inputs)
+        C = fd_drift_coefficients(fd, db)
+        mean = mean_drift_force(fd.omega, fd.spectra[0], C[0])
+        for d in range(1, fd.directions.size):
+            mean = mean + mean_drift_force(fd.omega, fd.spectra[d], C[d])
+        info = {"drift_method": "newman"}
+        if not fd.linear:
+            return FDTerms(mean_force=mean, info=info)
+        S = newman_drift_spectrum_directions(fd.omega, fd.spectra, C, fd.mu)
+        return FDTerms(mean_force=mean, lf_force_spectrum=S, info=info)
+
+    def setup(self, ctx: SetupContext):
+        v = ctx.built.vessel
+        comp = ctx.waves
+        # the scene's rules (correction formula, Wang (2016) eq. 6.6)
+        db = self._database(v, ctx.inputs)
         _check_range(comp, db, v.file, "mean_drift_force")
         r = comp.realisation
         D = transfer_at(db, "mean_drift_force", r.omega, r.direction - ctx.yaw0, file=v.file)
@@ -291,6 +464,33 @@ class DriftQTF(_SeriesModel):
     name = "drift_qtf"
     description = "mean + slow wave drift from the full difference-frequency QTF"
 
+    @classmethod
+    def wanted(cls, built, options) -> bool:
+        return drift_method(built, options) == "qtf"
+
+    def frequency_domain(self, fd: FDContext) -> FDTerms:
+        """Mean drift ``2 int Q(w, w) S dw`` (the QTF's diagonal, as the time domain's) and, at
+        the mean position, the slow-drift spectrum of the full QTF (one direction)."""
+        if not fd.has_waves:
+            return FDTerms()
+        v = fd.built.vessel
+        db = v.database
+        if "difference_frequency_qtf" not in db:
+            raise SceneError(v.file, "database", "a difference_frequency_qtf for drift: qtf "
+                             "(or drift: newman)")
+        if fd.directions.size != 1:
+            raise SceneError(None, "environment.waves", "a unidirectional sea for the QTF drift "
+                             "model (use drift: newman with spreading or several directions)",
+                             f"{fd.directions.size} directions")
+        q = qtf_function(db, float(fd.directions[0]) - fd.yaw, fd.rotation)
+        S = fd.spectra[0]
+        mean = mean_drift_force(fd.omega, S, np.real(q(fd.omega, fd.omega)))
+        info = {"drift_method": "qtf"}
+        if not fd.linear:
+            return FDTerms(mean_force=mean, info=info)
+        return FDTerms(mean_force=mean, lf_force_spectrum=qtf_drift_spectrum(fd.omega, S, q, fd.mu),
+                       info=info)
+
     def setup(self, ctx: SetupContext):
         v = ctx.built.vessel
         comp = ctx.waves
@@ -314,8 +514,12 @@ class DriftQTF(_SeriesModel):
         grid = comp.grid
         idx = np.rint((r.omega - grid.w0) / grid.dw).astype(np.int64)
         A = comp.coefficients()
+        omega = r.omega
+        order = np.argsort(idx, kind="stable")  # several systems: by frequency (pair sum)
+        if np.any(order != np.arange(order.size)):
+            idx, A, omega = idx[order], A[order], omega[order]
         n_diff = min(grid.N, int(idx.max() - idx.min()) + 1)
-        c = qtf_pair_sum(idx, A, q_omega, Q, r.omega, n_diff)
+        c = qtf_pair_sum(idx, A, q_omega, Q, omega, n_diff)
         C = np.zeros((grid.N, 6), complex)
         C[:n_diff] = c
         f = (np.fft.ifft(C, axis=0) * grid.N).real

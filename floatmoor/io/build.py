@@ -137,7 +137,8 @@ class ModelInputs:
     used by Newman's drift) and the linear damping raised in surge and sway (section 6.6,
     ``linear_damping``); with slender elements and ``double_counting: true``, the hull current
     coefficients zeroed in the DOFs the elements carry (section 6.1.2, ``current_table``).
-    A field is None when its model is not in the run (the model then reads the vessel).
+    A field is None when its model is not in the run (the model then reads the vessel).  The
+    time and the frequency domain read the same fields (the latter at each body heading).
     """
 
     linear_damping: np.ndarray | None = None
@@ -164,6 +165,6 @@ def model_inputs(built: BuiltScene, options, names, *, yaw: float = 0.0) -> Mode
     if "current" in names and v.current_coefficients is not None:
         current = hull_current_coefficients(
             spec, np.ascontiguousarray(v.current_coefficients.coefficients, float), v)
-    if "drift_newman" in names:
+    if "drift_newman" in names or "wave_drift_damping" in names:
         drift = corrected_drift_database(built, spec, v.database, yaw=yaw)
     return ModelInputs(linear_damping=damping, current_table=current, drift_database=drift)

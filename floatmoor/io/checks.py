@@ -12,12 +12,13 @@ import warnings
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from ..core.errors import FloatmoorWarning
+from ..core.errors import FloatmoorWarning, SceneError
 
 if TYPE_CHECKING:  # pragma: no cover
     from .scene import Scene
 
-__all__ = ["SCENE_CHECKS", "check_time_step_resolves_waves", "check_wave_resolution"]
+__all__ = ["SCENE_CHECKS", "check_dt_resolves_waves", "check_time_step_resolves_waves",
+           "check_wave_resolution", "highest_wave_frequency"]
 
 STEPS_PER_PEAK_PERIOD = 20
 """Fewer time steps per wave peak period than this are warned about (a fixed-step integrator
@@ -29,22 +30,51 @@ def _warn(message: str) -> None:
     warnings.warn(message, FloatmoorWarning, stacklevel=4)
 
 
+def highest_wave_frequency(waves) -> float:
+    """The highest frequency (rad/s) of the wave realisation of ``waves`` (a WaveSpec): its
+    ``discretisation.omega_max``, else the default range's upper end (where the spectrum
+    falls below :data:`~floatmoor.metocean.realisation.SPECTRAL_CUTOFF` of its peak)."""
+    if waves.omega_max is not None:
+        return float(waves.omega_max)
+    from ..metocean.realisation import SPECTRAL_CUTOFF, default_omega_range
+    return float(default_omega_range(waves, SPECTRAL_CUTOFF)[1])
+
+
+def check_dt_resolves_waves(file, key: str, dt: float, waves, *, where: str = "") -> None:
+    """SceneError (naming ``file`` and ``key``) when the time step ``dt`` (s) cannot represent
+    the wave components of ``waves`` (a WaveSpec): above the Nyquist limit pi / omega_max of the
+    highest component (:func:`highest_wave_frequency`; each system of a sea of several) the
+    waves alias to lower frequencies and
+    the realisation cannot be put on the time grid (a time step in milliseconds typed for
+    seconds is the usual cause)."""
+    from ..metocean.config import wave_systems
+    for w in wave_systems(waves):      # every system of a sea of several
+        w_max = highest_wave_frequency(w)
+        limit = math.pi / w_max
+        if dt > limit:
+            raise SceneError(file, key, f"a time step that resolves the sea state{where}: dt <= "
+                             f"pi/omega_max = {limit:.3g} s (the highest wave component, "
+                             f"omega_max = {w_max:.3g} rad/s, for Hs {w.hs:g} m, Tp "
+                             f"{w.tp:g} s)", dt, f"{w.tp / dt:.3g} steps per peak period; "
+                             f"use dt <= Tp/{STEPS_PER_PEAK_PERIOD} = "
+                             f"{w.tp / STEPS_PER_PEAK_PERIOD:.3g} s (in seconds)")
+
+
 def check_time_step_resolves_waves(scene: Scene) -> None:
-    """Warn when dt is coarse for the waves: fewer than 20 steps per Tp, or dt above the Nyquist
-    limit pi/omega_max of the highest wave component requested."""
+    """Refuse a dt above the Nyquist limit pi/omega_max of the highest wave component
+    (:func:`check_dt_resolves_waves`); warn when dt gives fewer than 20 steps per Tp."""
+    from ..metocean.config import wave_systems
     waves = scene.environment.waves
     if waves is None:
         return
     dt = scene.analysis.dt
+    check_dt_resolves_waves(scene.file, "analysis.dt", dt, waves)
     where = f"{scene.file}: analysis.dt"
-    if dt > waves.tp / STEPS_PER_PEAK_PERIOD:
-        _warn(f"{where}: dt = {dt:g} s gives {waves.tp / dt:.3g} steps per peak period "
-              f"(Tp = {waves.tp:g} s); use dt <= Tp/{STEPS_PER_PEAK_PERIOD} = "
-              f"{waves.tp / STEPS_PER_PEAK_PERIOD:.3g} s")
-    if waves.omega_max is not None and dt > math.pi / waves.omega_max:
-        _warn(f"{where}: dt = {dt:g} s cannot represent waves up to omega_max = "
-              f"{waves.omega_max:g} rad/s (Nyquist: dt <= pi/omega_max = "
-              f"{math.pi / waves.omega_max:.3g} s); they alias to lower frequencies")
+    tp = min(w.tp for w in wave_systems(waves))  # the shortest peak period of the systems
+    if dt > tp / STEPS_PER_PEAK_PERIOD:
+        _warn(f"{where}: dt = {dt:g} s gives {tp / dt:.3g} steps per peak period "
+              f"(Tp = {tp:g} s); use dt <= Tp/{STEPS_PER_PEAK_PERIOD} = "
+              f"{tp / STEPS_PER_PEAK_PERIOD:.3g} s")
 
 
 def check_wave_resolution(scene: Scene) -> None:
@@ -71,24 +101,28 @@ def check_realisation_size(scene: Scene) -> None:
     :data:`~floatmoor.io.environment.MAX_WAVE_COMPONENTS` / ``MAX_FREQUENCIES``: without an
     explicit ``n_frequencies`` their number grows with the duration (one per 2 pi/duration), so
     a very long duration would otherwise hang in the realisation."""
-    from ..core.errors import SceneError
     from ..metocean.realisation import SPECTRAL_CUTOFF, _default_f_max, default_omega_range
     from .environment import MAX_FREQUENCIES, MAX_WAVE_COMPONENTS
 
     duration = scene.analysis.duration
     env = scene.environment
     src = env.source or scene.file
+    from ..metocean.config import wave_systems
     waves = env.waves
     if waves is not None and waves.n_frequencies is None:
-        lo_d, hi_d = default_omega_range(waves, SPECTRAL_CUTOFF)
-        lo = lo_d if waves.omega_min is None else waves.omega_min
-        hi = hi_d if waves.omega_max is None else waves.omega_max
-        n = max(16, math.ceil((hi - lo) * duration / (2.0 * math.pi))) * waves.n_directions
+        n, lo, hi = 0, math.inf, -math.inf
+        for w in wave_systems(waves):  # every system's components on the common grid
+            lo_d, hi_d = default_omega_range(w, SPECTRAL_CUTOFF)
+            lo_w = lo_d if w.omega_min is None else w.omega_min
+            hi_w = hi_d if w.omega_max is None else w.omega_max
+            n += max(16, math.ceil((hi_w - lo_w) * duration / (2.0 * math.pi))) * w.n_directions
+            lo, hi = min(lo, lo_w), max(hi, hi_w)
+        n_dir = sum(w.n_directions for w in wave_systems(waves))
         if n > MAX_WAVE_COMPONENTS:
             raise SceneError(scene.file, "analysis.duration", "a duration whose wave "
                              f"realisation has at most {MAX_WAVE_COMPONENTS:,} components",
                              duration, f"{n:,} components (one per 2 pi/duration over "
-                             f"[{lo:.3g}, {hi:.3g}] rad/s, x {waves.n_directions} directions, "
+                             f"[{lo:.3g}, {hi:.3g}] rad/s, x {n_dir} directions, "
                              f"from {src}); their tables would need {n * 96 / 1e6:.3g} MB and "
                              "every time step would sum them all")
     wind = env.wind

@@ -12,6 +12,13 @@ waves:
   spreading: none            # optional: none | cos2s (then spreading_s, n_directions)
   discretisation: {omega_min: 0.2, omega_max: 2.5, n_frequencies: 400}   # optional, rad/s
   random_amplitudes: false   # optional
+# or several wave systems (wind sea and swell), each with the keys above but discretisation and
+# random_amplitudes, which belong to the whole sea:
+# waves:
+#   systems:
+#     - {name: wind_sea, spectrum: jonswap, hs: 14.0, tp: 16.0, heading_deg: 0.0}
+#     - {name: swell, spectrum: jonswap, hs: 4.0, tp: 22.0, gamma: 5.0, heading_deg: 45.0}
+#   discretisation: {n_frequencies: 2000}                                 # optional
 wind:
   spectrum: npd              # npd | api | constant
   u10: 36.0                  # 1-hour mean at 10 m, m/s
@@ -47,10 +54,13 @@ from ..metocean.config import (
     CurrentSpec,
     Environment,
     WaveSpec,
+    WaveSystems,
     WindSpec,
+    wave_systems,
 )
 
-__all__ = ["load_environment", "parse_environment", "parse_waves", "parse_wind", "parse_current",
+__all__ = ["load_environment", "parse_environment", "parse_waves", "parse_wave_systems",
+           "parse_wind", "parse_current", "check_sea_state",
            "describe_environment", "environment_models", "peak_wavelength",
            "BREAKING_STEEPNESS", "STEEP_SEA_STEEPNESS", "MAX_PLAUSIBLE_U10",
            "MAX_PLAUSIBLE_CURRENT"]
@@ -58,6 +68,9 @@ __all__ = ["load_environment", "parse_environment", "parse_waves", "parse_wind",
 ENVIRONMENT_KEYS = ("name", "description", "waves", "wind", "current")
 WAVE_KEYS = ("spectrum", "hs", "tp", "gamma", "heading_deg", "spreading", "spreading_s",
              "n_directions", "discretisation", "random_amplitudes")
+SYSTEM_KEYS = ("name", "spectrum", "hs", "tp", "gamma", "heading_deg", "spreading", "spreading_s",
+               "n_directions")
+WAVE_SYSTEMS_KEYS = ("systems", "discretisation", "random_amplitudes")
 WIND_KEYS = ("spectrum", "u10", "heading_deg", "reference_height", "discretisation")
 CURRENT_KEYS = ("profile", "levels", "surface_speed", "exponent", "heading_deg")
 
@@ -90,6 +103,9 @@ MAX_DIRECTIONS = 360
 
 MAX_WAVE_COMPONENTS = 200_000
 """Most wave components (frequencies x directions) of one realisation."""
+
+MAX_WAVE_SYSTEMS = 8
+"""Most wave systems of one sea state (wind sea and swells)."""
 
 
 def load_environment(path: str | os.PathLike, *, water_depth: float | None = None,
@@ -129,8 +145,9 @@ def parse_environment(node: Node, *, water_depth: float | None = None,
 
 
 def parse_waves(node: Node, *, water_depth: float | None = None,
-                gravity: float = GRAVITY) -> WaveSpec:
-    """Read a ``waves:`` mapping.
+                gravity: float = GRAVITY) -> WaveSpec | WaveSystems:
+    """Read a ``waves:`` mapping: one sea state, or several wave systems under ``systems:``
+    (:func:`parse_wave_systems`).
 
     Refused: Hs or Tp <= 0, gamma < 1 (and gamma for a spectrum other than JONSWAP), a
     significant steepness Hs/Lp > 1/10 (:data:`BREAKING_STEEPNESS`; Lp is the wave length at Tp
@@ -140,8 +157,60 @@ def parse_waves(node: Node, *, water_depth: float | None = None,
     (1.86 Hs) above the depth-limited breaking height 0.78 d, JONSWAP gamma > 7 (outside the
     range 1-7 over which it is fitted; DNV-RP-C205's rule itself gives 1 to 5).
     """
+    if "systems" in node:
+        return parse_wave_systems(node, water_depth=water_depth, gravity=gravity)
     node.reject_unknown(WAVE_KEYS)
-    spectrum = node.choice("spectrum", WAVE_SPECTRA, what="wave spectrum")
+    fields = _system_fields(node, water_depth=water_depth, gravity=gravity)
+    disc = _discretisation(node, [fields["tp"]], fields["n_directions"])
+    random_amplitudes = node.bool("random_amplitudes", False)
+    return WaveSpec(**fields, **disc, random_amplitudes=random_amplitudes)
+
+
+def parse_wave_systems(node: Node, *, water_depth: float | None = None,
+                       gravity: float = GRAVITY) -> WaveSystems:
+    """Read a ``waves:`` mapping of several wave systems::
+
+        waves:
+          systems:
+            - {name: wind_sea, spectrum: jonswap, hs: 14.0, tp: 16.0, heading_deg: 0.0}
+            - {name: swell, spectrum: jonswap, hs: 4.0, tp: 22.0, gamma: 5.0, heading_deg: 45.0,
+               spreading: cos2s, spreading_s: 10, n_directions: 9}
+          discretisation: {omega_min: 0.2, omega_max: 2.5, n_frequencies: 800}  # optional
+          random_amplitudes: false                                            # optional
+
+    Each system takes the keys of a single sea state but ``discretisation`` and
+    ``random_amplitudes``, which belong to the whole sea, and checks alike (steepness, gamma,
+    spreading); ``name`` is optional (``system1``, ``system2``, ...), distinct.  Refused as
+    well: no system, more than :data:`MAX_WAVE_SYSTEMS`, a band that excludes a system's peak,
+    more than :data:`MAX_WAVE_COMPONENTS` components.
+    """
+    node.reject_unknown(WAVE_SYSTEMS_KEYS)
+    items = node.item_nodes("systems", min_len=1)
+    if len(items) > MAX_WAVE_SYSTEMS:
+        raise node.error("systems", f"at most {MAX_WAVE_SYSTEMS} wave systems",
+                         f"{len(items)} systems")
+    systems, names = [], []
+    for i, item in enumerate(items):
+        item.reject_unknown(SYSTEM_KEYS)
+        names.append(item.str("name", f"system{i + 1}"))
+        systems.append(WaveSpec(**_system_fields(item, water_depth=water_depth,
+                                                 gravity=gravity)))
+    if len(set(names)) != len(names):
+        raise node.error("systems", "wave systems with distinct names", names)
+    disc = _discretisation(node, [s.tp for s in systems], sum(s.n_directions for s in systems))
+    return WaveSystems(systems=tuple(systems), names=tuple(names), **disc,
+                       random_amplitudes=node.bool("random_amplitudes", False))
+
+
+def _system_fields(node: Node, *, water_depth: float | None, gravity: float,
+                   heading_key: str = "heading_deg", spectrum=None) -> dict:
+    """The WaveSpec fields of one sea state or wave system (checks of :func:`parse_waves`);
+    the heading read from ``heading_key`` (degrees); ``spectrum`` the default spectrum (None:
+    the key is required)."""
+    if spectrum is None:
+        spectrum = node.choice("spectrum", WAVE_SPECTRA, what="wave spectrum")
+    else:
+        spectrum = node.choice("spectrum", WAVE_SPECTRA, spectrum, what="wave spectrum")
     hs = node.float("hs", gt=0.0, unit="m")
     tp = node.float("tp", gt=0.0, unit="s")
     gamma = node.float("gamma", None, ge=1.0, allow_none=True)
@@ -150,25 +219,9 @@ def parse_waves(node: Node, *, water_depth: float | None = None,
                          node.raw("gamma"), "remove gamma, or use spectrum: jonswap")
     if gamma is not None and gamma > 7.0:
         _warn(node, "gamma", f"gamma = {gamma:g} is outside the range 1-7 of measured seas")
-    heading = node.angle_deg("heading_deg", 0.0)
-
-    # steepness: refuse breaking seas, warn for unusually steep ones
-    length = peak_wavelength(tp, water_depth, gravity)
-    steepness = hs / length
-    where = "" if water_depth is None else f" in {water_depth:g} m depth"
-    if steepness > BREAKING_STEEPNESS:
-        raise node.error("hs", f"a sea state that does not break: Hs/Lp <= 1/10, i.e. Hs <= "
-                         f"{BREAKING_STEEPNESS * length:.3g} m for Tp = {tp:g} s{where}", hs,
-                         f"Hs/Lp = 1/{1.0 / steepness:.3g} with Lp = {length:.4g} m; "
-                         "are Hs and Tp swapped, or Tp given in Hz?")
-    if steepness > STEEP_SEA_STEEPNESS:
-        _warn(node, "hs", f"the sea state Hs = {hs:g} m, Tp = {tp:g} s is very steep: Hs/Lp = "
-              f"1/{1.0 / steepness:.3g} (Lp = {length:.4g} m{where}); severe seas have "
-              "1/16 to 1/20 (API RP 2MET)")
-    if water_depth is not None and 1.86 * hs > 0.78 * water_depth:
-        _warn(node, "hs", f"the most probable maximum wave 1.86 Hs = {1.86 * hs:.3g} m exceeds "
-              f"the depth-limited breaking height 0.78 d = {0.78 * water_depth:.3g} m; linear "
-              "wave theory is not valid there")
+    heading = node.angle_deg(heading_key, 0.0)
+    check_sea_state(node.file, node.key("hs"), hs, tp, water_depth=water_depth,
+                    gravity=gravity)
 
     spreading = node.str("spreading", "none", choices=SPREADING_FUNCTIONS)
     if spreading == "none":
@@ -181,12 +234,17 @@ def parse_waves(node: Node, *, water_depth: float | None = None,
         spreading_s = node.float("spreading_s", WaveSpec.__dataclass_fields__["spreading_s"].default,
                                  gt=0.0)
         n_directions = node.int("n_directions", ge=2, le=MAX_DIRECTIONS)
+    return {"spectrum": spectrum, "hs": hs, "tp": tp, "gamma": gamma, "heading": heading,
+            "spreading": spreading, "spreading_s": spreading_s, "n_directions": n_directions}
 
+
+def _discretisation(node: Node, tps: list, n_directions: int) -> dict:
+    """``omega_min``, ``omega_max``, ``n_frequencies`` of a ``discretisation:`` (None when
+    absent); every peak 2 pi/Tp of ``tps`` must lie in the band."""
     omega_min = omega_max = n_frequencies = None
     if "discretisation" in node:
         disc = node.child("discretisation")
         disc.reject_unknown(("omega_min", "omega_max", "n_frequencies"))
-        omega_p = 2.0 * math.pi / tp
         omega_min = disc.float("omega_min", None, gt=0.0, unit="rad/s")
         omega_max = disc.float("omega_max", None, gt=0.0, unit="rad/s")
         n_frequencies = disc.int("n_frequencies", None, ge=2, le=MAX_FREQUENCIES)
@@ -197,20 +255,49 @@ def parse_waves(node: Node, *, water_depth: float | None = None,
                              f"{n_frequencies} x {n_directions} directions = {n:,} components; "
                              f"their excitation tables alone would need {n * 96 / 1e6:.3g} MB "
                              "and every time step would sum them all")
-        peak = (f"the spectral peak 2 pi/Tp = {omega_p:.4g} rad/s must lie inside "
-                "[omega_min, omega_max]")
-        if omega_min is not None and not omega_min < omega_p:
-            raise disc.error("omega_min", f"a number < {omega_p:.4g} (in rad/s)", omega_min, peak)
-        if omega_max is not None and not omega_max > omega_p:
-            raise disc.error("omega_max", f"a number > {omega_p:.4g} (in rad/s)", omega_max, peak)
+        for tp in tps:
+            omega_p = 2.0 * math.pi / tp
+            peak = (f"the spectral peak 2 pi/Tp = {omega_p:.4g} rad/s must lie inside "
+                    "[omega_min, omega_max]")
+            if omega_min is not None and not omega_min < omega_p:
+                raise disc.error("omega_min", f"a number < {omega_p:.4g} (in rad/s)", omega_min,
+                                 peak)
+            if omega_max is not None and not omega_max > omega_p:
+                raise disc.error("omega_max", f"a number > {omega_p:.4g} (in rad/s)", omega_max,
+                                 peak)
         if "omega_min" in disc and "omega_max" in disc and not omega_max > omega_min:
             raise disc.error("omega_max", f"a number > omega_min = {omega_min:g} (in rad/s)",
                              omega_max)
-    random_amplitudes = node.bool("random_amplitudes", False)
-    return WaveSpec(spectrum=spectrum, hs=hs, tp=tp, gamma=gamma, heading=heading,
-                    spreading=spreading, spreading_s=spreading_s, n_directions=n_directions,
-                    omega_min=omega_min, omega_max=omega_max, n_frequencies=n_frequencies,
-                    random_amplitudes=random_amplitudes)
+    return {"omega_min": omega_min, "omega_max": omega_max, "n_frequencies": n_frequencies}
+
+
+def check_sea_state(file, key: str, hs: float, tp: float, *, water_depth: float | None = None,
+                    gravity: float = GRAVITY, stacklevel: int = 3) -> None:
+    """Refuse a sea state that cannot exist, warn for an unusually steep one (the rule of scene
+    files, applied also to the sea states of campaign contours and lists and of fatigue scatter
+    diagrams): a significant steepness Hs/Lp above :data:`BREAKING_STEEPNESS` (1/10; Lp the
+    wave length at Tp in ``water_depth``, deep water when None) is a SceneError naming ``file``
+    and ``key`` (the Hs of the sea state); above :data:`STEEP_SEA_STEEPNESS` (1/15), and a most
+    probable maximum wave 1.86 Hs above the depth-limited breaking height 0.78 d, a
+    FloatmoorWarning."""
+    length = peak_wavelength(tp, water_depth, gravity)
+    steepness = hs / length
+    where = "" if water_depth is None else f" in {water_depth:g} m depth"
+    if steepness > BREAKING_STEEPNESS:
+        raise SceneError(file, key, f"a sea state that does not break: Hs/Lp <= 1/10, i.e. Hs "
+                         f"<= {BREAKING_STEEPNESS * length:.3g} m for Tp = {tp:g} s{where}", hs,
+                         f"Hs/Lp = 1/{1.0 / steepness:.3g} with Lp = {length:.4g} m; "
+                         "are Hs and Tp swapped, or Tp given in Hz?")
+    if steepness > STEEP_SEA_STEEPNESS:
+        warnings.warn(f"{file}: {key}: the sea state Hs = {hs:g} m, Tp = {tp:g} s is very "
+                      f"steep: Hs/Lp = 1/{1.0 / steepness:.3g} (Lp = {length:.4g} m{where}); "
+                      "severe seas have 1/16 to 1/20 (API RP 2MET)", FloatmoorWarning,
+                      stacklevel=stacklevel)
+    if water_depth is not None and 1.86 * hs > 0.78 * water_depth:
+        warnings.warn(f"{file}: {key}: the most probable maximum wave 1.86 Hs = "
+                      f"{1.86 * hs:.3g} m exceeds the depth-limited breaking height 0.78 d = "
+                      f"{0.78 * water_depth:.3g} m; linear wave theory is not valid there",
+                      FloatmoorWarning, stacklevel=stacklevel)
 
 
 def parse_wind(node: Node) -> WindSpec:
@@ -335,7 +422,7 @@ def environment_models(env: Environment) -> list[str]:
     """Model names the environment asks for, e.g. ``["waves:jonswap", "wind:npd"]``."""
     out = []
     if env.waves is not None:
-        out.append(f"waves:{env.waves.spectrum}")
+        out.append("waves:" + "+".join(w.spectrum for w in wave_systems(env.waves)))
     if env.wind is not None:
         out.append(f"wind:{env.wind.spectrum}")
     if env.current is not None:
@@ -351,6 +438,22 @@ def _rule_gamma_text(hs: float, tp: float) -> str:
     return f"{gamma:.3g} from the DNV-RP-C205 rule (Tp/sqrt(Hs) = {r:.3g})"
 
 
+def _describe_system(w: WaveSpec, label: str, water_depth, gravity) -> list[str]:
+    gamma = f"{w.gamma:g}" if w.gamma is not None else _rule_gamma_text(w.hs, w.tp)
+    text = f"  waves: {label}{w.spectrum}  Hs {w.hs:g} m  Tp {w.tp:g} s"
+    if w.spectrum == "jonswap":
+        text += f"  gamma {gamma}"
+    text += f"  heading {math.degrees(w.heading):g} deg"
+    lp = peak_wavelength(w.tp, water_depth, gravity)
+    out = [text, f"         steepness Hs/Lp 1/{lp / w.hs:.3g} (Lp {lp:.4g} m)"]
+    if w.spreading == "none":
+        out.append("         long-crested (no spreading)")
+    else:
+        out.append(f"         spreading {w.spreading}, s = {w.spreading_s:g}, "
+                   f"{w.n_directions} directions")
+    return out
+
+
 def describe_environment(env: Environment, *, water_depth: float | None = None,
                          gravity: float = GRAVITY) -> list[str]:
     """Lines describing each environment model and its parameters (angles in degrees)."""
@@ -361,19 +464,14 @@ def describe_environment(env: Environment, *, water_depth: float | None = None,
     if w is None:
         lines.append("  waves: none")
     else:
-        gamma = f"{w.gamma:g}" if w.gamma is not None else _rule_gamma_text(w.hs, w.tp)
-        text = f"  waves: {w.spectrum}  Hs {w.hs:g} m  Tp {w.tp:g} s"
-        if w.spectrum == "jonswap":
-            text += f"  gamma {gamma}"
-        text += f"  heading {math.degrees(w.heading):g} deg"
-        lines.append(text)
-        lp = peak_wavelength(w.tp, water_depth, gravity)
-        lines.append(f"         steepness Hs/Lp 1/{lp / w.hs:.3g} (Lp {lp:.4g} m)")
-        if w.spreading == "none":
-            lines.append("         long-crested (no spreading)")
-        else:
-            lines.append(f"         spreading {w.spreading}, s = {w.spreading_s:g}, "
-                         f"{w.n_directions} directions")
+        systems = wave_systems(w)
+        several = len(systems) > 1
+        if several:
+            lines.append(f"  waves: {len(systems)} wave systems, Hs {w.hs:.3g} m in all "
+                         "(sqrt of the sum of Hs^2)")
+        names = getattr(w, "names", ()) or tuple(f"system{i + 1}" for i in range(len(systems)))
+        for name, ws in zip(names, systems):
+            lines += _describe_system(ws, f"{name}: " if several else "", water_depth, gravity)
         disc = [f"omega_min {w.omega_min:g} rad/s" if w.omega_min is not None else None,
                 f"omega_max {w.omega_max:g} rad/s" if w.omega_max is not None else None,
                 f"{w.n_frequencies} frequencies" if w.n_frequencies is not None else None]

@@ -5,7 +5,8 @@ frequency_domain:
   duration: 10800.0            # s, storm duration for the Rayleigh maxima (N = duration / Tz)
   tension_model: quasi_static  # or dynamic: WF tension of the FE lines in the frequency domain
   drift: auto                  # auto (full QTF when the database has one) | newman | qtf
-  wave_drift_damping: false    # Aranha's wave drift damping in the LF system
+  wave_drift_damping: null     # null: the scene's forces: wave_drift_damping (both domains);
+                               # true/false: in the frequency domain alone (with a note)
   lf_cutoff_period: 30.0       # s, upper end of the LF band
   n_lf: 1200                   # LF frequencies from 0 to the cut-off
   d_omega: 0.005               # rad/s, step of the WF frequency grid
@@ -59,7 +60,8 @@ def parse_fd_options(node: Node) -> FDOptions:
         "duration": node.float("duration", d.duration, gt=0.0, unit="s"),
         "tension_model": node.str("tension_model", d.tension_model, choices=TENSION_MODELS),
         "drift": node.str("drift", d.drift, choices=DRIFT_METHODS),
-        "wave_drift_damping": node.bool("wave_drift_damping", d.wave_drift_damping),
+        "wave_drift_damping": (None if node.raw("wave_drift_damping", None) is None
+                               else node.bool("wave_drift_damping")),
         "lf_cutoff_period": node.float("lf_cutoff_period", d.lf_cutoff_period, gt=0.0, unit="s"),
         "n_lf": node.int("n_lf", d.n_lf, ge=50),
         "d_omega": node.float("d_omega", d.d_omega, gt=0.0, unit="rad/s"),
@@ -87,6 +89,7 @@ def describe_frequency_domain(options: FDOptions | None, scene) -> list[str]:
     return [f"frequency domain: duration {options.duration:g} s, tensions "
             f"{options.tension_model}, drift {options.drift}, LF cut-off "
             f"{options.lf_cutoff_period:g} s"
-            + (", wave drift damping" if options.wave_drift_damping else "")
+            + {True: ", wave drift damping", False: ", no wave drift damping",
+               None: ""}[options.wave_drift_damping]
             + (", current drag on the lines" if options.line_current_drag else "")
             + (", FE line damping" if options.line_damping == "fe" else "")]

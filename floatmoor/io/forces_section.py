@@ -13,7 +13,20 @@ forces:
                                    # low_frequency (default) | total
   viscous_drift: {model: slender_elements}   # | correction_formula | none (default); see
                                    # floatmoor.io.viscous_drift_section
+  wave_drift_damping: false        # Aranha's wave drift damping on the low-frequency motion
 ```
+
+The section serves both domains: the frequency domain assembles the same models
+(:func:`floatmoor.forces.select_models`), so ``exclude``, ``drift``, ``retardation``,
+``viscous_drift`` and ``wave_drift_damping`` act in both (``frequency_domain: drift`` and
+``frequency_domain: wave_drift_damping`` may override the last two in the frequency domain
+alone, with a note).
+
+``wave_drift_damping``: Aranha's formula from the mean drift coefficients and the sea's
+spectrum (:mod:`floatmoor.forces.wave_drift_damping`), a damping of the low-frequency motion
+(the pose rate less the linear wave-frequency velocity in the time domain; the LF system in the
+frequency domain).  Off by default: it lowers the LF motion, and a default must not flatter a
+design.
 
 ``relative_velocity``: Wang (2016) writes the hull wind and current forces with the flow velocity
 relative to the low-frequency body velocity, eq. 2.24 ``Q_wi = C_wi [(U + u(t)) - x'_LF]^2``
@@ -38,7 +51,7 @@ from ..core.config import Node
 __all__ = ["ForcesSpec", "parse_forces", "FORCES_KEYS", "DRIFT_METHODS", "RELATIVE_VELOCITY"]
 
 FORCES_KEYS = ("exclude", "drift", "retardation", "max_memory", "line_failure", "record_forces",
-               "relative_velocity", "viscous_drift")
+               "relative_velocity", "viscous_drift", "wave_drift_damping")
 RELATIVE_VELOCITY = ("low_frequency", "total")
 DRIFT_METHODS = ("qtf", "newman", "none")
 
@@ -55,6 +68,7 @@ class ForcesSpec:
     record_forces: bool = False
     relative_velocity: str = "low_frequency"
     viscous_drift: object = None     # ViscousDriftSpec (floatmoor.io.viscous_drift_section)
+    wave_drift_damping: bool = False
     file: object = field(default=None, compare=False)
 
 
@@ -84,6 +98,7 @@ def parse_forces(node: Node) -> ForcesSpec:
                       line_failure=failures, record_forces=node.bool("record_forces", False),
                       relative_velocity=node.str("relative_velocity", "low_frequency",
                                                  choices=RELATIVE_VELOCITY),
+                      wave_drift_damping=node.bool("wave_drift_damping", False),
                       file=node.file)
 
 
@@ -97,6 +112,8 @@ def describe_forces(spec: ForcesSpec | None, scene=None) -> list[str]:
         parts.append(f"drift {spec.drift}")
     if not spec.retardation:
         parts.append("no radiation memory")
+    if spec.wave_drift_damping:
+        parts.append("wave drift damping")
     if spec.relative_velocity != "low_frequency":
         parts.append(f"wind/current relative to the {spec.relative_velocity} body velocity")
     for name, t in spec.line_failure.items():

@@ -70,12 +70,26 @@ __all__ = [
 # ------------------------------------------------------------------------------------------------
 # low-level file reading
 # ------------------------------------------------------------------------------------------------
+MAX_INPUT_BYTES = 16 * 2**20
+"""Largest MoorDyn or MAP++ input file read (real ones are a few kB; a line per segment of a
+large array is well below this): a bigger file is refused before it is read."""
+
+MAX_SEGMENTS = 10_000
+"""Most segments (``NumSegs``) of one MoorDyn line: each is a finite element of the imported
+line, with its state and matrices (MoorDyn models use 10-100)."""
+
+
 def _read_lines(path) -> tuple[Path, list[str]]:
     path = Path(path)
     if not path.is_file():
         raise SceneError(path, "", "an existing input file",
                          "a directory" if path.is_dir() else "no such file")
     try:
+        size = path.stat().st_size
+        if size > MAX_INPUT_BYTES:
+            raise SceneError(path, "", f"an input file of at most {MAX_INPUT_BYTES / 2**20:g} "
+                             "MiB (MoorDyn and MAP++ files are a few kB)",
+                             f"{size / 2**20:.1f} MiB", "is it the right file?")
         text = path.read_text(encoding="utf-8", errors="replace")
     except OSError as exc:
         raise SceneError(path, "", "a readable input file", str(exc)) from None
@@ -370,12 +384,14 @@ def _read_lines_table(path, tab, version, m):
             raise SceneError(path, f"line {n}", f"an unstretched length > 0 m in column {c_len}",
                              length)
         try:
+            if len(nseg) > 12:
+                raise ValueError
             ns = int(nseg)
-            if ns < 1:
+            if not 1 <= ns <= MAX_SEGMENTS:
                 raise ValueError
         except ValueError:
-            raise SceneError(path, f"line {n}", f"a number of segments >= 1 in column {c_seg}",
-                             nseg) from None
+            raise SceneError(path, f"line {n}", f"a number of segments from 1 to "
+                             f"{MAX_SEGMENTS:,} in column {c_seg}", nseg) from None
         m.lines.append(ImpLine(id=lid, type=ltype, a=a, b=b, length=length, n_segments=ns,
                                line_no=n))
         if len(t) == len(_LAYOUT["lines", version]) and t[-1] not in ("-", "0"):

@@ -148,9 +148,13 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                 ln.error("anchor", f"an anchor at or above the seabed (z >= {-water_depth:g} m)",
                          list(anchor))
         if anchor[2] >= fairlead[2]:
+            seabed = abs(anchor[2] + water_depth) <= 1e-6 * max(water_depth, 1.0)
             raise ln.error("anchor", f"an anchor below its fairlead (fairlead z = "
                                      f"{fairlead[2]:g} m)", list(anchor),
-                           f"line {name!r}: the anchor must be lower than the fairlead")
+                           f"line {name!r}: the anchor must be lower than the fairlead"
+                           + (f"; it lies on the seabed, at the water depth {water_depth:g} m "
+                              "of the scene's site.water_depth: is the depth above the "
+                              "fairleads?" if seabed else ""))
         on_seabed = abs(anchor[2] + water_depth) <= 1e-6 * max(water_depth, 1.0)
         if not on_seabed:
             a_src = src_anchor = (ln if "anchor" in ln or defaults is None

@@ -103,10 +103,10 @@ def _lowest_hull_point(built):
 def check_model_inputs(built) -> None:
     """The inputs of the models the scene builds, so that a missing table is exit status 2 at
     ``check`` rather than a failed seed at run time."""
-    from ..solvers.time_domain import default_models
+    from ..forces import select_models
 
     scene, v = built.scene, built.vessel
-    models = default_models(built, getattr(scene, "forces", None))
+    models = select_models(built, getattr(scene, "forces", None))
     for model, attr in (("wind", "wind_coefficients"), ("current", "current_coefficients")):
         if model in models and getattr(v, attr) is None:
             raise SceneError(v.file, attr, f"{model} coefficients in the vessel file (the scene "

@@ -2,7 +2,7 @@
 
 Public API (SI units; headings in rad, direction of travel from +x towards +y):
 
-* configuration: :class:`WaveSpec`, :class:`WindSpec`, :class:`CurrentSpec`, :class:`Environment`
+* configuration: :class:`WaveSpec`, :class:`WaveSystems`, :class:`WindSpec`, :class:`CurrentSpec`, :class:`Environment`
 * wave spectra (m^2 s/rad): :func:`jonswap`, :func:`pierson_moskowitz`, :func:`torsethaugen`,
   :func:`dnv_gamma`, :func:`wave_spectrum`, :func:`spreading_directions`
 * wind (S in m^2/s, f in Hz): :func:`npd_wind_spectrum`, :func:`npd_wind_profile`,
@@ -22,7 +22,10 @@ from floatmoor.metocean.config import (
     CurrentSpec,
     Environment,
     WaveSpec,
+    WaveSystems,
     WindSpec,
+    total_hs,
+    wave_systems,
 )
 from floatmoor.metocean.current import (
     CURRENT_PROFILE_KERNELS,
@@ -53,6 +56,7 @@ from floatmoor.metocean.spectra import (
     dnv_jonswap_normalisation,
     jonswap,
     pierson_moskowitz,
+    sea_directions,
     spectral_moment,
     spectrum_gamma,
     spreading_directions,
@@ -75,8 +79,9 @@ from floatmoor.metocean.wind import (
 )
 
 __all__ = [
-    "WaveSpec", "WindSpec", "CurrentSpec", "Environment", "WAVE_SPECTRA", "WIND_SPECTRA",
-    "CURRENT_PROFILES", "SPREADING_FUNCTIONS",
+    "WaveSpec", "WaveSystems", "WindSpec", "CurrentSpec", "Environment", "WAVE_SPECTRA",
+    "WIND_SPECTRA", "CURRENT_PROFILES", "SPREADING_FUNCTIONS", "wave_systems", "total_hs",
+    "sea_directions",
     "jonswap", "pierson_moskowitz", "torsethaugen", "torsethaugen_parameters", "dnv_gamma",
     "dnv_jonswap_normalisation", "wave_spectrum", "WAVE_SPECTRUM_FUNCTIONS", "spectral_moment",
     "spectrum_gamma", "cos2s_spreading", "spreading_directions", "default_omega_range",

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["WaveSpec", "WindSpec", "CurrentSpec", "Environment", "WAVE_SPECTRA", "WIND_SPECTRA",
-           "CURRENT_PROFILES", "SPREADING_FUNCTIONS"]
+__all__ = ["WaveSpec", "WaveSystems", "WindSpec", "CurrentSpec", "Environment", "WAVE_SPECTRA",
+           "WIND_SPECTRA", "CURRENT_PROFILES", "SPREADING_FUNCTIONS", "wave_systems",
+           "total_hs"]
 
 WAVE_SPECTRA = ("jonswap", "pierson_moskowitz", "torsethaugen")
 WIND_SPECTRA = ("npd", "api", "constant")
@@ -47,6 +48,58 @@ class WaveSpec:
 
 
 @dataclass(frozen=True, kw_only=True)
+class WaveSystems:
+    """A sea state of several wave systems (e.g. a wind sea and a swell from another
+    direction), each a :class:`WaveSpec` (spectrum, Hs, Tp, gamma, heading, spreading) without
+    its own discretisation.  The systems are independent: their spectra add, the realisation
+    sums their components (each system its own random phases) and every force sums over them.
+
+    omega_min/omega_max (rad/s) and n_frequencies: the discretisation of the whole sea (None:
+    each system's default band on one common frequency grid, see
+    :func:`floatmoor.forces.waves.wave_components`); random_amplitudes: for every system.
+    """
+
+    systems: tuple[WaveSpec, ...]
+    names: tuple[str, ...] = ()
+    omega_min: float | None = None
+    omega_max: float | None = None
+    n_frequencies: int | None = None
+    random_amplitudes: bool = False
+
+    @property
+    def hs(self) -> float:
+        """Significant wave height of the whole sea, 4 sqrt(m0) = sqrt(sum Hs_i^2) (m)."""
+        return total_hs(self)
+
+    @property
+    def dominant(self) -> WaveSpec:
+        """The system with the largest Hs (the first of equal ones)."""
+        return max(self.systems, key=lambda s: s.hs)
+
+
+def wave_systems(waves) -> tuple[WaveSpec, ...]:
+    """The wave systems of ``waves`` (a :class:`WaveSpec`, a :class:`WaveSystems` or None),
+    each with the sea's discretisation and ``random_amplitudes``: () without waves."""
+    if waves is None:
+        return ()
+    if isinstance(waves, WaveSpec):
+        return (waves,)
+    from dataclasses import replace
+    return tuple(replace(s, omega_min=waves.omega_min, omega_max=waves.omega_max,
+                         n_frequencies=waves.n_frequencies,
+                         random_amplitudes=waves.random_amplitudes) for s in waves.systems)
+
+
+def total_hs(waves) -> float:
+    """4 sqrt(m0) of ``waves`` (m): Hs of one system, sqrt(sum Hs_i^2) of several (their
+    variances add); 0 without waves."""
+    import math
+    if isinstance(waves, WaveSpec):
+        return float(waves.hs)
+    return math.sqrt(sum(s.hs ** 2 for s in wave_systems(waves)))
+
+
+@dataclass(frozen=True, kw_only=True)
 class WindSpec:
     """Wind: 1-hour mean speed ``u10`` at 10 m above the mean water line (m/s), with a gust
     spectrum (one of :data:`WIND_SPECTRA`; ``constant`` means no gust) and a heading (rad).
@@ -79,9 +132,10 @@ class CurrentSpec:
 
 @dataclass(frozen=True, kw_only=True)
 class Environment:
-    """The environment of a scene; a component that is None is not modelled (and not built)."""
+    """The environment of a scene; a component that is None is not modelled (and not built).
+    ``waves``: one sea state (:class:`WaveSpec`) or several wave systems (:class:`WaveSystems`)."""
 
-    waves: WaveSpec | None = None
+    waves: WaveSpec | WaveSystems | None = None
     wind: WindSpec | None = None
     current: CurrentSpec | None = None
     name: str = ""

@@ -60,12 +60,29 @@ from floatmoor.metocean.spectra import (
 from floatmoor.metocean.wind import wind_mean_speed, wind_spectrum
 
 __all__ = ["WaveRealisation", "WindRealisation", "realise_waves", "realise_wind",
-           "cosine_sum_uniform_into", "SPECTRAL_CUTOFF"]
+           "cosine_sum_uniform_into", "SPECTRAL_CUTOFF", "derived_seed", "system_seed",
+           "WAVE_SYSTEM_STREAM"]
 
 SPECTRAL_CUTOFF = 1e-3
 """Default cut-off: components are kept where S exceeds this fraction of its maximum."""
 
 _RESYNC = 256
+
+WAVE_SYSTEM_STREAM = 100
+"""Seed stream of wave system k >= 1 of a sea is ``WAVE_SYSTEM_STREAM + k`` (system 0: the run's
+seed itself, so a sea of one system is realised as before)."""
+
+
+def derived_seed(seed: int, stream: int) -> int:
+    """An independent 32-bit seed for stream ``stream`` of a run seed (stream 0 = the seed)."""
+    if stream == 0:
+        return int(seed)
+    return int(np.random.SeedSequence([int(seed), int(stream)]).generate_state(1)[0])
+
+
+def system_seed(seed: int, k: int) -> int:
+    """The seed of wave system ``k`` (0, 1, ...) of a run seed (:data:`WAVE_SYSTEM_STREAM`)."""
+    return derived_seed(seed, 0 if k == 0 else WAVE_SYSTEM_STREAM + k)
 
 
 @njit(cache=True)

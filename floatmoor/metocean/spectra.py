@@ -37,10 +37,10 @@ from scipy import integrate
 from scipy.special import gammaln
 
 from floatmoor.core.errors import SceneError, check_positive
-from floatmoor.metocean.config import SPREADING_FUNCTIONS, WaveSpec
+from floatmoor.metocean.config import SPREADING_FUNCTIONS, WaveSpec, wave_systems
 
 __all__ = ["dnv_gamma", "jonswap", "pierson_moskowitz", "torsethaugen", "torsethaugen_parameters",
-           "dnv_jonswap_normalisation", "wave_spectrum", "WAVE_SPECTRUM_FUNCTIONS",
+           "dnv_jonswap_normalisation", "wave_spectrum", "WAVE_SPECTRUM_FUNCTIONS", "sea_directions",
            "spectral_moment", "spectrum_gamma", "cos2s_spreading", "spreading_directions",
            "default_omega_range"]
 
@@ -389,3 +389,31 @@ def spreading_directions(spec: WaveSpec) -> tuple[np.ndarray, np.ndarray]:
         weights[i] = integrate.simpson(cos2s_spreading(th, heading, spec.spreading_s), x=th)
     weights /= weights.sum()
     return centres, weights
+
+
+def sea_directions(waves, omega) -> tuple[np.ndarray, np.ndarray]:
+    """The energy of a sea by direction of travel on the frequencies ``omega`` (rad/s).
+
+    ``waves``: a :class:`WaveSpec` or a :class:`~floatmoor.metocean.config.WaveSystems` (or
+    None).  Every system's spectrum times the weight of each of its spreading directions
+    (:func:`spreading_directions`); directions within 1e-9 rad of each other merged (their
+    spectra added).  Returns ``(directions (n_dir,) rad, spectra (n_dir, n) m^2 s/rad)``, whose
+    sum over directions is the sea's spectrum; (0,) and (0, n) without waves.  A single
+    long-crested system gives its heading and its spectrum itself.
+    """
+    w = np.asarray(omega, float)
+    dirs: list[float] = []
+    spectra: list[np.ndarray] = []
+    for spec in wave_systems(waves):
+        s = wave_spectrum(spec, w)
+        d, weight = spreading_directions(spec)
+        for beta, f in zip(d, weight):
+            for k, other in enumerate(dirs):
+                if abs(math.remainder(float(beta) - other, 2.0 * math.pi)) < 1e-9:
+                    spectra[k] = spectra[k] + s * f
+                    break
+            else:
+                dirs.append(float(beta))
+                spectra.append(s * f if f != 1.0 else s)
+    return np.array(dirs, float), np.array(spectra, float).reshape(len(dirs), w.size)
+

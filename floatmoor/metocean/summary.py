@@ -12,9 +12,9 @@ import math
 import numpy as np
 
 from floatmoor.core.errors import SceneError
-from floatmoor.metocean.config import Environment
+from floatmoor.metocean.config import Environment, total_hs, wave_systems
 from floatmoor.metocean.current import current_speed
-from floatmoor.metocean.realisation import realise_waves, realise_wind
+from floatmoor.metocean.realisation import realise_waves, realise_wind, system_seed
 from floatmoor.metocean.spectra import spectrum_gamma, wave_spectrum
 from floatmoor.metocean.wind import (
     api_turbulence_intensity,
@@ -87,23 +87,33 @@ def environment_summary(env: Environment, *, water_depth: float | None, duration
            "water_depth": _f(water_depth), "waves": None, "wind": None, "current": None}
 
     if env.waves is not None:
-        ws = env.waves
-        real = realise_waves(ws, duration=duration, seed=seed, water_depth=water_depth)
-        eta = real.elevation_series(nt, dt)
+        systems = wave_systems(env.waves)  # one, or several independent wave systems
+        reals = [realise_waves(ws, duration=duration, seed=system_seed(seed, k),
+                               water_depth=water_depth) for k, ws in enumerate(systems)]
+        eta = reals[0].elevation_series(nt, dt)
+        for real in reals[1:]:
+            eta = eta + real.elevation_series(nt, dt)
         heights, periods = zero_upcrossing_waves(eta, dt)
         # target moments over the realised frequency range (what the realisation represents)
-        w = np.linspace(real.omega.min(), real.omega.max(), 20001)
-        s = wave_spectrum(ws, w)
+        lo = min(float(r.omega.min()) for r in reals)
+        hi = max(float(r.omega.max()) for r in reals)
+        w = np.linspace(lo, hi, 20001)
+        s = wave_spectrum(systems[0], w)
+        for ws in systems[1:]:
+            s = s + wave_spectrum(ws, w)
         m0 = float(np.trapezoid(s, w))
         m2 = float(np.trapezoid(w * w * s, w))
+        dom = max(systems, key=lambda x: x.hs)
         out["waves"] = {
-            "spectrum": ws.spectrum, "hs_target": float(ws.hs), "tp": float(ws.tp),
-            "gamma": _f(spectrum_gamma(ws)), "heading_deg": math.degrees(ws.heading),
-            "spreading": ws.spreading,
+            "spectrum": "+".join(ws.spectrum for ws in systems),
+            "hs_target": float(total_hs(env.waves)), "tp": float(dom.tp),
+            "gamma": _f(spectrum_gamma(dom)), "heading_deg": math.degrees(dom.heading),
+            "spreading": "+".join(ws.spreading for ws in systems),
+            "n_systems": len(systems),
             "tz_target": 2.0 * math.pi * math.sqrt(m0 / m2),
-            "n_components": real.n_components,
-            "omega_min": float(real.omega.min()), "omega_max": float(real.omega.max()),
-            "hs_discretised": real.hs,
+            "n_components": sum(r.n_components for r in reals),
+            "omega_min": lo, "omega_max": hi,
+            "hs_discretised": 4.0 * math.sqrt(sum(r.m0 for r in reals)),
             "hs_realised": 4.0 * float(np.std(eta)),
             "hmax": float(heights.max()) if heights.size else 0.0,
             "crest_max": float(eta.max()),
@@ -179,6 +189,9 @@ def format_summary(summary: dict) -> str:
                   f"spreading {wv['spreading']}", head, "  " + "-" * (width - 2)]
         lines.append(row.format("significant wave height Hs (4 std)", _num(wv["hs_target"]),
                                 _num(wv["hs_realised"]), "m"))
+        if wv.get("n_systems", 1) > 1:
+            lines.append(f"  {wv['n_systems']} wave systems: Hs of the whole sea; Tp, gamma and "
+                         "heading of the system with the largest Hs")
         lines.append(row.format("peak period Tp", _num(wv["tp"]), "", "s"))
         if wv["gamma"] is not None:
             lines.append(row.format("peak enhancement gamma", _num(wv["gamma"], "{:.3f}"), "", "-"))

@@ -54,7 +54,8 @@ import numpy as np
 from numba import njit
 
 __all__ = ["FibreModel", "POLYESTER_DEFAULT", "PRESETS", "table_value_nb", "table_inverse_nb",
-           "table_slope_nb", "table_lookup_nb", "table_segment_nb", "dynamic_ea_nb", "BOUNDS"]
+           "table_slope_nb", "table_lookup_nb", "table_segment_nb", "dynamic_ea_nb", "BOUNDS",
+           "unit_problems"]
 
 BOUNDS = ("nominal", "lower", "upper")
 """Stiffness bounds a :class:`FibreModel` may carry."""
@@ -306,6 +307,71 @@ class FibreModel:
     def upper(self) -> FibreModel:
         """Upper stiffness bound: the storm dynamic stiffness ``alpha + beta L_m``."""
         return replace(self, bound="upper")
+
+
+# -- plausibility of the parameters (units) -----------------------------------------------------
+MAX_STRAIN = 0.5
+"""Largest strain (-) a tension-strain curve may reach: fibre ropes break at 10-30 % strain
+(nylon the most); a curve beyond 50 % is a strain given in percent."""
+
+MAX_TENSION_MBS = 1.5
+"""Largest tension of a curve as a fraction of MBS (the rope breaks at 1); above it, a tension
+in kN, N or % MBS."""
+
+STIFFNESS_MBS = (0.5, 200.0)
+"""Range of a fibre rope's axial stiffness over its MBS (EA/MBS, -) accepted for the working
+curve's secant and for the dynamic stiffness ``alpha + beta L_m`` up to L_m = 50 % MBS:
+MoorPy's library (Hall (2024)) gives static 5 (nylon, 1-10), 14 (polyester), 56 (HMPE) and
+dynamic 2.08, 11.6 and 59 at zero mean load.  A strain in percent makes the curve 100 times
+softer, an ``alpha`` given as an EA in N or a ``beta`` per unit (not per %) of the mean load
+far stiffer."""
+
+MAX_BETA = 2.0
+"""Largest ``beta`` (per % MBS of mean load): MoorPy's library gives 0.39-0.54 (its EAd_Lm of
+39-54 is per unit of mean load, i.e. 100 times beta)."""
+
+
+def unit_problems(model: FibreModel) -> list[tuple[str, str, object, str]]:
+    """Parameters of ``model`` that are out of a fibre rope's physical range, as
+    ``(key, expected, found, hint)`` (keys of the ``fibre:`` entry of a line type); empty
+    when plausible.  The usual cause is a unit: strain in percent, tension in kN or % MBS,
+    ``alpha`` as an EA in N, ``beta`` per unit of the mean load."""
+    out = []
+    lo, hi = STIFFNESS_MBS
+    for name, xs, ys in (("working_curve", model.working_strain, model.working_tension_mbs),
+                         ("original_curve", model.original_strain,
+                          model.original_tension_mbs)):
+        if xs is None:
+            continue
+        if max(xs) > MAX_STRAIN:
+            out.append((f"{name}.strain", f"strains (-) up to at most {MAX_STRAIN:g} (fibre "
+                        "ropes break at 10-30 % strain)", max(xs), "a strain given in percent? "
+                        "give it as a fraction: 2 % is 0.02"))
+            continue
+        if max(ys) > MAX_TENSION_MBS:
+            out.append((f"{name}.tension_mbs", f"tensions as a fraction of MBS, at most "
+                        f"{MAX_TENSION_MBS:g} (the rope breaks at 1)", max(ys),
+                        "a tension in kN, N or % of MBS? give T/MBS: 30 % MBS is 0.3"))
+            continue
+        secant = ys[-1] / xs[-1]
+        if not lo <= secant <= hi:
+            out.append((f"{name}.strain", f"a curve whose secant stiffness T/(MBS strain) is "
+                        f"{lo:g}-{hi:g} MBS (fibre ropes: about 5-60)", f"{secant:.4g} MBS at "
+                        f"strain {xs[-1]:g}", "a strain in percent, or a tension not over MBS?"))
+    if not model.alpha <= hi:
+        out.append(("dynamic.alpha", f"the dynamic stiffness at zero mean load over MBS "
+                    f"(EA_dyn/MBS, -), at most {hi:g} (MoorPy: 2.08 nylon, 11.6 polyester, 59 "
+                    "HMPE)", model.alpha, "an EA in N? give EA_dyn / MBS"))
+    elif not model.beta <= MAX_BETA:
+        out.append(("dynamic.beta", f"the growth of EA_dyn/MBS per % MBS of mean load, at "
+                    f"most {MAX_BETA:g} (MoorPy: 0.39-0.54)", model.beta,
+                    f"per unit of mean load? MoorPy's EAd_Lm {model.beta:g} is beta "
+                    f"{model.beta / 100:g} per %"))
+    elif not lo <= model.alpha + model.beta * 50.0 <= hi:
+        out.append(("dynamic.alpha", f"a dynamic stiffness alpha + beta L_m of {lo:g}-{hi:g} "
+                    "MBS up to a mean load of 50 % MBS", model.alpha,
+                    f"alpha + 50 beta = {model.alpha + 50 * model.beta:.4g}"))
+    return out
 
 
 POLYESTER_DEFAULT = FibreModel(

@@ -255,7 +255,8 @@ def _polynomial_curve(c: Node) -> tuple[tuple, tuple]:
                for v in coef):
         raise c.error("polynomial", "a list of numbers c1, c2, ... (T/MBS = c1 eps + c2 eps^2 "
                       "+ ...)", coef)
-    e_max = c.float("max_strain", gt=0.0, le=1.0)
+    from .fibre import MAX_STRAIN
+    e_max = c.float("max_strain", gt=0.0, le=MAX_STRAIN)
     eps = [e_max * i / (POLYNOMIAL_POINTS - 1) for i in range(POLYNOMIAL_POINTS)]
     t = [sum(ck * e ** (k + 1) for k, ck in enumerate(coef)) for e in eps]
     if any(b <= a for a, b in zip(t, t[1:])):
@@ -326,7 +327,22 @@ def _fibre_field(e: Node) -> dict:
         model = replace(base, **kw) if base is not None else FibreModel(**kw)
     except ValueError as exc:
         raise f.error("", "a valid fibre rope model", str(exc)) from None
+    from .fibre import unit_problems
+    for key, expected, found, hint in unit_problems(model):
+        raise f.error(key, expected, found, hint)
     return {"fibre": model}
+
+
+FIBRE_MATERIALS = ("polyester", "nylon", "hmpe", "user")
+"""Materials a fibre-rope stiffness model (``fibre:``) may be given to."""
+
+
+def _check_fibre_material(e: Node, material: str) -> None:
+    if "fibre" in e and material not in FIBRE_MATERIALS:
+        raise e.error("fibre", f"no fibre-rope stiffness model on a {material} line type (a "
+                      "working curve and mean-load dynamic stiffness describe fibre ropes: "
+                      + ", ".join(m for m in FIBRE_MATERIALS if m != "user") + ")",
+                      e.raw("fibre"), "a fibre entry copied onto the wrong line type?")
 
 
 class LineTypeLibrary:
@@ -404,6 +420,7 @@ class LineTypeLibrary:
             if "source" in e:
                 over["source"] = e.str("source")
             over.update(_tn_fields(e))
+            _check_fibre_material(e, lt.material)
             over.update(_fibre_field(e))
             return (replace(lt, **over) if over else lt), None
         e.reject_unknown(_USER_KEYS | {"area_factor"})
@@ -442,6 +459,7 @@ class LineTypeLibrary:
             w_override = e.float("submerged_weight", unit="N/m")
             vol = max(mass - w_override / gravity, 0.0) / water_density
         kw = {k: e.float(k, ge=0.0) for k in ("cdn", "cdt", "can", "cat") if k in e}
+        _check_fibre_material(e, material)
         lt = LineType(name=name, material=material, diameter=d, mass_per_length=mass,
                       displaced_volume=vol, ea=ea, ea_dynamic=ead, mbs=mbs,
                       source=e.str("source", f"user-defined in {e.file}"), **kw, **_tn_fields(e),

@@ -1,6 +1,6 @@
 """The fatigue limit state (FLS) section of the design report.
 
-:func:`fls_tables` turns the result of ``floatmoor fatigue`` (:func:`floatmoor.commands.fatigue.
+:func:`fls_tables` turns the result of ``floatmoor fatigue`` (:func:`floatmoor.analyses.fatigue.
 fatigue_analysis`, or its ``--out`` netCDF file) into report tables: the damage, fatigue life and
 DNV (2008) check per line and location, the sea states that dominate the damage, the spectral
 methods against each other and the frequency domain against the time domain (rainflow).

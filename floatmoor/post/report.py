@@ -462,10 +462,13 @@ def _other_checks(results, als_results, checks, context, code, cc, p, start, end
     return out
 
 
-def _verdict_lines(checks, fls, other, context, als_given: bool):
+def _verdict_lines(checks, fls, other, context, als_given: bool, results=()):
     lines = [vd.line_tension_line(checks, "ULS", daf=checks["daf_applied"].values),
              vd.line_tension_line(checks, "ALS", daf=checks["daf_applied"].values),
              vd.fls_line(fls)]
+    fe = vd.fe_selfcheck_line(results)
+    if fe is not None:
+        lines.insert(1, fe)
     limits_given = context is not None and context.limits is not None and bool(
         context.limits.offset or context.limits.points)
     for ls in ("ULS", "ALS") if als_given else ("ULS",):
@@ -654,7 +657,8 @@ def build_report(results: Sequence[xr.Dataset], mbs, out_dir, *,
     if fatigue is not None:
         from .fatigue_report import fls_check
         fls = fls_check(fatigue, c)
-    verdict_lines = _verdict_lines(checks, fls, other, context, als_results is not None)
+    verdict_lines = _verdict_lines(checks, fls, other, context, als_results is not None,
+                                   results=results)
     overall = vd.overall(verdict_lines)
     unverified = [e for e in c.entries_used(_used_parts(checks, fls, other, capacities))
                   if not e.verified]

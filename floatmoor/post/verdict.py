@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FAIL", "NOT_CHECKED", "PASS", "VerdictLine", "anchor_lines", "fibre_line",
-           "fls_line", "line_tension_line", "offset_line", "overall"]
+__all__ = ["FAIL", "NOT_CHECKED", "PASS", "VerdictLine", "anchor_lines", "fe_selfcheck_line",
+           "fibre_line", "fls_line", "line_tension_line", "offset_line", "overall"]
 
 PASS, FAIL, NOT_CHECKED = "PASS", "FAIL", "NOT CHECKED"
 _KN = 1e-3
@@ -53,6 +53,35 @@ def overall(lines) -> tuple[str, str]:
     if missing:
         return PASS, "PASS for the checks made; not checked: " + ", ".join(missing)
     return PASS, "PASS: every check passes"
+
+
+def fe_selfcheck_line(results) -> VerdictLine | None:
+    """The self-check of the finite-element lines of the seeds (their ``selfcheck`` variable,
+    :mod:`floatmoor.mooring.fe.selfcheck`): FAIL naming the seeds and lines whose answer broke a
+    bound a correct solution keeps, PASS when every FE line of every seed kept them; None for
+    results without FE lines (or written before the self-check existed: NOT CHECKED)."""
+    have = [ds for ds in results if "line_model" in ds and
+            np.any(ds["line_model"].values == "finite-element")]
+    if not have:
+        return None
+    if not all("selfcheck" in ds for ds in have):
+        return VerdictLine("ULS", "FE self-check", NOT_CHECKED,
+                           text="finite-element results written without the self-check: rerun "
+                                "them")
+    bad = []
+    for ds in have:
+        seed = ds.attrs.get("seed", "?")
+        for n, c in zip(ds["line"].values, ds["selfcheck"].values):
+            if str(c) not in ("ok", "-"):
+                bad.append(f"seed {seed} {n}: {c}")
+    if bad:
+        return VerdictLine("ULS", "FE self-check", FAIL, governing=bad[0].split(":")[0],
+                           text=f"{len(bad)} line result(s) break a bound of the FE self-check "
+                                f"(their tensions are not to be used): " + "; ".join(bad[:3])
+                                + (" ..." if len(bad) > 3 else ""))
+    return VerdictLine("ULS", "FE self-check", PASS,
+                       text=f"every finite-element line of {len(have)} seed(s) within the "
+                            "tension, energy and compression bounds")
 
 
 def _gov(checks, ls):

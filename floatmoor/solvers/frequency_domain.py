@@ -22,9 +22,15 @@ Low frequency (eq. 2.35, 2.38, 2.44-2.46)
     eq. 2.38 for every pair of DOFs, or the full difference-frequency QTF) plus the wind gust
     force 4 U^2 C C^T S_u(mu).
 
-Quadratic damping: stochastic linearisation of B_q v|v| for a zero-mean Gaussian velocity,
-B_eq = sqrt(8/pi) sigma_v B_q (Caughey 1963; e.g. Faltinsen 1990), with sigma_v the standard
-deviation of the total (WF + LF) velocity, iterated to convergence.
+Quadratic damping: stochastic linearisation of F_i = -sum_j B_q,ij v_j|v_j| for zero-mean
+Gaussian velocities, B_eq = sqrt(8/pi) B_q diag(sigma_v) (Caughey 1963; e.g. Faltinsen 1990):
+every entry of the matrix, off-diagonal couplings included, with sigma_v the standard
+deviations of the total (WF + LF) velocity in the yaw frame at the mean heading, iterated to
+convergence.
+
+A sea of several directions (wave systems, spreading): ``excitation`` (n_dir, n, 6) with the
+directions' spectra ``direction_spectra``; the WF cross-spectra add over the directions
+(independent components), :func:`wf_directions` gives each direction's RAO and spectrum.
 """
 
 from __future__ import annotations
@@ -36,14 +42,22 @@ import numpy as np
 
 from ..core.dofs import DOF_NAMES
 from ..core.errors import ConvergenceError, NumericalError, SceneError
-from ..core.quadrature import trapezoid_weights
+from ..core.frames import yaw_rotation6
+from ..forces.spectral import (
+    DEFAULT_D_OMEGA,
+    aranha_drift_damping,
+    gust_force_spectrum,
+    mean_drift_force,
+    newman_drift_spectrum,
+    qtf_drift_spectrum,
+)
 
 __all__ = [
     "SQRT_8_OVER_PI", "HORIZONTAL_DOFS", "spectral_moment", "response_std_tz",
     "wave_frequency_rao", "response_cross_spectrum", "newman_drift_spectrum",
     "qtf_drift_spectrum", "gust_force_spectrum", "lf_transfer", "equivalent_quadratic_damping",
     "mean_drift_force", "aranha_drift_damping", "FDOptions", "TENSION_MODELS", "DRIFT_METHODS", "LINE_DAMPING_MODELS",
-    "FDModel", "FDSolution", "solve_frequency_domain",
+    "FDModel", "FDSolution", "solve_frequency_domain", "wf_directions",
 ]
 
 SQRT_8_OVER_PI = math.sqrt(8.0 / math.pi)
@@ -122,82 +136,7 @@ def response_cross_spectrum(H, s_in):
     return np.einsum("nij,njk,nlk->nil", H, s_in, np.conj(H))
 
 
-# -- slowly varying excitation ------------------------------------------------------------------
-def mean_drift_force(omega, s_eta, coefficients):
-    """Mean wave drift force 2 int C(w) S(w) dw (eq. 2.37/2.39), (6,) N and N m.
-
-    coefficients : (n, 6) mean drift force per squared wave amplitude C_wa(w), N/m^2."""
-    return 2.0 * _trapz(np.asarray(coefficients, float) * np.asarray(s_eta, float)[:, None],
-                        np.asarray(omega, float))
-
-
-def newman_drift_spectrum(omega, s_eta, coefficients, mu):
-    """Slowly varying drift force cross-spectra by Newman's approximation (eq. 2.38):
-
-        S_ij(mu) = 8 int C_i(w + mu/2) C_j(w + mu/2) S(w) S(w + mu) dw.
-
-    Parameters
-    ----------
-    omega : (n,) uniform or not, rad/s; s_eta : (n,) wave spectrum m^2 s/rad.
-    coefficients : (n, d) mean drift coefficients C_wa(w) (N/m^2); zero outside the grid.
-    mu : (m,) difference frequencies, rad/s (>= 0).
-
-    Returns
-    -------
-    (m, d, d) real, N^2 s/rad (N^2 m^2 s/rad for moments).
-    """
-    w = np.asarray(omega, float)
-    s = np.asarray(s_eta, float)
-    C = np.asarray(coefficients, float)
-    mu = np.asarray(mu, float)
-    d = C.shape[1]
-    q = trapezoid_weights(w) * s
-    out = np.zeros((mu.size, d, d))
-    for a in range(0, mu.size, 128):  # blocks of difference frequencies, vectorised
-        mb = mu[a:a + 128]
-        s2 = np.interp((w[None, :] + mb[:, None]).ravel(), w, s, right=0.0)
-        s2 = s2.reshape(mb.size, w.size)
-        wm = (w[None, :] + 0.5 * mb[:, None]).ravel()
-        cm = np.stack([np.interp(wm, w, C[:, j], right=0.0).reshape(mb.size, w.size)
-                       for j in range(d)], axis=-1)  # (block, n, d)
-        out[a:a + mb.size] = 8.0 * np.matmul(np.swapaxes(cm * (q * s2)[..., None], 1, 2), cm)
-    return out
-
-
-
-def qtf_drift_spectrum(omega, s_eta, qtf, mu):
-    """Slowly varying drift force cross-spectra from a full difference-frequency QTF:
-
-        S_ij(mu) = 8 int Re[Q_i(w, w + mu) conj(Q_j(w, w + mu))] S(w) S(w + mu) dw.
-
-    qtf : callable (w1 (n,), w2 (n,)) -> (n, d) complex, the QTF per squared amplitude at the
-    frequency pairs (zero outside its grid).  With Q(w1, w2) = C((w1 + w2)/2) this equals
-    :func:`newman_drift_spectrum`."""
-    w = np.asarray(omega, float)
-    s = np.asarray(s_eta, float)
-    mu = np.asarray(mu, float)
-    q = trapezoid_weights(w) * s
-    out = None
-    for a in range(0, mu.size, 128):  # blocks of difference frequencies, vectorised
-        mb = mu[a:a + 128]
-        w2 = (w[None, :] + mb[:, None]).ravel()
-        s2 = np.interp(w2, w, s, right=0.0).reshape(mb.size, w.size)
-        Q = np.asarray(qtf(np.tile(w, mb.size), w2), complex)
-        Q = Q.reshape(mb.size, w.size, -1)
-        if out is None:
-            out = np.zeros((mu.size, Q.shape[-1], Q.shape[-1]))
-        out[a:a + mb.size] = 8.0 * np.real(
-            np.matmul(np.swapaxes(Q * (q * s2)[..., None], 1, 2), np.conj(Q)))
-    return out
-
-
-def gust_force_spectrum(force_per_gust, s_u):
-    """Wind gust force cross-spectra 4 U^2 C C^T S_u(mu) = b b^T S_u with b = dF/du = 2 U C.
-
-    force_per_gust : (6,) b = 2 U C (N s/m, N s for moments); s_u : (m,) gust spectrum of the
-    longitudinal wind speed in rad/s, m^2/s^2 s/rad.  Returns (m, 6, 6) real."""
-    b = np.asarray(force_per_gust, float)
-    return np.asarray(s_u, float)[:, None, None] * np.outer(b, b)[None]
+# -- slowly varying excitation: the forms of the force models (floatmoor.forces.spectral) ------
 
 
 # -- low frequency ------------------------------------------------------------------------------
@@ -221,30 +160,16 @@ def lf_transfer(mu, mass, damping, stiffness, impedance=None):
 
 
 def equivalent_quadratic_damping(quadratic_damping, sigma_v):
-    """Stochastic linearisation of B_q v|v| for a zero-mean Gaussian velocity of standard
-    deviation sigma_v: B_eq = sqrt(8/pi) sigma_v B_q, DOF by DOF (diagonal of B_q).
+    """Stochastic linearisation of ``F_i = -sum_j B_ij v_j |v_j|`` for zero-mean Gaussian
+    velocities of standard deviations ``sigma_v`` (Caughey 1963): the equivalent linear
+    coefficients are ``E[dF_i/dv_k] = B_ik 2 E|v_k| = sqrt(8/pi) sigma_k B_ik``, so every entry
+    of B, off-diagonal couplings included, is linearised on the velocity it multiplies:
+    ``B_eq = sqrt(8/pi) B diag(sigma)``.
 
-    quadratic_damping : (6, 6) (only the diagonal is used); sigma_v : (6,) m/s, rad/s.
-    Returns (6, 6) diagonal, N s/m .. N m s/rad."""
-    bq = np.diag(np.asarray(quadratic_damping, float))
-    return np.diag(SQRT_8_OVER_PI * bq * np.asarray(sigma_v, float))
-
-
-def aranha_drift_damping(omega, s_eta, coefficient_along, gravity, direction):
-    """Wave drift damping, Aranha's deep-water formula along the wave direction:
-
-        b = 2 int S(w) (w/g) (4 C(w) + w dC/dw) dw,   B = b e e^T (surge/sway block)
-
-    with C the mean drift coefficient along the direction of travel e = (cos, sin).
-    Returns (6, 6).  (Aranha 1994, J. Fluids Struct.; as in DNV-RP-C205 sec. 7.4.)"""
-    w = np.asarray(omega, float)
-    C = np.asarray(coefficient_along, float)
-    dC = np.gradient(C, w)
-    b = 2.0 * _trapz(np.asarray(s_eta) * (w / gravity) * (4.0 * C + w * dC), w)
-    e = np.array([math.cos(direction), math.sin(direction)])
-    B = np.zeros((6, 6))
-    B[:2, :2] = b * np.outer(e, e)
-    return B
+    quadratic_damping : (6, 6); sigma_v : (6,) m/s, rad/s.  Returns (6, 6), N s/m .. N m s/rad.
+    """
+    return SQRT_8_OVER_PI * np.asarray(quadratic_damping, float) \
+        * np.asarray(sigma_v, float)[None, :]
 
 
 TENSION_MODELS = ("quasi_static", "dynamic")
@@ -260,8 +185,13 @@ class FDOptions:
     tension_model : ``quasi_static``, or ``dynamic``: the WF tension of every line from its FE
         model in the frequency domain (:mod:`floatmoor.analyses.fd_line_dynamics`; LF stays
         quasi-static unless ``line_damping: fe``).
-    drift : ``auto`` (the full QTF when the database has one, else Newman), ``newman``, ``qtf``.
-    wave_drift_damping : add Aranha's wave drift damping to the LF system.
+    drift : ``auto`` (the scene's choice, ``forces: drift``: by default the full QTF when the
+        database has one and the sea one direction, else Newman), ``newman``, ``qtf``: the
+        drift model of the frequency domain alone (:func:`floatmoor.forces.waves.drift_method`).
+    wave_drift_damping : None (the scene's ``forces: wave_drift_damping``, in both domains), or
+        true/false: Aranha's wave drift damping in the frequency domain alone
+        (:mod:`floatmoor.forces.wave_drift_damping`; a note says when it differs from the
+        scene's time domain).
     lf_cutoff_period : s, upper end of the LF band (2 pi / period rad/s).
     n_lf : number of LF frequencies from 0 to the cut-off.
     d_omega : rad/s, step of the WF grid.
@@ -286,10 +216,10 @@ class FDOptions:
     duration: float = 10800.0
     tension_model: str = "quasi_static"
     drift: str = "auto"
-    wave_drift_damping: bool = False
+    wave_drift_damping: bool | None = None
     lf_cutoff_period: float = 30.0
     n_lf: int = 1200
-    d_omega: float = 0.005
+    d_omega: float = DEFAULT_D_OMEGA
     heading_iterations: int = 4
     line_current_drag: bool = False
     line_damping: str = "none"
@@ -311,7 +241,7 @@ class FDOptions:
             bad("n_lf", "an integer >= 50", self.n_lf)
         if not isinstance(self.heading_iterations, int) or self.heading_iterations < 1:
             bad("heading_iterations", "an integer >= 1", self.heading_iterations)
-        if not isinstance(self.wave_drift_damping, bool):
+        if self.wave_drift_damping is not None and not isinstance(self.wave_drift_damping, bool):
             bad("wave_drift_damping", "true or false", self.wave_drift_damping)
         if not isinstance(self.line_current_drag, bool):
             bad("line_current_drag", "true or false", self.line_current_drag)
@@ -324,11 +254,15 @@ class FDOptions:
 class FDModel:
     """A linearised moored floater about its mean position (all arrays SI, DOF order).
 
-    omega : (n,) wave frequencies (rad/s); wave_spectrum : (n,) S_eta (m^2 s/rad).
+    omega : (n,) wave frequencies (rad/s); wave_spectrum : (n,) S_eta (m^2 s/rad), the sea's.
     mass : (6, 6) rigid-body mass; added_mass, radiation_damping : (n, 6, 6) on ``omega``.
-    excitation : (n, 6) complex first-order excitation per unit amplitude at the wave heading.
+    excitation : (n, 6) complex first-order excitation per unit amplitude at the wave heading, or
+    (n_dir, n, 6) for a sea of several directions, whose spectra are ``direction_spectra``
+    (n_dir, n) (summing to ``wave_spectrum``) and directions ``directions`` (n_dir,) rad.
     stiffness : (6, 6) hydrostatic + mooring at the mean position.
-    linear_damping, quadratic_damping : (6, 6) of the vessel.
+    linear_damping : (6, 6) earth axes at the mean heading; quadratic_damping : (6, 6) on the
+    yaw-frame velocity (every entry; linearised on the velocity in the yaw frame at the mean
+    heading ``yaw`` and turned to earth axes, :func:`equivalent_quadratic_damping`).
     lf_added_mass : (6, 6) A(0) (or its stand-in); lf_extra_damping : (6, 6) wind, current and
     wave drift damping.  mu : (m,) low-frequency grid (rad/s).
     lf_force_spectrum : (m, 6, 6) slowly varying force cross-spectra (drift + gust).
@@ -351,6 +285,9 @@ class FDModel:
     mu: np.ndarray
     lf_force_spectrum: np.ndarray
     lf_impedance: np.ndarray | None = None
+    direction_spectra: np.ndarray | None = None
+    directions: np.ndarray | None = None
+    yaw: float = 0.0
     max_iter: int = 50
     tol: float = 1e-4
 
@@ -359,14 +296,17 @@ class FDModel:
 class FDSolution:
     """Result of :func:`solve_frequency_domain`.
 
-    rao : (n, 6) complex WF RAOs; wf_spectrum : (n, 6) WF response spectra;
+    rao : (n, 6) complex WF RAOs (None for a sea of several directions); raos : (n_dir, n, 6)
+    the RAOs of every direction (:func:`wf_directions`); wf_spectrum : (n, 6) WF response
+    spectra (all directions);
     wf_covariance, wf_velocity_covariance : (6, 6); lf_transfer : (m, 6, 6);
     lf_cross_spectrum : (m, 6, 6) complex; lf_spectrum : (m, 6) (its real diagonal);
     lf_covariance, lf_velocity_covariance : (6, 6); lf_mass, lf_damping : (6, 6) as used;
     equivalent_damping : (6, 6) from the quadratic damping; iterations : int.
     """
 
-    rao: np.ndarray
+    rao: np.ndarray | None
+    raos: np.ndarray
     wf_spectrum: np.ndarray
     wf_covariance: np.ndarray
     wf_velocity_covariance: np.ndarray
@@ -379,6 +319,30 @@ class FDSolution:
     lf_damping: np.ndarray
     equivalent_damping: np.ndarray
     iterations: int
+
+
+def _wf_response(w, model: FDModel, damping):
+    """WF response cross-spectra (n, 6, 6) complex, sum over the sea's directions of
+    H_d H_d^H S_d, and the RAOs: (n, 6) for one direction, (n_dir, n, 6) for several."""
+    X = np.asarray(model.excitation, complex)
+    if X.ndim == 2:
+        S = np.asarray(model.wave_spectrum, float)
+        H = wave_frequency_rao(w, model.mass, model.added_mass, damping, model.stiffness, X)
+        return H[:, :, None] * np.conj(H)[:, None, :] * S[:, None, None], H
+    Sd = np.asarray(model.direction_spectra, float)
+    H = np.stack([wave_frequency_rao(w, model.mass, model.added_mass, damping, model.stiffness,
+                                     X[d]) for d in range(X.shape[0])])
+    cross = np.einsum("dni,dnj,dn->nij", H, np.conj(H), Sd)
+    return cross, H
+
+
+def wf_directions(model: FDModel, sol: FDSolution):
+    """The WF transfer of each direction of the sea: a list of (RAO (n, 6) complex, spectrum
+    (n,)) whose responses add (one pair for a unidirectional sea)."""
+    if sol.raos.shape[0] == 1 and model.direction_spectra is None:
+        return [(sol.raos[0], np.asarray(model.wave_spectrum, float))]
+    return [(sol.raos[d], np.asarray(model.direction_spectra[d], float))
+            for d in range(sol.raos.shape[0])]
 
 
 def _covariances(omega, cross):
@@ -398,26 +362,25 @@ def solve_frequency_domain(model: FDModel) -> FDSolution:
         When the equivalent damping does not settle within ``model.max_iter`` iterations.
     """
     w = np.asarray(model.omega, float)
-    S = np.asarray(model.wave_spectrum, float)
     mu = np.asarray(model.mu, float)
     M_lf = np.zeros((6, 6))
     ix = np.ix_(HORIZONTAL_DOFS, HORIZONTAL_DOFS)
     M_lf[ix] = (np.asarray(model.mass) + np.asarray(model.lf_added_mass))[ix]
-    quadratic = np.any(np.diag(model.quadratic_damping) != 0.0)
+    Bq = np.asarray(model.quadratic_damping, float)
+    quadratic = bool(np.any(Bq != 0.0))
+    T = yaw_rotation6(model.yaw) if model.yaw != 0.0 else None
     B_eq = np.zeros((6, 6))
     if quadratic:
         # start from 5 % of critical damping in the DOFs with quadratic damping (the undamped
         # first pass would be singular at resonance); the iteration removes this guess
         mA = np.diag(model.mass) + np.diag(np.asarray(model.added_mass)[len(w) // 2])
         crit = 2.0 * np.sqrt(np.abs(np.diag(model.stiffness)) * np.abs(mA))
-        B_eq = np.diag(np.where(np.diag(model.quadratic_damping) != 0.0, 0.05 * crit, 0.0))
+        B_eq = np.diag(np.where(np.diag(Bq) != 0.0, 0.05 * crit, 0.0))
     it = 0
     while True:
         it += 1
         B_wf = model.radiation_damping + (model.linear_damping + B_eq)[None]
-        H = wave_frequency_rao(w, model.mass, model.added_mass, B_wf, model.stiffness,
-                               model.excitation)
-        wf_cross = H[:, :, None] * np.conj(H)[:, None, :] * S[:, None, None]
+        wf_cross, H = _wf_response(w, model, B_wf)
         c_wf, cv_wf = _covariances(w, wf_cross)
         B_lf = np.zeros((6, 6))
         B_lf[ix] = (model.linear_damping + B_eq + model.lf_extra_damping)[ix]
@@ -426,22 +389,31 @@ def solve_frequency_domain(model: FDModel) -> FDSolution:
         c_lf, cv_lf = _covariances(mu, lf_cross)
         if not quadratic:
             break
-        sigma_v = np.sqrt(np.maximum(np.diag(cv_wf) + np.diag(cv_lf), 0.0))
-        B_new = equivalent_quadratic_damping(model.quadratic_damping, sigma_v)
-        diff = np.abs(np.diag(B_new) - np.diag(B_eq))
-        change = float(np.max(diff / np.maximum(np.abs(np.diag(B_new)), 1e-30)))
+        cv = cv_wf + cv_lf
+        if T is not None:  # the velocity in the yaw frame at the mean heading
+            cv = T.T @ cv @ T
+        sigma_v = np.sqrt(np.maximum(np.diag(cv), 0.0))
+        B_new = equivalent_quadratic_damping(Bq, sigma_v)
+        if T is not None:
+            B_new = T @ B_new @ T.T
+        diff = np.abs(B_new - B_eq)
+        change = float(np.max(diff / np.maximum(np.abs(B_new), 1e-30)))
         if change < model.tol:
             break  # the results above were computed with B_eq, within tol of B_new
         if it >= model.max_iter:
-            k = int(np.argmax(diff))
+            k = int(np.unravel_index(np.argmax(diff), diff.shape)[1])
             raise ConvergenceError(
                 f"stochastic linearisation of the quadratic damping did not converge in {it} "
                 f"iterations (relative change {change:.2e})", where=f"frequency domain, DOF "
                 f"{DOF_NAMES[k]}", remedy="check the quadratic damping of the vessel file")
         B_eq = B_new
     wf_spec = np.real(np.einsum("nii->ni", wf_cross))
+    if H.ndim == 2:
+        rao, raos = H, H[None]
+    else:
+        rao, raos = None, H
     lf_spec = np.real(np.einsum("nii->ni", lf_cross))
-    return FDSolution(rao=H, wf_spectrum=wf_spec, wf_covariance=c_wf, wf_velocity_covariance=cv_wf,
+    return FDSolution(rao=rao, raos=raos, wf_spectrum=wf_spec, wf_covariance=c_wf, wf_velocity_covariance=cv_wf,
                       lf_transfer=Hl, lf_cross_spectrum=lf_cross, lf_spectrum=lf_spec,
                       lf_covariance=c_lf, lf_velocity_covariance=cv_lf, lf_mass=M_lf,
                       lf_damping=B_lf, equivalent_damping=B_eq, iterations=it)

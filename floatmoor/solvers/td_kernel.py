@@ -198,6 +198,24 @@ def _rhs(j, c, dt, x, v, terms, lines, st, stage=0):
                                  flow.table_heading[t, :nh], flow.table[t, :nh], st.coef,
                                  parts[r])
         r += 1
+    # low-frequency damping (wave drift damping): earth axes, on the pose rate less the linear
+    # wave-frequency velocity when given
+    lfd = terms.lf_damping
+    for t in range(lfd.matrix.shape[0]):
+        for i in range(6):
+            s = 0.0
+            for k in range(6):
+                if k == 0:
+                    qk = cy * v[0] - sy * v[1]
+                elif k == 1:
+                    qk = sy * v[0] + cy * v[1]
+                else:
+                    qk = v[k]
+                if lfd.has_wf:
+                    qk -= lfd.wf_velocity[j, k]
+                s += lfd.matrix[t, i, k] * qk
+            parts[r, i] = -s
+        r += 1
     # strips (slender elements): drag with the total body velocity (Wang (2016) eq. 6.7-6.8)
     sl = terms.strips
     if sl.on:

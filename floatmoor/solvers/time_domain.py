@@ -28,7 +28,8 @@ Assumptions (documented limits)
   002 eq. 2.24, 2.26): with first-order waves the linear wave-frequency velocity (motion RAOs
   from :func:`floatmoor.solvers.frequency_domain.wave_frequency_rao` x the run's wave
   realisation, :mod:`floatmoor.solvers.wf_velocity`) is removed from the body velocity there;
-  scene option ``forces: {relative_velocity: total}`` keeps the total velocity.
+  scene option ``forces: {relative_velocity: total}`` keeps the total velocity.  The wave drift
+  damping (``lf_damping`` terms) always acts on the low-frequency velocity.
 * Start: the static equilibrium under buoyancy - weight, mooring, mean wind and current at rest
   and mean wave drift (:func:`floatmoor.solvers.statics.solve_equilibrium`); the fluctuating loads
   (first-order waves, slow drift, gust) are ramped in over ``ramp`` seconds, so the run starts
@@ -59,9 +60,8 @@ import numpy as np
 
 from ..core.dofs import DOF_NAMES
 from ..core.errors import NumericalError, SceneError
-from ..forces.base import KernelAssembly, SetupContext, model_class
+from ..forces.base import KernelAssembly, SetupContext, model_class, select_models
 from ..forces.radiation import infinite_frequency_added_mass
-from ..forces.slender import refuse_qtf_with_correction
 from ..forces.terms import as_kernel_array
 from ..forces.waves import wave_components
 from ..mooring.catenary_step import WARM_SIZE
@@ -78,8 +78,7 @@ from .td_kernel import (
 )
 from .wf_velocity import RELATIVE_VELOCITY_MODES, wf_velocity_series
 
-__all__ = ["RK4_LIMIT", "Assembly", "TimeDomainResult", "assemble", "default_models",
-           "integrate"]
+__all__ = ["RK4_LIMIT", "Assembly", "TimeDomainResult", "assemble", "integrate"]
 
 RK4_LIMIT = 2.78
 """RK4 is stable for purely imaginary eigenvalues lambda dt up to 2 sqrt(2) = 2.83."""
@@ -147,55 +146,6 @@ class TimeDomainResult:
     energy audit and parameters, for the self-check of the results)."""
 
 
-def default_models(built, options=None) -> list[str]:
-    """Names of the models a built scene asks for, in assembly order."""
-    v = built.vessel
-    env = built.scene.environment
-    exclude = set(getattr(options, "exclude", ()) or ())
-    names = ["hydrostatics"]
-    if built.mooring is not None:
-        names.append("mooring")
-    if "radiation_damping" in v.database and getattr(options, "retardation", True):
-        names.append("radiation")
-    if np.any(v.linear_damping != 0.0):
-        names.append("damping_linear")
-    if np.any(v.quadratic_damping != 0.0):
-        names.append("damping_quadratic")
-    if env.waves is not None:
-        names.append("wave1")
-        drift = getattr(options, "drift", None)
-        correction = refuse_qtf_with_correction(getattr(options, "viscous_drift", None), drift,
-                                                file=getattr(options, "file", None),
-                                                key="forces.drift")
-        if drift is None:  # the full QTF when the database has one, else Newman
-            if "difference_frequency_qtf" in v.database and not correction:
-                drift = "qtf"
-            elif "mean_drift_force" in v.database:
-                drift = "newman"
-            else:
-                drift = "none"
-        if drift != "none":
-            names.append(f"drift_{drift}")
-    if env.wind is not None:
-        names.append("wind")
-    if env.current is not None:
-        names.append("current")
-    if getattr(getattr(options, "viscous_drift", None), "model", "none") == "slender_elements":
-        names.append("slender_elements")
-    from ..forces import GROUPS, REGISTRY
-    drop = set()
-    for name in exclude:
-        if name in GROUPS:
-            drop.update(GROUPS[name])
-        elif name in REGISTRY:
-            drop.add(name)
-        else:
-            raise SceneError(getattr(options, "file", None), "forces.exclude",
-                             "force model names: " + ", ".join(sorted(set(REGISTRY) | set(GROUPS))),
-                             name)
-    return [n for n in names if n not in drop]
-
-
 def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
              options=None, models: list[str] | None = None, waves=None,
              start_pose=None, solver=None) -> Assembly:
@@ -206,7 +156,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     built : :class:`floatmoor.io.build.BuiltScene` (needs a vessel).
     seed : int; dt : float (s); duration : float (s); ramp : float (s).
     options : the scene's ``forces`` settings (or None).
-    models : model names (default :func:`default_models`).
+    models : model names (default: the scene's, :func:`floatmoor.forces.select_models`).
     waves : a :class:`floatmoor.forces.waves.WaveComponents` to use instead of realising the
         scene's sea state (e.g. a regular wave); needs ``models`` to include ``wave1``.
     start_pose : (6,) start pose instead of the static equilibrium (free decay).
@@ -218,7 +168,7 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     if not (dt > 0.0 and duration > dt):
         raise SceneError(built.scene.file, "analysis", "0 < dt < duration", (dt, duration))
     n_steps = int(round(duration / dt))
-    names = default_models(built, options) if models is None else list(models)
+    names = select_models(built, options) if models is None else list(models)
     v = built.vessel
     site = built.scene.site
     if waves is None and built.scene.environment.waves is not None and (
@@ -286,15 +236,17 @@ def assemble(built, *, seed: int, dt: float, duration: float, ramp: float = 0.0,
     if mode not in RELATIVE_VELOCITY_MODES:
         raise SceneError(getattr(options, "file", None), "forces.relative_velocity",
                          "one of: " + ", ".join(RELATIVE_VELOCITY_MODES), mode)
-    if (mode == "low_frequency" and waves is not None and "wave1" in active
-            and ("wind" in active or "current" in active)):
+    flows_lf = (mode == "low_frequency" and ("wind" in active or "current" in active))
+    lf_terms = bool(asm.terms["lf_damping"])  # on the low-frequency velocity whatever the mode
+    if waves is not None and "wave1" in active and (flows_lf or lf_terms):
         asm.wf_velocity = wf_velocity_series(
             waves, v.database, n_samples=ctx.n_samples, h=ctx.sample_dt,
             ramp=ctx.ramp_series(), mass=np.asarray(v.mass_matrix, float), stiffness=K_lin,
             linear_damping=asm.damping_linear,
             quadratic_damping=asm.damping_quadratic if asm.has_damping_quadratic else None,
             radiation="radiation" in active, a_inf=a_inf, yaw0=ctx.yaw0, file=v.file)
-        asm.has_wf_velocity = True
+        asm.has_wf_velocity = flows_lf
+        asm.lf_wf_velocity = lf_terms
     # finite-element lines (coupled; only imported when the scene selects some)
     fe = None
     lm = getattr(built.mooring, "line_models", None)

@@ -20,7 +20,7 @@ damping and radiation as the time-domain model, and K the hydrostatic plus the m
 stiffness at the static start; the loop uses ``v_LF = v - v_WF``.  The RAOs come from
 :func:`floatmoor.solvers.frequency_domain.wave_frequency_rao` (the frequency-domain module's
 function, not a copy).  A quadratic damping B_q is linearised stochastically on the WF velocity
-alone, B_eq = sqrt(8/pi) sigma_WF B_q (iterated).
+alone, B_eq = sqrt(8/pi) B_q diag(sigma_WF) (every entry, iterated).
 """
 
 from __future__ import annotations
@@ -85,15 +85,16 @@ def wf_velocity_rao(db, omega, direction, *, mass, stiffness, linear_damping,
     B_l = np.asarray(linear_damping, float)
     bq = None if quadratic_damping is None else np.asarray(quadratic_damping, float)
     B_eq = np.zeros((6, 6))
-    for _ in range(max_iter if bq is not None and np.any(np.diag(bq) != 0.0) else 1):
+    quadratic = bq is not None and bool(np.any(bq != 0.0))
+    for _ in range(max_iter if quadratic else 1):
         H = wave_frequency_rao(omega, mass, A, B + (B_l + B_eq)[None], K, X)
         V = 1j * omega[:, None] * H
-        if bq is None or not np.any(np.diag(bq) != 0.0):
+        if not quadratic:
             break
         amp = np.asarray(amplitude, float)
         sigma = np.sqrt(0.5 * np.sum((amp[:, None] * np.abs(V)) ** 2, axis=0))
-        B_new = equivalent_quadratic_damping(bq, sigma)
-        done = np.allclose(np.diag(B_new), np.diag(B_eq), rtol=1e-4, atol=0.0)
+        B_new = equivalent_quadratic_damping(bq, sigma)  # every entry of B_q
+        done = np.allclose(B_new, B_eq, rtol=1e-4, atol=0.0)
         B_eq = B_new
         if done:
             break

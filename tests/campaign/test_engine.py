@@ -203,13 +203,11 @@ def test_statistics_mode_keeps_series_of_governing_case(tmp_path):
         assert store.storm_path(tmp_path, case, seed).stat().st_size < 60_000
 
 
-def test_resume_refuses_an_edited_base_scene(tmp_path):
-    """The campaign record keeps the base scene's input fingerprint (site, environment,
-    analysis, forces, vessel, mooring by content): after the mooring file behind the same
-    base-scene path is edited, a resume into the same folder is refused (the finished storms
-    would otherwise be mixed with storms of the edited mooring in one report); the unedited
-    scene resumes."""
-    from floatmoor.core.errors import SceneError
+def test_resume_recomputes_after_an_edited_base_scene(tmp_path):
+    """Every stored result carries the fingerprint of its inputs (base scene and the files it
+    reads, by content; the case; the code): after the mooring file behind the same base-scene
+    path is edited, a resume into the same folder computes every result again and says why
+    (naming the mooring); the unedited scene resumes without running anything."""
     root = HERE.parents[1]
     work = tmp_path / "inputs"
     work.mkdir()
@@ -232,12 +230,21 @@ def test_resume_refuses_an_edited_base_scene(tmp_path):
     assert store.read_record(out)["base_inputs"]["mooring"]
     r = run_campaign(work / "mini.yaml", out, scheduler="serial", echo=None)
     assert r.ran == {}
+    case = "ss1_h000p0_wi000p0_cu000p0_intact"
+    with netCDF4.Dataset(store.storm_path(out, case, 1)) as nc:
+        before = np.asarray(nc["line_tension_max"][:])
     # the first segment of the first line 1 m longer: another mooring behind the same path
     mooring.write_text(_lengthen_first_segment(mooring.read_text()))
-    with pytest.raises(SceneError) as e:
-        run_campaign(work / "mini.yaml", out, scheduler="serial", echo=None)
-    msg = str(e.value)
-    assert "base_scene" in msg and "mooring" in msg and "another --out" in msg
+    said = []
+    r = run_campaign(work / "mini.yaml", out, scheduler="serial", echo=said.append)
+    assert r.ran == {"fd": 1, "td": 3} and not r.failed
+    text = "\n".join(said)
+    assert "FD: 1 result(s) computed from other inputs (differ in: mooring)" in text, text
+    assert "TD: 3 result(s) computed from other inputs (differ in: mooring)" in text, text
+    with netCDF4.Dataset(store.storm_path(out, case, 1)) as nc:
+        assert not np.array_equal(before, np.asarray(nc["line_tension_max"][:]))
+    r = run_campaign(work / "mini.yaml", out, scheduler="serial", echo=None)
+    assert r.ran == {}
 
 
 def _lengthen_first_segment(text):

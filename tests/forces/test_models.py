@@ -173,9 +173,9 @@ def test_qtf_drift_with_newman_qtf_equals_newman(oc4):
     sum a^2 Q(w, w) and it is the default drift model of a database with a QTF."""
     from dataclasses import replace
 
-    from floatmoor.solvers.time_domain import default_models
+    from floatmoor.forces import select_models
 
-    assert "drift_qtf" in default_models(oc4) and "drift_newman" not in default_models(oc4)
+    assert "drift_qtf" in select_models(oc4) and "drift_newman" not in select_models(oc4)
     db = oc4.vessel.database
     qw = db["qtf_omega"].values
     D = db["mean_drift_force"].sel(wave_direction=0.0).values  # (omega, dof)

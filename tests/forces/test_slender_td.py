@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 
 from floatmoor.core.config import Node
+from floatmoor.forces import select_models
 from floatmoor.io.build import build
 from floatmoor.io.forces_section import ForcesSpec, parse_forces
 from floatmoor.io.viscous_drift_section import ViscousDriftSpec
-from floatmoor.solvers.time_domain import assemble, default_models, integrate
+from floatmoor.solvers.time_domain import assemble, integrate
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "scenes" / "floatel_100yr.yaml"
@@ -31,12 +32,12 @@ def _opts(**kw):
 def test_scene_key_selects_the_model(floatel):
     spec = parse_forces(Node({"viscous_drift": {"model": "slender_elements"}}, "s.yaml",
                              "forces"))
-    assert "slender_elements" in default_models(floatel, spec)
-    assert "slender_elements" not in default_models(floatel, None)
+    assert "slender_elements" in select_models(floatel, spec)
+    assert "slender_elements" not in select_models(floatel, None)
     spec = parse_forces(Node({"viscous_drift": {"model": "correction_formula",
                                                 "column_diameters": [12.5] * 4}}, "s.yaml",
                              "forces"))
-    assert "slender_elements" not in default_models(floatel, spec)
+    assert "slender_elements" not in select_models(floatel, spec)
 
 
 def test_kernel_slender_force_equals_model(floatel):

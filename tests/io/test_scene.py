@@ -195,9 +195,6 @@ WARNING_CASES = [
      {}, "shorter than one hour"),
     # dt 1 s with Tp 18.2 s: 18.2 steps per peak period < 20
     ("coarse dt", {"analysis.dt": 1.0}, {}, "steps per peak period"),
-    # omega_max 4 rad/s needs dt <= pi/4 = 0.785 s; dt 0.8 s (22.75 steps per Tp) is above it
-    ("dt above Nyquist", {"analysis.dt": 0.8}, {"waves.discretisation": {"omega_max": 4.0}},
-     "Nyquist"),
     # 400 bins over 0.2-2.5 rad/s: domega = 0.00575, 2 pi/domega = 1093 s < 10800 s
     ("discretisation repeats", {}, {"waves.discretisation": {"omega_min": 0.2, "omega_max": 2.5,
                                                              "n_frequencies": 400}},
@@ -214,6 +211,24 @@ def test_plausibility_warnings(tmp_path, scene_changes, env_changes, text):
     scene_path, _ = write_case(tmp_path, scene_changes, env_changes)
     with pytest.warns(FloatmoorWarning, match=text):
         load_scene(scene_path)
+
+
+@pytest.mark.parametrize("dt,env,limit", [
+    # omega_max 4 rad/s needs dt <= pi/4 = 0.785 s; dt 0.8 s (22.75 steps per Tp) is above it
+    (0.8, {"waves.discretisation": {"omega_max": 4.0}}, "0.785"),
+    # milliseconds typed for seconds: 100 s steps in an 18.2 s sea (default components up to
+    # 1.59 rad/s: dt <= 1.98 s)
+    (100.0, {}, "1.98"),
+])
+def test_dt_above_nyquist_is_refused(tmp_path, dt, env, limit):
+    """A time step above the Nyquist limit pi/omega_max of the highest wave component cannot
+    represent the sea state (the realisation cannot be put on the time grid: a run failed with
+    a ValueError after check had passed): refused at load, naming analysis.dt and the limit."""
+    from floatmoor.core.errors import SceneError
+    scene_path, _ = write_case(tmp_path, {"analysis.dt": dt}, env)
+    with pytest.raises(SceneError) as e:
+        load_scene(scene_path)
+    assert e.value.key == "analysis.dt" and f"pi/omega_max = {limit} s" in str(e.value)
 
 
 def test_steepness_limits_at_the_boundaries(tmp_path):

@@ -144,7 +144,7 @@ def test_tension_spectra_reproduce_the_fd_statistics(floatel):
 
 @pytest.fixture(scope="module")
 def two_cells(tmp_path_factory):
-    from floatmoor.commands.fatigue import fatigue_analysis
+    from floatmoor.analyses.fatigue import fatigue_analysis
     f = tmp_path_factory.mktemp("scatter") / "s.yaml"
     f.write_text("name: two-cells\nsource: test\ncells:\n"
                  "  - {hs: 5.0, tp: 11.0, heading_deg: 0.0, probability: 0.7}\n"
@@ -153,7 +153,8 @@ def two_cells(tmp_path_factory):
 
 
 def test_fatigue_analysis_floatel_short_storm(two_cells):
-    from floatmoor.commands.fatigue import METHOD_CHOICES, format_fatigue
+    from floatmoor.analyses.fatigue import format_fatigue
+    from floatmoor.commands.fatigue import METHOD_CHOICES
     from floatmoor.post.fatigue.spectral import METHODS
     from floatmoor.post.fatigue.tn_curves import design_check, fatigue_safety_factor
     assert METHOD_CHOICES == METHODS

@@ -378,12 +378,13 @@ def test_correction_formula_picks_newman_drift_even_with_a_qtf():
     from types import SimpleNamespace as NS
 
     from floatmoor.core.errors import SceneError
-    from floatmoor.solvers.time_domain import default_models
+    from floatmoor.forces import select_models as default_models
+    from floatmoor.metocean.config import WaveSpec
 
     db = {"difference_frequency_qtf": 0, "mean_drift_force": 0}
     vessel = NS(database=db, linear_damping=np.zeros((6, 6)),
                 quadratic_damping=np.zeros((6, 6)))
-    env = NS(waves=object(), wind=None, current=None)
+    env = NS(waves=WaveSpec(hs=2.0, tp=8.0), wind=None, current=None)
     built = NS(vessel=vessel, mooring=None, scene=NS(environment=env))
     corr = NS(model="correction_formula")
     assert "drift_qtf" in default_models(built, NS(drift=None, exclude=(), file=None))

@@ -15,7 +15,11 @@ from ..line_types import STEEL_DENSITY, LineType
 from ..system import LineDef, MooringSystem
 from .config import FELineSpec, FESegment, Friction, PointBody, Seabed
 
-__all__ = ["spec_from_linedef", "specs_from_system"]
+__all__ = ["spec_from_linedef", "specs_from_system", "MAX_ELEMENTS"]
+
+MAX_ELEMENTS = 20000
+"""Largest element count of one FE line (checked before its arrays are allocated; the
+flagship's lines have 50-132, a 1 km line at 0.1 m elements 10,000)."""
 
 
 def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
@@ -68,6 +72,16 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
     node = 0
     counts = (_split_elements([s.length for s in line.segments], n_elements)
               if n_elements is not None else None)
+    n_line = (sum(counts) if counts is not None
+              else sum(max(1, int(round(s.length / element_length))) for s in line.segments))
+    if n_line > MAX_ELEMENTS:
+        from ...core.errors import SceneError
+        raise SceneError(None, "finite_element.element_length" if counts is None
+                         else "finite_element.n_elements",
+                         f"at most {MAX_ELEMENTS:,} elements per line (a line of "
+                         f"{sum(s.length for s in line.segments):g} m)",
+                         element_length if counts is None else n_elements,
+                         f"{n_line:,} elements for line {line.name!r}")
     for k, s in enumerate(line.segments):
         base = (line_types or {}).get(s.line_type)
         mass = (s.mass_per_length if s.mass_per_length > 0

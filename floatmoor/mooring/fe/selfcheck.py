@@ -126,8 +126,8 @@ def selfcheck_variables(checks: list, dim: str = "line") -> dict:
     data["selfcheck"] = ((dim,), np.array(["-" if c is None else
                                            ("ok" if not c["broken"] else "; ".join(c["broken"]))
                                            for c in checks]),
-                         {"long_name": "self-check of the finite-element line: ok, or the "
-                                       "warning-level bounds it breaks"})
+                         {"units": "1", "long_name": "self-check of the finite-element line: "
+                                                    "ok, or the warning-level bounds it breaks"})
     return data
 
 

@@ -118,16 +118,25 @@ def line_directions(mooring, pose) -> np.ndarray:
 
 
 def tension_spectra(ds, mooring, locations):
-    """WF and LF tension spectra of every location from one FD result ``ds``.
+    """WF and LF tension spectra of every location from one FD result ``ds`` (of one wave
+    direction, ``rao``, or of several, ``rao_direction``: their spectra add).
 
     Returns ``(wf, lf, mean, scale)``: ``wf`` (n_omega, n_loc, n_lines), ``lf`` (n_mu, n_loc,
     n_lines) in N^2 s/rad, the mean tensions (n_loc, n_lines) and the per-line LF shape scale."""
     pose = np.asarray(ds["mean"].values, float)
     g = np.nan_to_num(location_gradients(mooring, pose, locations))
-    rao = ds["rao"].values[..., 0] + 1j * ds["rao"].values[..., 1]  # (n_w, 6)
-    S = ds["wave_spectrum"].values
-    h = np.einsum("wk,lik->wli", rao, g)
-    wf = np.abs(h) ** 2 * S[:, None, None]
+    if "rao" in ds:
+        rao = ds["rao"].values[..., 0] + 1j * ds["rao"].values[..., 1]  # (n_w, 6)
+        S = ds["wave_spectrum"].values
+        h = np.einsum("wk,lik->wli", rao, g)
+        wf = np.abs(h) ** 2 * S[:, None, None]
+    else:
+        # a sea of several directions: the directions are independent, their spectra add
+        r = ds["rao_direction"].values
+        rao = r[..., 0] + 1j * r[..., 1]                                  # (n_dir, n_w, 6)
+        S = ds["wave_spectrum_direction"].values                          # (n_dir, n_w)
+        h = np.einsum("dwk,lik->dwli", rao, g)
+        wf = np.sum(np.abs(h) ** 2 * S[:, :, None, None], axis=0)
     e = line_directions(mooring, pose)
     tangent = np.einsum("lik,ik->li", g[:, :, :3], e)  # dT/du along the line
     fm = ds["fairlead_motion_lf_spectrum"].values  # (n_mu, n_lines)

@@ -207,3 +207,20 @@ def test_mirror_lines_are_bit_identical_through_a_snap():
     assert np.array_equal(out[0][0], out[1][0])
     assert np.array_equal(out[0][1], out[1][1])
     assert out[0][2]["energy_halvings"] == out[1][2]["energy_halvings"]
+
+
+def test_element_count_is_bounded_before_allocation():
+    """An element length in mm typed for m (0.01 m on a 400 m line: 40,000 elements) is a
+    SceneError naming the key and the count, before any array is allocated."""
+    from floatmoor.core.errors import SceneError
+    from floatmoor.mooring.fe.from_system import MAX_ELEMENTS, spec_from_linedef
+    from floatmoor.mooring.system import LineDef, Segment
+    seg = Segment(length=L, ea=CHAIN.ea, w=CHAIN.submerged_weight(), mbs=8.5e6,
+                  line_type="chain84", mass_per_length=CHAIN.mass_per_length,
+                  diameter=CHAIN.diameter)
+    ld = LineDef(name="l1", anchor=(0.0, 0.0, -DEPTH), fairlead=(380.0, 0.0, -100.0),
+                 segments=(seg,))
+    with pytest.raises(SceneError, match=r"finite_element\.element_length.*at most "
+                                         f"{MAX_ELEMENTS:,} elements.*40,000 elements"):
+        spec_from_linedef(ld, water_depth=DEPTH, element_length=0.01)
+    assert spec_from_linedef(ld, water_depth=DEPTH, element_length=20.0).n_elements == 20
