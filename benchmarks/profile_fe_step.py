@@ -137,7 +137,7 @@ def main() -> None:
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--reps", type=int, default=2000)
-    ap.add_argument("--newton", choices=("force", "exact", "modified", "fast"), default="force")
+    ap.add_argument("--newton", choices=("force", "exact", "modified", "fast"), default="exact")
     ap.add_argument("--track", default=None, help="body track file (.npz): saved, or read "
                     "when it exists (then the coupled run is skipped)")
     ap.add_argument("--forces", default=None, help="save the replay's fairlead forces and "

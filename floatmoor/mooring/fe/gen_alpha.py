@@ -38,12 +38,12 @@ NEWTON_THETA = 0.25
 NW_KEEP = 1
 NW_PREDICT = 2
 NW_QSTOP = 4
-# ... and the stop in force terms (the default iteration, ``newton: force``): an iterate is
+# ... and the stop in force terms (the opt-in iteration ``newton: force``): an iterate is
 # accepted, with the forces already evaluated, when its force imbalance summed over the free
 # nodes, over (1 - alpha_f), is below TENSION_TOL times the weight in air of the line's free
 # nodes (or the round-off of the axial forces, whichever is larger); see gen_alpha_step
 NW_FORCE = 8
-# ... and the predictor of the default iteration: the fairlead's deviation from its trapezoidal
+# ... and the predictor of the force-stop iteration: the fairlead's deviation from its trapezoidal
 # prediction r + dt (v0 + v1) / 2 (its velocity at both ends is given): exact for a fairlead
 # moving with constant acceleration, whatever the nodes' accelerations (see predict)
 NW_TRAPEZ = 16
@@ -56,7 +56,7 @@ def predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1):
     of the free nodes, plus the fairlead's deviation from its own constant-velocity prediction
     spread along the line in proportion to the node number (keeps the element lengths nearly
     unchanged: essential for very stiff lines).  With :data:`NW_TRAPEZ` in ``mode`` (the
-    default iteration) the deviation from its trapezoidal prediction ``r + dt (v0 + v1) / 2``
+    force-stop iteration) the deviation from its trapezoidal prediction ``r + dt (v0 + v1) / 2``
     (its velocity ``vf1`` at the end is given): what the nodes' constant accelerations do not
     already carry of a fairlead moving with constant acceleration is then its change of
     acceleration alone, and a rigid translation with constant acceleration is predicted
@@ -211,7 +211,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     like the modified iteration it leaves a tolerance-level error at every step, which a
     snap load can amplify (benchmarks/RESULTS.md).
 
-    Stop in force terms (``par.newton`` :data:`NW_TRAPEZ` | :data:`NW_FORCE`, the default
+    Stop in force terms (``par.newton`` :data:`NW_TRAPEZ` | :data:`NW_FORCE`, the opt-in
     ``newton: force``): after the force evaluation of an iterate, the iteration stops when the
     force imbalance of the free nodes summed in absolute value, over ``1 - alpha_f``, is below
     ``TENSION_TOL`` (1e-4) times the weight in air of the free nodes (at least the round-off of

@@ -472,19 +472,23 @@ class FELine:
 
     # ------------------------------------------------------------------------------------------
     def start(self, *, rho_inf: float = 0.7, tol: float = 1e-6, maxit: int = 30,
-              integrator: str = "generalized_alpha", t0: float = 0.0, newton: str = "force"):
+              integrator: str = "generalized_alpha", t0: float = 0.0, newton: str = "exact"):
         """Prepare dynamics from the current (static) state: velocities and accelerations zero,
         friction references at the current positions.
 
-        ``newton``: ``"force"`` (default) rebuilds the iteration matrix of the
-        generalised-alpha Newton iteration at every iteration, starts from a predictor with
-        the fairlead's trapezoidal prediction and stops when the force imbalance of
-        the free nodes, summed and over ``1 - alpha_f``, is below 1e-4 of the line's weight in
-        air, accepting that iterate with its forces (:func:`~.gen_alpha.gen_alpha_step`;
-        ``tol`` is not used); ``"exact"`` rebuilds the matrix at every iteration and stops on
-        the position correction ``tol`` (the default before the force-terms stop; about 40 %
-        more force evaluations per step, results within the tolerance of each other's:
-        benchmarks/RESULTS.md); ``"modified"`` keeps the matrix
+        ``newton``: ``"exact"`` (default) rebuilds the iteration matrix of the
+        generalised-alpha Newton iteration at every iteration and stops on the position
+        correction ``tol``; ``"force"`` rebuilds the matrix at every iteration, starts from a
+        predictor with the fairlead's trapezoidal prediction and stops when the force
+        imbalance of the free nodes, summed and over ``1 - alpha_f``, is below 1e-4 of the
+        line's weight in air, accepting that iterate with its forces
+        (:func:`~.gen_alpha.gen_alpha_step`; ``tol`` is not used; about 40 % fewer force
+        evaluations per step in the flagship storm, per-line maxima within 37 N there:
+        benchmarks/RESULTS.md; opt-in, because in slack snaps its answers move by more than
+        the stop's bound: a grounded chain's snap at dt 0.1 s peaks at 876 kN at the
+        fairlead and 905 kN inside against 897 / 897 kN with ``"exact"``, and the OC3 line's
+        8 m / 6 s snap at 0.5 s steps needs a sub-step below the 1/32 of five halvings,
+        where ``"exact"`` completes); ``"modified"`` keeps the matrix
         of a step's first iteration while the residual falls fast enough and also stops on the
         estimated error left (same tolerance; 10-30 % less CPU; results not bit-identical
         to the exact iteration's and, over a storm, single-line extremes can differ by a few

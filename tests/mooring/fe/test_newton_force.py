@@ -31,13 +31,13 @@ def _started(newton="force", n=30, **kw):
     return line
 
 
-def test_default_is_the_force_stop():
+def test_force_stop_is_opt_in():
     line = _started()
     assert line.bundle.par.newton == K.NW_TRAPEZ | K.NW_FORCE
     o = parse_fe_options(Node({}, "scene.yaml", "mooring.finite_element"))
-    assert o.start_kw()["newton"] == "force"
-    o = parse_fe_options(Node({"newton": "exact"}, "scene.yaml", "mooring.finite_element"))
     assert o.start_kw()["newton"] == "exact"
+    o = parse_fe_options(Node({"newton": "force"}, "scene.yaml", "mooring.finite_element"))
+    assert o.start_kw()["newton"] == "force"
 
 
 @pytest.mark.parametrize("amplitude,period", [((-3.0, 0.0, 0.0), 15.0),   # touchdown moving
