@@ -44,6 +44,9 @@ def accept_trial(ln):
     shape-mismatch error message (string formatting, about 3 s of a first run)."""
     now = ln.now
     tr = ln.trial
+    ec = ln.work.energy
+    for k in range(ec.shape[1]):
+        ec[1, k] = ec[0, k]
     for i in range(tr.r.shape[0]):
         for k in range(3):
             now.r[i, k] = tr.r[i, k]
@@ -188,8 +191,19 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
     S = lp.S
     q = lw.q
     n = r.shape[0]
-    # energy of the accepted state: the start of the first sub-step (line_energy)
-    en0, pw0, bud0, wsum, _, _ = line_energy(r, v, fn, P, E, S, lw.el, q, True)
+    # energy of the accepted state: the start of the first sub-step (line_energy), as the
+    # advance that produced the state left it (LineWork.energy: the same state and element
+    # geometry, the same numbers) or evaluated here (after start, or an accept from Python
+    # of a state this kernel did not end)
+    ec = lw.energy
+    if ec[1, 0] == 1.0:
+        en0 = ec[1, 1]
+        pw0 = ec[1, 2]
+        bud0 = ec[1, 3]
+        wsum = ec[1, 4]
+    else:
+        en0, pw0, bud0, wsum, _, _ = line_energy(r, v, fn, P, E, S, lw.el, q, True)
+    ec[0, 0] = 0.0
     efloor = AUDIT_FLOOR * wsum
     # the trial state starts as the accepted one: its friction state is copied (a step
     # updates it), the first sub-step reads the nodes straight from the accepted state (s01:
@@ -286,4 +300,10 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
         pos += sz
         while sz < full and pos % (2 * sz) == 0:
             sz *= 2
+    # the end state's energy: the next advance's start once this trial is accepted
+    ec[0, 0] = 1.0
+    ec[0, 1] = en0
+    ec[0, 2] = pw0
+    ec[0, 3] = bud0
+    ec[0, 4] = wsum
     return 0

@@ -531,6 +531,7 @@ class FELine:
         self.newton_iterations = 0
         self.substeps_taken = 0
         self.work.audit[:] = 0.0
+        self.work.energy[:] = 0.0
 
     def _fibre_damping(self):
         """Internal damping ``-zeta`` of the fibre elements from the stiffness they have at the
@@ -640,6 +641,7 @@ class FELine:
             if st < 0:
                 raise self.step_error(st)
         else:
+            w.energy[0, 0] = 0.0
             rf0, vf0, rf, vf = self._rf0, self._vf0, w.rf, w.vf
             rf0[:] = self.r[-1]
             vf0[:] = self.v[-1]
@@ -701,6 +703,7 @@ class FELine:
             self.a[:] = tr.a
             self.fn[:] = tr.f
             self.fs[:] = tr.fs
+            self.work.energy[1] = self.work.energy[0]
         self.time = self._t1
         self._trial = False
 
