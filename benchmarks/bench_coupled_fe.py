@@ -22,6 +22,10 @@ every line's maximum and its time.
 ``--fe-stages catenary linear``: the scene option ``solver: {fe_stages: ...}``, interleaved
 with the other options (the first one is the reference of the comparison lines).
 
+``--lanes on off``: one thread, the FE lines as SIMD lanes (``fe_coupling.LANES``, the
+default) or line by line, interleaved with the other options; each run is checked bit for bit
+against the first setting's run of the same mode (``identical``).
+
 ``--threads 1 2``: the FE lines advanced in that many threads (scene option ``solver:
 {threads: N}``), the runs interleaved with the Newton modes; the time loop is printed as wall
 and CPU seconds of the process (all its threads), and every threaded run is checked bit for bit
@@ -61,6 +65,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-qs", action="store_true")
     ap.add_argument("--threads", type=int, nargs="+", default=[1])
+    ap.add_argument("--lanes", nargs="+", default=["on"], choices=("on", "off"))
     ap.add_argument("--fe-stages", nargs="+", default=["catenary"],
                     choices=("catenary", "linear"),
                     help="solver: {fe_stages: ...}: the FE lines' catenaries at every RK4 stage "
@@ -130,9 +135,14 @@ def main() -> None:
               f"(line {ds.line.values[int(np.argmax(qs[dt]))]}); load {_load()}")
     first = {}
     single = {}
-    runs = [(dt, nw, fes, th) for dt in args.dt for _ in range(args.repeat)
-            for nw in args.newton for fes in args.fe_stages for th in args.threads]
-    for dt, nw, fes, th in runs:
+    from floatmoor.solvers import fe_coupling
+
+    runs = [(dt, nw, fes, th, ln) for dt in args.dt for _ in range(args.repeat)
+            for nw in args.newton for fes in args.fe_stages for th in args.threads
+            for ln in args.lanes]
+    by_lanes = {}
+    for dt, nw, fes, th, ln in runs:
+        fe_coupling.LANES = ln == "on"
         built = fe_scene(nw)
         w0 = time.perf_counter()
         c0 = time.process_time()
@@ -151,6 +161,16 @@ def main() -> None:
                            for v in ds.data_vars)
                 print(f"    {th} thread(s) against {single[key].attrs.get('fe_threads', 1)}: "
                       f"{'identical' if same else 'DIFFERENT'}")
+        if len(args.lanes) > 1:
+            key = (dt, nw, fes, th)
+            if ln == args.lanes[0]:
+                by_lanes.setdefault(key, ds)
+            elif key in by_lanes:
+                same = all(np.array_equal(ds[v].values, by_lanes[key][v].values,
+                                          equal_nan=ds[v].dtype.kind == "f")
+                           for v in ds.data_vars)
+                print(f"    lanes {ln} against lanes {args.lanes[0]}: "
+                      f"{'identical' if same else 'DIFFERENT'}")
         sel = ds.time.values >= 1200.0
         tfe = ds.line_tension.values[sel].max(axis=0)
         tmax_line = ds.max_tension_along_line.values[sel].max()
@@ -158,7 +178,7 @@ def main() -> None:
         newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
         i = int(np.argmax(tfe))
         print(f"FE  dt {dt:g} newton {nw} catenary {args.catenary} fe_stages {fes} threads "
-              f"{ds.attrs.get('fe_threads', 1)}: "
+              f"{ds.attrs.get('fe_threads', 1)} lanes {ln}: "
               f"loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
               f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
               f"per wall s; {newton:.2f} Newton iterations per line step, "

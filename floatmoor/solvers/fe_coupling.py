@@ -90,6 +90,7 @@ from numba import njit
 from ..core.errors import NumericalError, SceneError
 from ..core.frames import rotation_matrix_into
 from ..mooring.fe.body import FEMooring, scene_line_inputs
+from ..mooring.fe.lanes_body import LaneLines, lanes_fit, lanes_mode, store_lines
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import (
     FEBody,
@@ -482,7 +483,7 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                warm=np.zeros((n_lines, 2)), nsub=int(c.substeps),
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan),
-               mode=lines_mode(nf, threads), linear=linear, kfe=np.zeros((6, 6)))
+               mode=_mode(lines, threads), linear=linear, kfe=np.zeros((6, 6)))
     fl = line_list(lines)
     n_total = n_steps + 1
     pieces = PROGRESS_PIECES if progress is not None else 1
@@ -496,11 +497,28 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                 break
             if progress is not None:
                 progress(min(n1, n_steps) * body.dt, n_steps * body.dt)
+    if isinstance(fe.mode, LaneLines):
+        store_lines(fe.mode, lines)
     fm.on[:] = on
     t_end = int(status[1]) * body.dt
     for ln in lines:
         ln.set_time(t_end)
     return status, fe.records
+
+
+LANES = True
+"""One thread: the FE lines of the body advance as SIMD lanes (:mod:`~floatmoor.mooring.fe.lanes_body`,
+bit for bit the line-by-line kernel's numbers, faster: benchmarks/RESULTS.md) when they fit one
+lane group (the same node count, options shared per block of four); False: line by line."""
+
+
+def _mode(lines, threads: int):
+    """The mode bundle of :func:`~floatmoor.mooring.fe.multi.advance_lines`: threads, lanes
+    (:data:`LANES`) or the lines one after the other."""
+    mode = lines_mode(len(lines), threads)
+    if LANES and mode.threads == 1 and lanes_fit(lines):
+        return lanes_mode(lines, mode.recs)
+    return mode
 
 
 PROGRESS_PIECES = 20

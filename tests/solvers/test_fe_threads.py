@@ -275,9 +275,9 @@ def test_run_command_threads_flag(tmp_path, capsys):
 @pytest.mark.slow
 @pytest.mark.skipif(available_threads() < 2, reason="numba has one thread here")
 def test_one_thread_compiles_no_parallel_kernel(tmp_path):
-    """From an empty numba cache, a one-thread FE run compiles the serial kernel and not the
-    parallel one (compile seconds only for scenes that ask for threads); a two-thread run after
-    it compiles the parallel kernel, each kernel for one signature."""
+    """From an empty numba cache, a one-thread FE run compiles the serial kernel (the lines as
+    lanes) and not the parallel one (compile seconds only for scenes that ask for threads); a
+    two-thread run after it compiles the parallel kernel, each kernel for one signature."""
     from tests.test_first_run import _run
 
     first, second = _run("""
@@ -291,7 +291,7 @@ print(json.dumps([compiled[:n1], compiled[n1:]]))
     names1 = [c[0] for c in first]
     names2 = [c[0] for c in second]
     multi = "floatmoor.mooring.fe.multi."
-    assert multi + "body_advance" in names1
+    assert "floatmoor.mooring.fe.lanes_body.lanes_advance_lines" in names1
     assert multi + "body_advance_parallel" not in names1
     assert names2.count(multi + "body_advance_parallel") == 1
     assert multi + "body_advance" not in names2

@@ -283,7 +283,11 @@ def block_step(b, n, par, s0, fs, s1, w):
         lf[b, ix(LF_ALPHA, 0, 1, l)] = 1.0
         lf[b, ix(LF_DPREV, 0, 1, l)] = 0.0
         if li[b, ix(LI_ST, 0, 1, l)] == ST_RUN:
-            running += 1
+            if maxit <= 0:
+                # no iteration allowed: not converged (gen_alpha_step's loop does not run)
+                li[b, ix(LI_ST, 0, 1, l)] = -1
+            else:
+                running += 1
     while running > 0:
         fresh_any = False
         for l in range(LW):

@@ -330,6 +330,9 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     one).  A failing advance returns its status with the lines not (all) accepted.  Compiled, the choice is made on
     the type of ``mode`` (:func:`_advance_lines_typed`): a kernel compiled for serial lines
     neither contains nor compiles the parallel one."""
+    from .lanes_body import LaneLines, lanes_advance_lines
+    if isinstance(mode, LaneLines):
+        return lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines)
     if isinstance(mode, ParallelLines):
         return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
                                      mode.status, mode.threads, mode.recs)
@@ -342,6 +345,11 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
 
 @overload(advance_lines)
 def _advance_lines_typed(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+    from .lanes_body import LaneLines, lanes_advance_lines
+    if getattr(mode, "instance_class", None) is LaneLines:
+        def lanes(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+            return lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines)
+        return lanes
     if getattr(mode, "instance_class", None) is ParallelLines:
         def parallel(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
             return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
