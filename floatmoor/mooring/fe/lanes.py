@@ -172,6 +172,12 @@ class LaneWork(NamedTuple):
     stats: np.ndarray
     T1: np.ndarray
     tacc: np.ndarray
+    etr: np.ndarray
+    """(nb, 5 LW) the energy audit's figures of each lane's trial end state: known (1.0),
+    energy, power, budget, floor (``LineWork.energy`` of the line kernel)."""
+    eacc: np.ndarray
+    """(nb, 5 LW) the same of the accepted state (copied from ``etr`` on accept): the next
+    advance starts from them when every lane of the block has them."""
     """(nb, (n-1) LW) element tensions of each lane's last accepted sub-step (put back into
     ``tens`` at the end of an advance: a lane done early has its ``tens`` overwritten by the
     passes of the lanes still stepping)."""
@@ -328,7 +334,8 @@ def build_group(params, states, *, waves: bool = False) -> LaneGroup:
         bad=np.zeros((nb, LW), np.int64), eo=np.zeros((nb, 8 * LW)),
         status=np.zeros(nb * LW, np.int64), audit=np.zeros((nb * LW, 12)),
         info=np.zeros((nb * LW, 3)), stats=np.zeros((nb * LW, 2)),
-        T1=np.zeros((nb * LW, 3, 3)), tacc=_rows(nb, n - 1, 1))
+        T1=np.zeros((nb * LW, 3, 3)), tacc=_rows(nb, n - 1, 1),
+        etr=np.zeros((nb, 5 * LW)), eacc=np.zeros((nb, 5 * LW)))
     grp = LaneGroup(par=par, now=now, trial=trial, step=step, work=work)
     load_states(grp, states, src)
     return grp

@@ -234,15 +234,28 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
         nlanes += 1 if on[p] else 0
     if nlanes == 0:
         return
-    # energy of the accepted state: the start of the first sub-step
-    geometry(b, n, now.r, w.el)
-    tangents(b, n, w.el, w.q)
-    energy(b, n, par.P, par.E, par.EC, par.SC, now.r, now.v, now.f, w.el, w.q, eo)
+    # energy of the accepted state: the start of the first sub-step, as the advance that
+    # produced it left it (every lane of the block: w.eacc, the same numbers) or evaluated
+    known = True
     for l in range(LW):
-        lf[b, ix(LF_EN0, 0, 1, l)] = eo[b, ix(EO_EN, 0, 1, l)]
-        lf[b, ix(LF_PW0, 0, 1, l)] = eo[b, ix(EO_PW, 0, 1, l)]
-        lf[b, ix(LF_BUD0, 0, 1, l)] = eo[b, ix(EO_BUD, 0, 1, l)]
-        lf[b, ix(LF_EFLOOR, 0, 1, l)] = AUDIT_FLOOR * eo[b, ix(EO_WSUM, 0, 1, l)]
+        w.etr[b, ix(0, 0, 1, l)] = 0.0
+        if w.mask[b, l] != 0 and w.eacc[b, ix(0, 0, 1, l)] != 1.0:
+            known = False
+    if known:
+        for l in range(LW):
+            lf[b, ix(LF_EN0, 0, 1, l)] = w.eacc[b, ix(1, 0, 1, l)]
+            lf[b, ix(LF_PW0, 0, 1, l)] = w.eacc[b, ix(2, 0, 1, l)]
+            lf[b, ix(LF_BUD0, 0, 1, l)] = w.eacc[b, ix(3, 0, 1, l)]
+            lf[b, ix(LF_EFLOOR, 0, 1, l)] = w.eacc[b, ix(4, 0, 1, l)]
+    else:
+        geometry(b, n, now.r, w.el)
+        tangents(b, n, w.el, w.q)
+        energy(b, n, par.P, par.E, par.EC, par.SC, now.r, now.v, now.f, w.el, w.q, eo)
+        for l in range(LW):
+            lf[b, ix(LF_EN0, 0, 1, l)] = eo[b, ix(EO_EN, 0, 1, l)]
+            lf[b, ix(LF_PW0, 0, 1, l)] = eo[b, ix(EO_PW, 0, 1, l)]
+            lf[b, ix(LF_BUD0, 0, 1, l)] = eo[b, ix(EO_BUD, 0, 1, l)]
+            lf[b, ix(LF_EFLOOR, 0, 1, l)] = AUDIT_FLOOR * eo[b, ix(EO_WSUM, 0, 1, l)]
     # the trial state starts as the accepted one: its friction state is copied
     for i in range(n):
         for k in range(N_FS):
@@ -409,6 +422,12 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
         if on[b * LW + l] and w.status[b * LW + l] == 0:
             for j in range(n - 1):
                 w.tens[b, ix(j, 0, 1, l)] = w.tacc[b, ix(j, 0, 1, l)]
+            # the end state's energy: the next advance's start once the trial is accepted
+            w.etr[b, ix(0, 0, 1, l)] = 1.0
+            w.etr[b, ix(1, 0, 1, l)] = lf[b, ix(LF_EN0, 0, 1, l)]
+            w.etr[b, ix(2, 0, 1, l)] = lf[b, ix(LF_PW0, 0, 1, l)]
+            w.etr[b, ix(3, 0, 1, l)] = lf[b, ix(LF_BUD0, 0, 1, l)]
+            w.etr[b, ix(4, 0, 1, l)] = lf[b, ix(LF_EFLOOR, 0, 1, l)]
 
 
 @njit(cache=True)
@@ -426,6 +445,9 @@ def accept(b, n, g, on):
     w = g.work
     for l in range(LW):
         w.mask[b, l] = 1 if on[b * LW + l] else 0
+        if on[b * LW + l]:
+            for k in range(5):
+                w.eacc[b, ix(k, 0, 1, l)] = w.etr[b, ix(k, 0, 1, l)]
     copy_state(b, n, w.mask, g.trial, g.now, True)
 
 

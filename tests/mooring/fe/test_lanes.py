@@ -4,7 +4,8 @@ Expected: every lane bit for bit the line it holds, advanced alone by
 :func:`~floatmoor.mooring.fe.kernels.ga_advance` with the same fairlead motion (the lanes do
 the same arithmetic, operation for operation): fairlead forces of every step, element tensions,
 the final states (positions, velocities, accelerations, forces, friction and fibre state), the
-Newton iterations and halvings, and the energy audit.  Cases: a grounded chain's slack snap
+Newton iterations and halvings, and the energy audit (whose start energy the lanes, like the
+line kernel, take from the previous advance).  Cases: a grounded chain's slack snap
 (halvings by the energy audit and by Newton), seabed friction (three models), bending, a fibre
 rope (two-component law), current, the force-stop iteration; lanes of one block with
 different motions, and a block with dummy lanes.
@@ -98,6 +99,8 @@ def _run_lanes(lines, motions, dt, steps):
         for p in range(nl):
             F[k - 1, p] = f[p // LW, n - 1, :, p % LW]
             T[k - 1, p] = tens[p // LW, :, p % LW]
+    # the advances after the first started from the energy their predecessors stored
+    assert (g.work.eacc.reshape(nb, 5, LW)[:, 0, :].ravel()[:nl] == 1.0).all()
     states = {}
     for name, kk in (("r", 3), ("v", 3), ("a", 3), ("f", 3), ("fs", K.N_FS)):
         x = getattr(g.now, name).reshape(nb, n, kk, LW)
