@@ -8,7 +8,7 @@ the transient against the quasi-static run of the same seed (scenes/floatel_100y
 load average is printed with the timings (the machine is shared).
 
 Run: ``.venv/bin/python benchmarks/bench_coupled_fe.py [--duration 12000] [--dt 0.1 0.2]
-[--seed 1] [--newton exact modified] [--no-qs]``: with several ``--newton`` modes (FE option
+[--seed 1] [--newton force exact modified] [--no-qs]``: with several ``--newton`` modes (FE option
 ``finite_element: {newton: ...}``) the FE runs are interleaved and the maximum tensions compared
 with the first mode's.
 

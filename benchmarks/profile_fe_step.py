@@ -12,7 +12,7 @@ lines x 50 elements, generalised-alpha, one line step per body step of 0.1 s).
    state, the whole ``gen_alpha_step``; the share of each in the line step follows from the
    iteration count.
 
-Run: ``python benchmarks/profile_fe_step.py [--duration 1500] [--newton exact|modified|fast]
+Run: ``python benchmarks/profile_fe_step.py [--duration 1500] [--newton force|exact|modified|fast]
 [--track FILE] [--forces FILE]``.  ``--track FILE``: the body track of the coupled run is saved
 to FILE (``.npz``), or read from it when it exists, and the coupled run is then skipped (to
 compare two versions of the line kernels along the same track, e.g. before / after a change,
@@ -38,6 +38,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from floatmoor.mooring.fe import kernels as K  # noqa: E402
+from floatmoor.mooring.fe.line import NEWTON_MODES  # noqa: E402
 from floatmoor.mooring.fe.multi import body_accept, body_advance  # noqa: E402
 
 FE = ROOT / "scenes" / "floatel_100yr_fe.yaml"
@@ -136,7 +137,7 @@ def main() -> None:
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--reps", type=int, default=2000)
-    ap.add_argument("--newton", choices=("exact", "modified", "fast"), default="exact")
+    ap.add_argument("--newton", choices=("force", "exact", "modified", "fast"), default="exact")
     ap.add_argument("--track", default=None, help="body track file (.npz): saved, or read "
                     "when it exists (then the coupled run is skipped)")
     ap.add_argument("--forces", default=None, help="save the replay's fairlead forces and "
@@ -267,7 +268,7 @@ def with_newton(built, mode: str) -> None:
     """Set the FE option ``newton`` of a built scene (``finite_element: {newton: mode}``)."""
     import dataclasses
 
-    if mode == "exact":      # the default (and the only mode of older trees)
+    if mode == "exact" and "force" not in NEWTON_MODES:   # older trees: exact was the default
         return
     lm = built.mooring.line_models
     object.__setattr__(lm, "options", dataclasses.replace(lm.options, newton=mode))

@@ -23,6 +23,9 @@ import numpy as np
 
 N_AU = 12
 """Length of :attr:`LineWork.audit` (the columns are ``kernels.AU_*``)."""
+N_EN = 5
+"""Columns of :attr:`LineWork.energy`: known (1.0) or not (0.0), then the energy, power,
+energy budget and summed submerged weight of :func:`~.energy.line_energy`."""
 
 __all__ = ["LineParams", "LineState", "LineWork", "LineBundle", "new_state", "new_work"]
 
@@ -120,6 +123,13 @@ class LineWork(NamedTuple):
     audit: np.ndarray
     """(``kernels.N_AU``,) energy audit and self-check of the run (cumulative since
     :meth:`FELine.start`, not reset per call; columns ``kernels.AU_*``)."""
+    energy: np.ndarray
+    """(2, :data:`N_EN`) the energy audit's figures of the trial state's end (row 0, written
+    by a completed :func:`~.advance.ga_advance`) and of the accepted state (row 1, copied
+    from row 0 by an accept): the next advance starts from them instead of evaluating the
+    accepted state again (the same numbers: :func:`~.energy.line_energy` of the same state
+    with the element geometry of its own force evaluation).  Column 0 is 1.0 when the row is
+    known; :meth:`FELine.start` clears both rows."""
 
 
 class LineBundle(NamedTuple):
@@ -149,4 +159,5 @@ def new_work(n: int) -> LineWork:
                     BX=np.zeros((7, n, 3, 3)), R=z3(), W=np.zeros((n, 3, 3)), Y=z3(),
                     T1=np.zeros((3, 3)), dx=z3(), rtry=z3(), rf=np.zeros(3), vf=np.zeros(3),
                     info=np.zeros(3), stats=np.zeros(2),
-                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU))
+                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU),
+                    energy=np.zeros((2, N_EN)))

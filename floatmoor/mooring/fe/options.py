@@ -12,8 +12,9 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
         dt: 0.1                        # s, longest line step (or substeps: per body step)
         internal_damping: -0.8         # N s, or -zeta (fraction of critical per element)
         rho_inf: 0.7                   # generalised-alpha spectral radius
-        newton: exact                  # or modified: iteration matrix kept across iterations;
-                                       #   or fast: better predictor, quadratic-estimate stop
+        newton: exact                  # 1 um position stop (default); or force: stop in force
+                                       #   terms; modified: iteration matrix kept across
+                                       #   iterations; fast: quadratic-estimate stop
         axial_stiffness_limit: 3.84e11 # N, optional (practically inextensible lines)
         fibre_law: two_component       # segments whose line type has a `fibre` model:
                                        #   two_component | working_curve | constant

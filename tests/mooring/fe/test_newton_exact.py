@@ -79,7 +79,7 @@ def test_default_iteration_matches_the_plain_one(amplitude, period):
 
 
 def test_fast_option_is_read_from_a_scene():
-    assert NEWTON_MODES == ("exact", "modified", "fast")
+    assert NEWTON_MODES == ("force", "exact", "modified", "fast")
     o = parse_fe_options(Node({"newton": "fast"}, "scene.yaml", "mooring.finite_element"))
     assert o.start_kw()["newton"] == "fast"
     line = _started("fast", n=5)

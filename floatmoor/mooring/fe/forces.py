@@ -1,0 +1,102 @@
+"""Nodal forces of the lumped-mass line and their tangent: the element pass
+(:mod:`.elements`), bending, the fluid loads (:mod:`.fluid`) and seabed contact and friction
+(:mod:`.seabed`), in that order, into preallocated arrays; and the force scale of the line
+that the iterations use as their tolerance.
+
+Tangent: ``K = -df/dx`` and ``C = -df/dv``; element blocks are exact for the axial force, the
+drag, seabed and friction blocks are nodal (the dependence of the node tangents and of the
+seabed axes on the positions is left out: a quasi-Newton iteration that still converges
+quadratically for the dominant axial stiffness).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .elements import _tangents_from, bending_forces, element_forces, element_geometry
+from .fluid import fluid_forces
+from .layout import EL_C1, EL_L0, EPS_MACH, NP_MASS, NP_W, S_BEND
+from .seabed import seabed_forces
+
+
+@njit(cache=True)
+def line_forces(r, v, fs, par, want_jac, cK, cC, f, w):
+    """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
+
+    Parameters
+    ----------
+    r, v : (n, 3) node positions (m) and velocities (m/s), earth axes.
+    fs : (n, N_FS) friction state of the last accepted step (read only;
+        :func:`~.seabed.friction_decide` and :func:`~.seabed.friction_commit` update it).
+    par : :class:`~.bundles.LineParams`: node parameters ``P``, element parameters ``E``,
+        scalars ``S``, current profile ``cur_z, cur_u`` (levels increasing, speeds m/s;
+        direction in ``S``), wave particle velocity (m/s) and acceleration (m/s^2) at the nodes
+        ``wk`` (n, 6) (zeros without waves; the velocity enters the drag, the acceleration the
+        fluid inertia), friction code ``fric``.
+    want_jac : bool; cK, cC : weights of the tangent.
+    f : (n, 3) output, total force on every node (N).
+    w : :class:`~.bundles.LineWork`: ``q`` node tangents on return, ``tens`` (n-1,) element
+        tensions (N); ``Dg`` (n, 3, 3), ``Of`` (n-1, 3, 3) outputs (overwritten): diagonal and
+        upper off-diagonal blocks of ``cK K + cC C`` (element blocks: the lower block equals
+        the upper one); ``BX`` (7, n, 3, 3): with bending (``S[S_BEND] > 0``) ``BX[0]``
+        lower-minus-upper correction of the first off-diagonal, ``BX[1]`` / ``BX[2]`` the
+        upper / lower second off-diagonal blocks (overwritten); ``BX[3:7]`` solver scratch.
+    """
+    # the flags as plain booleans: numba types a constant argument True / False as a literal
+    # and compiles the large force kernel once per literal value (three times over in a coupled
+    # FE storm's first run, 3-8 s each); callers pass bool(...) for the same reason
+    _line_forces(r, v, fs, par, bool(want_jac), cK, cC, f, w, bool(False))  # noqa: UP018
+
+
+@njit(cache=True)
+def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
+    """:func:`line_forces`; with ``use_act``, ``w.act`` (n-1,) holds a tension estimate of
+    every element (N, see :func:`~.gen_alpha.gen_alpha_step`): an element in compression with
+    a positive estimate acts as a bar, ``T = c1 eps`` (negative) with its axial tangent,
+    instead of ``T = 0``, and the geometric stiffness of every element is ``max(act, 0) / l``.
+    """
+    S = par.S
+    # element directions and lengths once, the node tangents from them
+    element_geometry(r, w.el)
+    _tangents_from(w.el, w.q)
+    element_forces(v, fs, par.P, par.E, S, w.el, want_jac, cK, cC, use_act, w.act, w.tens, f,
+                   w.Dg, w.Of)
+    # bending (pinned ends): discrete elastica energy c_i (1 - e_a . e_b) at interior nodes
+    if S[S_BEND] > 0.0:
+        bending_forces(r, par.P, f, want_jac, cK, w.Dg, w.Of, w.BX)
+    fluid_forces(r, v, w.q, par.P, S, par.cur_z, par.cur_u, par.wk, want_jac, cC, f, w.Dg)
+    seabed_forces(r, v, w.q, fs, par.P, S, par.fric, want_jac, cK, cC, f, w.Dg)
+
+
+@njit(cache=True)
+def force_tolerances(r, P, E):
+    """Force scale of the line for the iteration's convergence tests:
+    ``(ftol, fcap, weight, rfloor)`` (N).
+
+    ``ftol``: the largest node weight (in air if the net weight vanishes) times 1e-5, but not
+    below the round-off of the axial forces: an element tension ``c1 (l / L0 - 1)`` carries the
+    relative error of ``l / L0`` (~ 1 ulp, plus the coordinates' round-off ``|r| eps / L0``),
+    which is several N for ``c1 = 3.84e14`` N; summed over the ``3 (n - 2)`` residual
+    components.  ``fcap``: the weight-based bound of the residual when the position correction
+    is below the position tolerance (1e3 ``ftol``, at least the round-off bound).  ``weight``:
+    the weight in air of the free nodes (the scale of the force-terms stop of
+    :func:`~.gen_alpha.gen_alpha_step`); ``rfloor``: the round-off of the axial forces summed
+    over the ``3 (n - 2)`` residual components (below it no residual can be told from zero)."""
+    n = r.shape[0]
+    ftol = 0.0
+    rmax = 0.0
+    weight = 0.0
+    for i in range(n):
+        ftol = max(ftol, 1e-5 * abs(P[i, NP_W]), 1e-5 * 9.80665 * P[i, NP_MASS])
+        for k in range(3):
+            rmax = max(rmax, abs(r[i, k]))
+        if 0 < i < n - 1:
+            weight += 9.80665 * P[i, NP_MASS]
+    fround = 0.0
+    for j in range(n - 1):
+        fround = max(fround, E[j, EL_C1] * EPS_MACH * (2.0 + 2.0 * rmax / E[j, EL_L0]))
+    fcap = max(1e3 * ftol, math.sqrt(3.0 * n) * fround)
+    ftol = max(ftol, math.sqrt(3.0 * n) * fround)
+    return ftol, fcap, weight, 3.0 * (n - 2) * fround
