@@ -581,7 +581,9 @@ def _polar_figures(a) -> dict:
             rows = a["states"] == ls
             if not rows.any():
                 continue
-            v = [np.nanmax(np.where(rows & (heads == h), off, np.nan)) for h in hs]
+            # a heading whose cases all failed has no offset: a gap in the curve, not a warning
+            v = [np.max(off[m]) if (m := rows & (heads == h) & np.isfinite(off)).any()
+                 else np.nan for h in hs]
             ax.plot(np.radians(np.append(hs, hs[0])), np.append(v, v[0]), "-", color=col,
                     label=f"FD {ls}")
             td = rows & np.isfinite(a["offset"])

@@ -42,7 +42,11 @@ def test_recursion_is_the_convolution_of_the_fitted_samples():
         j = np.arange(1, n + 2)
         kfit = (c[:, None, :] * z[:, None, :] ** j[None, :, None]).real.sum(axis=2)
         direct = kfit @ v[n::-1]
-        np.testing.assert_allclose(s, direct, rtol=1e-9, atol=1e-12)
+        # The fitted residues reach |c| ~ 1e7 and cancel in both sums, so the two evaluations
+        # agree to the round-off of the summed magnitudes, not of the result (seen: 4e-13 of
+        # it on an x86-64-v3 machine; rtol 1e-9 on the result failed by 4e-9 on CI's machine).
+        scale = np.abs(c * y).sum(axis=1) + np.abs(kfit) @ np.abs(v[n::-1])
+        assert np.all(np.abs(s - direct) <= 1e-11 * scale), (n, s - direct, scale)
 
 
 @pytest.mark.parametrize("rel_tol", [0.01, 0.001])
