@@ -18,7 +18,7 @@
 * a full disk stops the batch (:class:`~floatmoor.analyses.folder_lock.DiskFull`, naming the
   folder and the free space; the finished seeds are kept);
 * the first seeds of a batch whose time loop is not in numba's cache yet say that numba
-  compiles it (once, 10-60 s) before the first result;
+  compiles it (once: 10-20 s, about 2.5 minutes with SIMD-lane FE lines) before the first result;
 * a failing seed never stops the others: its error is written to ``<name>_seed<NNNN>.error.txt``
   and reported at the end (and the file is removed when that seed later succeeds);
 * threads of the FE lines (``solver: {threads: N}`` or ``threads=``): each of the ``W`` worker
@@ -478,8 +478,9 @@ def _run_locked(scene, scene_path, seeds, out_dir, fp, fp_text, overrides, echo,
     running: set[int] = set()
     if todo and echo and not _time_loop_cached(fe_lines):
         echo("compiling the time loop" + (" with its finite-element lines" if fe_lines else "")
-             + " (numba, once per installation and update of floatmoor: 10-60 s before the "
-             "first seed; `floatmoor compile` does it ahead)")
+             + " (numba, once per installation and update of floatmoor: "
+             + ("about 2-3 minutes" if fe_lines else "10-20 s")
+             + " before the first seed; `floatmoor compile` does it ahead)")
     full: SeedOutcome | None = None
     with _interrupts_as_keyboard_interrupt():
         try:
