@@ -81,8 +81,14 @@ def test_energy_audit_keeps_the_slack_snap_bounded(reference):
     assert au["energy_halvings"] > 0
     assert au["energy_unresolved_steps"] == 0
     assert float(ds.max_tension.max()) <= float(ref.max_tension.max())
-    # no interior peak beyond what the fairlead pulls
-    assert float(ds.max_tension.max()) <= 1.01 * float(ds.fairlead_tension.max())
+    # no interior peak beyond what the fairlead pulls, by more than the resolved run's own
+    # snap wave does (measured 2026-11-27: interior / fairlead peak 1573 / 1367 kN = 1.150 at
+    # dt 0.002 s; 897.2 / 897.3 kN at dt 0.1 s.  A bound of 1.01 held at dt 0.1 s with the
+    # default iteration, but a correct solution may exceed it: the force-stop iteration gave
+    # 905 / 876 kN, within the resolved ratio)
+    ratio_ref = float(ref.max_tension.max()) / float(ref.fairlead_tension.max())
+    assert 1.05 < ratio_ref < 1.3
+    assert float(ds.max_tension.max()) <= ratio_ref * float(ds.fairlead_tension.max())
     # and no step of the reference needed a halving (it resolves the axial period)
     assert reference[1].audit["energy_halvings"] == 0
 
