@@ -305,7 +305,9 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
             })
     other = _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design,
                           analyses)
-    verdict = _verdict(governing, states, other, base)
+    pending = {ls: [ids[i] for i in np.nonzero((states == ls) & sent & (n_seeds < 3))[0]]
+               for ls in ("ULS", "ALS")}
+    verdict = _verdict(governing, states, other, base, pending)
     return {"record": rec, "lines": lines, "cases": cases, "ids": ids, "states": states,
             "u_fd": u_fd, "u_td": u_td, "u_td_new": u_td_new, "t_c": t_c, "t_c_mean": t_m,
             "n_seeds": n_seeds, "sent": sent,
@@ -356,7 +358,8 @@ def _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design, ana
     state the worst case of each line (anchors: the largest uplift angle, then the largest
     design load; fibre: the most rope on the seabed), and of each limit and point."""
     from ..post.design_checks import anchor_checks, fibre_checks, offset_checks
-    out = {"anchors": {}, "offsets": {}, "fibre": {}, "missing": 0, "cases": {}}
+    out = {"anchors": {}, "offsets": {}, "fibre": {}, "missing": {"ULS": [], "ALS": []},
+           "cases": {}}
     if base is None:
         return out
     for ls in ("ULS", "ALS"):
@@ -364,7 +367,7 @@ def _other_checks(out_dir, cases, ids, states, seeds, n_seeds, base, design, ana
         for i in np.nonzero((states == ls) & (n_seeds >= 3))[0]:
             stats = _design_stats(out_dir, ids[i], seeds)
             if stats is None:
-                out["missing"] += 1
+                out["missing"][ls].append(ids[i])
                 continue
             anchor_rows.append((ids[i], anchor_checks(stats, base["design"], design.code,
                                               limit_state=ls,
@@ -416,9 +419,21 @@ def xr_line_checks(lines):
                       coords={"line": [str(v) for v in lines]})
 
 
-def _verdict(governing, states, other, base):
-    """The verdict lines of the campaign (as ``floatmoor report``'s)."""
+def _verdict(governing, states, other, base, pending=None):
+    """The verdict lines of the campaign (as ``floatmoor report``'s); ``pending`` (limit state
+    -> case ids): cases sent to the time domain with fewer than 3 finished seeds, each limit
+    state's an INCOMPLETE line naming them (the screening chose them as possibly governing,
+    so the checks of the others cannot stand for the design)."""
     out = []
+    for ls in ("ULS", "ALS"):
+        ids = (pending or {}).get(ls) or []
+        if ids:
+            shown = ", ".join(ids[:5]) + (f" and {len(ids) - 5} more" if len(ids) > 5 else "")
+            out.append(vd.VerdictLine(
+                ls, "storms", vd.INCOMPLETE, governing=ids[0],
+                text=f"{len(ids)} case(s) sent to the time domain have fewer than 3 finished "
+                     f"seeds: {shown} (failed storms and their errors are in the campaign's "
+                     "manifest; the same `floatmoor campaign ... --out DIR` again runs what is missing)"))
     for ls in ("ULS", "ALS"):
         g = [x for x in governing if x["limit_state"] == ls]
         if not g:
@@ -452,12 +467,22 @@ def _verdict(governing, states, other, base):
         if ls not in set(states):
             continue
         if ls not in other["anchors"]:
+            ran = any(x["limit_state"] == ls for x in governing)
             why = ("the base scene is not available" if base is None else
                    "the storms carry no design statistics (they were run before floatmoor "
-                   "stored them: run the campaign again in a new folder)")
+                   "stored them: run the campaign again in a new folder)" if ran else
+                   "no time-domain case with 3 finished seeds")
             for check in ("anchor uplift", "anchor load", "offsets"):
                 out.append(vd.VerdictLine(ls, check, vd.NOT_CHECKED, text=why))
             continue
+        gone = other.get("missing", {}).get(ls) or []
+        if gone:
+            # checked on the other cases only: those cannot stand for the design
+            out.append(vd.VerdictLine(
+                ls, "design stats", vd.INCOMPLETE, governing=gone[0],
+                text=f"{len(gone)} case(s) have storms without the design statistics of the "
+                     f"anchor, offset and fibre checks: {', '.join(gone[:5])} (run before "
+                     "floatmoor stored them: run the campaign again in a new folder)"))
         out += vd.anchor_lines(other["anchors"][ls], ls)
         out.append(vd.offset_line(other["offsets"].get(ls, {}), ls, limits_given))
         f = vd.fibre_line(other["fibre"].get(ls), ls)
@@ -690,10 +715,10 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE,
         md += [t.markdown(), ""]
     md += [f"![{n}]({n}.png)" for n in imgs]
     (rd / "report.md").write_text("\n".join(md) + "\n")
-    status_cls = "fail" if a["overall"][0] == vd.FAIL else "pass"
+    status_cls = "pass" if a["overall"][0] == vd.PASS else "fail"
     vrows = "".join(
         f"<tr><td>{html.escape(v.limit_state)}</td><td>{html.escape(v.check)}</td>"
-        f"<td class='{ {'PASS': 'pass', 'FAIL': 'fail'}.get(v.status, 'notchecked') }'>"
+        f"<td class='{ {'PASS': 'pass', 'FAIL': 'fail', 'INCOMPLETE': 'fail'}.get(v.status, 'notchecked') }'>"
         f"{html.escape(v.status)}</td><td>{html.escape(v.governing)}</td><td>"
         f"{_fmt(v.utilisation, '{:.3f}') if np.isfinite(v.utilisation) else '-'}</td>"
         f"<td style='text-align:left'>{html.escape(v.text)}</td></tr>" for v in a["verdict"])

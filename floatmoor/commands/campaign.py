@@ -120,9 +120,9 @@ def report_campaign(args: argparse.Namespace) -> int:
     for v in a["verdict"]:
         print(v.cli())
     status, sentence = a["overall"]
-    print("verdict: " + sentence + (" (exit status 1)" if status == "FAIL" else ""))
+    print("verdict: " + sentence + (" (exit status 1)" if status != "PASS" else ""))
     rd = a["report_dir"]
     print(f"report: {rd / 'report.html'}  (also report.md, governing.csv, td_cases.csv, "
           "summary.nc)")
-    return 1 if status == "FAIL" else 0
+    return 0 if status == "PASS" else 1
 

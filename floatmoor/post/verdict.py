@@ -1,10 +1,13 @@
 """The design verdict: one line per limit state and check, and the verdict over all of them.
 
-Each :class:`VerdictLine` is PASS, FAIL or NOT CHECKED (a check the inputs do not allow: no
-ALS results, no fatigue result, no anchor capacity, no offset limit...), with the governing
-item, its utilisation and a sentence.  :func:`overall` is FAIL when any line fails, else PASS
--- with the list of what was not checked when something was not.  ``floatmoor report`` exits
-with status 1 when the verdict is FAIL.
+Each :class:`VerdictLine` is PASS, FAIL, NOT CHECKED (a check the inputs do not allow: no
+ALS results, no fatigue result, no anchor capacity, no offset limit...) or INCOMPLETE (results
+the analysis itself asked for are missing: a campaign's cases sent to the time domain whose
+storms failed or have not run), with the governing item, its utilisation and a sentence.
+:func:`overall` is FAIL when any line fails, else INCOMPLETE when results are missing (the
+checks made cannot stand for the design: the missing case may govern), else PASS -- with the
+list of what was not checked when something was not.  ``floatmoor report`` exits with status 1
+when the verdict is FAIL; ``floatmoor report`` of a campaign also when it is INCOMPLETE.
 """
 
 from __future__ import annotations
@@ -14,10 +17,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FAIL", "NOT_CHECKED", "PASS", "VerdictLine", "anchor_lines", "fe_selfcheck_line",
+__all__ = ["FAIL", "INCOMPLETE", "NOT_CHECKED", "PASS", "VerdictLine", "anchor_lines", "fe_selfcheck_line",
            "fibre_line", "fls_line", "line_tension_line", "offset_line", "overall"]
 
-PASS, FAIL, NOT_CHECKED = "PASS", "FAIL", "NOT CHECKED"
+PASS, FAIL, NOT_CHECKED, INCOMPLETE = "PASS", "FAIL", "NOT CHECKED", "INCOMPLETE"
 _KN = 1e-3
 
 
@@ -43,13 +46,18 @@ class VerdictLine:
 
 
 def overall(lines) -> tuple[str, str]:
-    """``(status, sentence)`` of the verdict over ``lines``: FAIL when one fails, else PASS;
-    the sentence names the failing checks, or those not checked."""
+    """``(status, sentence)`` of the verdict over ``lines``: FAIL when one fails, else
+    INCOMPLETE when one is incomplete, else PASS; the sentence names the failing checks, the
+    incomplete ones, or those not checked."""
     lines = list(lines)
     failed = [v.label for v in lines if v.status == FAIL]
     missing = [v.label for v in lines if v.status == NOT_CHECKED]
+    incomplete = [v.label for v in lines if v.status == INCOMPLETE]
     if failed:
         return FAIL, "FAIL: " + ", ".join(failed)
+    if incomplete:
+        return INCOMPLETE, ("INCOMPLETE, no design verdict: results missing for "
+                            + ", ".join(incomplete))
     if missing:
         return PASS, "PASS for the checks made; not checked: " + ", ".join(missing)
     return PASS, "PASS: every check passes"

@@ -182,6 +182,14 @@ def test_numerical_error_recorded_and_others_finish(tmp_path):
     assert sum(1 for f in r.failed if f[0] == "td") == 3 and r.n_td_cases == 2
     a = write_report(tmp_path)  # a report with a failed case still works
     assert [g["limit_state"] for g in a["governing"]] == ["ULS"] * 12
+    # ... but gives no design verdict: the ALS case the campaign sent to the time domain has
+    # no finished storm (it was "PASS for the checks made" before)
+    inc = [v for v in a["verdict"] if v.status == "INCOMPLETE"]
+    assert len(inc) == 1 and inc[0].limit_state == "ALS"
+    assert "ss1_h000p0_wi000p0_cu000p0_failed-line4" in inc[0].text
+    assert a["overall"][0] in ("INCOMPLETE", "FAIL")
+    from floatmoor.cli import main
+    assert main(["report", str(tmp_path)]) == 1
 
 
 @pytest.mark.slow  # 12 storms of 300 s in a worker process: about 40 s on the loaded machine
