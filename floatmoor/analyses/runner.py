@@ -34,7 +34,7 @@ import os
 import sys
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -503,25 +503,33 @@ def _run_locked(scene, scene_path, seeds, out_dir, fp, fp_text, overrides, echo,
                 pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
                                            initargs=init_args, mp_context=mp_ctx)
                 try:
-                    futs = {pool.submit(_run_one, src, s, os.fspath(path), overrides,
-                                        fp_text, **run_kw): (s, path) for s, path in todo}
-                    running = {s for s, _ in todo}
-                    for fut in as_completed(futs):
-                        s, path = futs[fut]
-                        if fut.cancelled():
-                            continue
-                        try:
-                            o = fut.result()
-                        except Exception as exc:  # worker died (e.g. killed): record, go on
-                            o = SeedOutcome(s, "failed", path, error=f"worker failed: {exc!r}")
-                        running.discard(s)
-                        if o.disk_full:
-                            # every other seed would fail the same way: stop here
-                            full = full or o
-                            for f in futs:
-                                f.cancel()
-                            continue
-                        report(o)
+                    with _deferred_interrupts() as stop:
+                        futs = {pool.submit(_run_one, src, s, os.fspath(path), overrides,
+                                            fp_text, **run_kw): (s, path) for s, path in todo}
+                        running = {s for s, _ in todo}
+                        pending = set(futs)
+                        while pending:
+                            stop.check()
+                            done, pending = wait(pending, timeout=0.2,
+                                                 return_when=FIRST_COMPLETED)
+                            for fut in sorted(done, key=lambda f: futs[f][0]):
+                                s, path = futs[fut]
+                                if fut.cancelled():
+                                    continue
+                                try:
+                                    o = fut.result()
+                                except Exception as exc:  # worker died (e.g. killed): go on
+                                    o = SeedOutcome(s, "failed", path,
+                                                    error=f"worker failed: {exc!r}")
+                                running.discard(s)
+                                if o.disk_full:
+                                    # every other seed would fail the same way: stop here
+                                    full = full or o
+                                    for f in futs:
+                                        f.cancel()
+                                    continue
+                                report(o)
+                        stop.check()
                 except KeyboardInterrupt:
                     _stop_pool(pool)
                     raise
@@ -582,6 +590,42 @@ def _stop_pool(pool) -> None:
             pass
     for p in procs:
         p.join(timeout=5.0)
+
+
+class _deferred_interrupts:
+    """Within the block (main thread only), Ctrl-C and SIGTERM set a flag that :meth:`check`
+    turns into KeyboardInterrupt where the batch loop asks, between its waits for the workers.
+
+    Raised asynchronously, the KeyboardInterrupt could land inside ``concurrent.futures``'
+    waits: ``as_completed`` takes the locks of all futures one by one, and an exception
+    between two of them leaves a lock held, on which the pool's manager thread then blocks for
+    ever.  A batch once ignored Ctrl-C that way (no "interrupted" message, still running 30 s
+    later; ``tests/test_run_interrupt.py`` on a loaded machine, 2026-11-27).  A second Ctrl-C
+    while the flag is set raises at once, as before."""
+
+    def __enter__(self):
+        import signal
+        import threading
+        self._set = False
+        self._old = {}
+        if threading.current_thread() is threading.main_thread():
+            def handler(signum, frame):
+                if self._set:
+                    raise KeyboardInterrupt
+                self._set = True
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                self._old[sig] = signal.signal(sig, handler)
+        return self
+
+    def check(self) -> None:
+        if self._set:
+            raise KeyboardInterrupt
+
+    def __exit__(self, *exc):
+        import signal
+        for sig, old in self._old.items():
+            signal.signal(sig, old)
+        return False
 
 
 class _interrupts_as_keyboard_interrupt:
