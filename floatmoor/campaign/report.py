@@ -310,7 +310,7 @@ def analyse(out_dir, tolerance: float = DEFAULT_TOLERANCE, *, consequence_class=
     verdict = _verdict(governing, states, other, base, pending)
     return {"record": rec, "lines": lines, "cases": cases, "ids": ids, "states": states,
             "u_fd": u_fd, "u_td": u_td, "u_td_new": u_td_new, "t_c": t_c, "t_c_mean": t_m,
-            "n_seeds": n_seeds, "sent": sent,
+            "n_seeds": n_seeds, "sent": sent, "pending": pending,
             "offset": offset, "fd": fd, "governing": governing, "screened": screened,
             "tolerance": tolerance, "mbs": st["mbs"] if st else None, "design": design,
             "analysis": res_an, "capacities": capacities, "other": other,
@@ -419,6 +419,10 @@ def xr_line_checks(lines):
                       coords={"line": [str(v) for v in lines]})
 
 
+_OLD_STORMS = ("(they were run before floatmoor stored them: run the campaign again in a new "
+               "folder)")
+
+
 def _verdict(governing, states, other, base, pending=None):
     """The verdict lines of the campaign (as ``floatmoor report``'s); ``pending`` (limit state
     -> case ids): cases sent to the time domain with fewer than 3 finished seeds, each limit
@@ -469,8 +473,7 @@ def _verdict(governing, states, other, base, pending=None):
         if ls not in other["anchors"]:
             ran = any(x["limit_state"] == ls for x in governing)
             why = ("the base scene is not available" if base is None else
-                   "the storms carry no design statistics (they were run before floatmoor "
-                   "stored them: run the campaign again in a new folder)" if ran else
+                   "the storms carry no design statistics " + _OLD_STORMS if ran else
                    "no time-domain case with 3 finished seeds")
             for check in ("anchor uplift", "anchor load", "offsets"):
                 out.append(vd.VerdictLine(ls, check, vd.NOT_CHECKED, text=why))
@@ -481,8 +484,7 @@ def _verdict(governing, states, other, base, pending=None):
             out.append(vd.VerdictLine(
                 ls, "design stats", vd.INCOMPLETE, governing=gone[0],
                 text=f"{len(gone)} case(s) have storms without the design statistics of the "
-                     f"anchor, offset and fibre checks: {', '.join(gone[:5])} (run before "
-                     "floatmoor stored them: run the campaign again in a new folder)"))
+                     f"anchor, offset and fibre checks: {', '.join(gone[:5])} " + _OLD_STORMS))
         out += vd.anchor_lines(other["anchors"][ls], ls)
         out.append(vd.offset_line(other["offsets"].get(ls, {}), ls, limits_given))
         f = vd.fibre_line(other["fibre"].get(ls), ls)
@@ -753,7 +755,7 @@ def write_report(out_dir, report_dir=None, tolerance: float = DEFAULT_TOLERANCE,
 def _summary_text(a) -> list[str]:
     rec = a["record"]
     n_td = int(np.sum(a["n_seeds"] >= 3))
-    pending = int(np.sum(a["sent"])) - n_td
+    pending = sum(len(v) for v in a["pending"].values())
     d = a["design"]
     an = a["analysis"]
     out = [(f"{d.code.name}, consequence class "
