@@ -85,9 +85,11 @@ N_BF = 10
 N_LF = 19
 # per-lane integers (LaneWork.li columns): Newton status (0 running, 1 converged, 2 converged
 # on the residual, < 0 failed, 3 idle), iterations, modified-Newton flags, stiff elements,
-# sub-step position and size (units of the smallest sub-step), the step's result
-(LI_ST, LI_IT, LI_FRESH, LI_NSTIFF, LI_POS, LI_SZ, LI_RET, LI_SOLVE, LI_IMAX, LI_SRC) = range(10)
-N_LI = 10
+# sub-step position and size (units of the smallest sub-step), the step's result; 1 when the
+# force stop holds for the current iterate (newton: force, all elements taut)
+(LI_ST, LI_IT, LI_FRESH, LI_NSTIFF, LI_POS, LI_SZ, LI_RET, LI_SOLVE, LI_IMAX, LI_SRC,
+ LI_FSTOP) = range(11)
+N_LI = 11
 
 
 class LaneParams(NamedTuple):

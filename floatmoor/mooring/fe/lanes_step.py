@@ -20,7 +20,16 @@ import math
 from numba import njit
 
 from .elements import bar_push, release_bars, start_tension_estimates, update_tension_estimates
-from .gen_alpha import NEWTON_THETA, NW_FORCE, NW_KEEP, NW_PREDICT, NW_QSTOP, NW_TRAPEZ, TENSION_TOL
+from .gen_alpha import (
+    NEWTON_THETA,
+    NW_FORCE,
+    NW_KEEP,
+    NW_PREDICT,
+    NW_QSTOP,
+    NW_TRAPEZ,
+    TENSION_TOL,
+    all_taut,
+)
 from .lanes import (
     BF_BEND,
     BF_FRIC,
@@ -43,6 +52,7 @@ from .lanes import (
     LF_RMAX,
     LF_TTOL,
     LI_FRESH,
+    LI_FSTOP,
     LI_IMAX,
     LI_IT,
     LI_NSTIFF,
@@ -332,7 +342,9 @@ def block_step(b, n, par, s0, fs, s1, w):
             lf[b, ix(LF_ALPHA, 0, 1, l)] = 1.0
             lf[b, ix(LF_RESP, 0, 1, l)] = res
             af = coef[b, ix(0, 1, 4, l)]
-            if by_force:
+            fstop = by_force and all_taut(w.tens[b].reshape((n - 1, LW))[:, l])
+            li[b, ix(LI_FSTOP, 0, 1, l)] = 1 if fstop else 0
+            if fstop:
                 ttol = lf[b, ix(LF_TTOL, 0, 1, l)]
                 if lf[b, ix(LF_IMB, 0, 1, l)] <= (1.0 - af) * ttol and fbar <= ttol:
                     li[b, ix(LI_ST, 0, 1, l)] = ST_RES
@@ -402,7 +414,7 @@ def block_step(b, n, par, s0, fs, s1, w):
                 fcap = lf[b, ix(LF_FCAP, 0, 1, l)]
                 fbar = lf[b, ix(LF_FBAR, 0, 1, l)]
                 res = lf[b, ix(LF_RES, 0, 1, l)]
-                if by_force:
+                if li[b, ix(LI_FSTOP, 0, 1, l)] != 0:
                     lf[b, ix(LF_DPREV, 0, 1, l)] = dmax
                     continue
                 if bdt <= tol and math.sqrt(res) <= fcap and fbar <= fcap:
