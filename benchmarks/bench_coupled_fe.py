@@ -60,7 +60,7 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=12000.0)
     ap.add_argument("--dt", type=float, nargs="+", default=[0.1, 0.2])
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--newton", nargs="+", default=["force"])
+    ap.add_argument("--newton", nargs="+", default=["exact"])
     ap.add_argument("--per-line", action="store_true")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-qs", action="store_true")

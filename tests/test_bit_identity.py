@@ -13,13 +13,11 @@ Cases (all from the shipped scenes, seed 1):
 * ``slender``: slender-element viscous drift (``notebooks/viscous_drift/case2.yaml``), 1500 s;
 * ``correction``: the correction formula (``notebooks/viscous_drift/case5.yaml``), 1500 s;
 * ``fe``: the coupled finite-element flagship (``scenes/floatel_100yr_fe.yaml``), 1500 s, with
-  the FE lines' ``newton: exact`` iteration set explicitly (a 1 um position stop, the default
-  until 2026-11-27: its digests are those stored before the force stop existed, on both
-  machine kinds);
-* ``fe_force``: the same with the ``newton: force`` iteration (the default since 2026-11-27:
-  a stop in force terms for iterates whose elements are all taut, which moves the FE answer
-  within the stop's bound; its digest was written on an x86-64-v3 machine only, so an
-  x86-64-v4 machine skips it with the table's note);
+  the FE lines' ``newton: exact`` iteration set explicitly (the default, a 1 um position
+  stop: its digests are those stored before the force stop existed, on both machine kinds);
+* ``fe_force``: the same with the opt-in ``newton: force`` iteration (a stop in force terms,
+  which moves the FE answer within the stop's bound; its digest was written on an x86-64-v3
+  machine only, so an x86-64-v4 machine skips it with the table's note);
 * ``fd``: the frequency-domain analysis of the flagship scene (every variable of the Dataset).
 
 The bits depend on the machine's vector instruction set, not only on the code: numpy picks its

@@ -346,7 +346,7 @@ def block_step(b, n, par, s0, fs, s1, w):
             li[b, ix(LI_FSTOP, 0, 1, l)] = 1 if fstop else 0
             if fstop:
                 ttol = lf[b, ix(LF_TTOL, 0, 1, l)]
-                if lf[b, ix(LF_IMB, 0, 1, l)] <= (1.0 - af) * ttol and fbar <= ttol:
+                if it > 1 and lf[b, ix(LF_IMB, 0, 1, l)] <= (1.0 - af) * ttol and fbar <= ttol:
                     li[b, ix(LI_ST, 0, 1, l)] = ST_RES
                     continue
             elif it > 1:

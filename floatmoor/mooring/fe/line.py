@@ -475,28 +475,26 @@ class FELine:
 
     # ------------------------------------------------------------------------------------------
     def start(self, *, rho_inf: float = 0.7, tol: float = 1e-6, maxit: int = 30,
-              integrator: str = "generalized_alpha", t0: float = 0.0, newton: str = "force"):
+              integrator: str = "generalized_alpha", t0: float = 0.0, newton: str = "exact"):
         """Prepare dynamics from the current (static) state: velocities and accelerations zero,
         friction references at the current positions.
 
-        ``newton``: ``"force"`` (default) rebuilds the iteration matrix of the
-        generalised-alpha Newton iteration at every iteration, starts from a predictor with
-        the fairlead's trapezoidal prediction and stops when the force imbalance of the free
-        nodes, summed and over ``1 - alpha_f``, is below 1e-4 of the line's weight in air,
-        accepting that iterate with its forces (:func:`~.gen_alpha.gen_alpha_step`).  The
-        force stop holds only for an iterate whose elements are all taut (a slack element has
-        no stiffness, so the force balance does not bound the positions next to it); an
-        iterate with a slack element is judged by the exact iteration's stops (``tol``).
-        Lines with bending stiffness or fibre-law elements take ``"exact"`` instead (with the
-        force stop the energy audit stops a bending beam and a taut fibre rope: the accepted
-        steps create energy; not understood yet); :attr:`newton` is the iteration in use.
-        About 36 % fewer force evaluations per step in the flagship storm (2.14 against 3.35
-        per line step) with each line's maximum and standard deviation within 0.001 % of the
-        exact iteration's over three 3-hour storms; in a slack chain's snap at an unresolved
-        step the difference stays within the exact iteration's own change under a 1e-9 change
-        of the input (benchmarks/RESULTS.md, tests/mooring/fe/test_newton_force.py).
-        ``"exact"`` stops on the position correction ``tol`` and evaluates the accepted state
-        once more; ``"modified"`` keeps the matrix
+        ``newton``: ``"exact"`` (default) rebuilds the iteration matrix of the
+        generalised-alpha Newton iteration at every iteration, stops on the position
+        correction ``tol`` and evaluates the accepted state once more; ``"force"`` rebuilds
+        the matrix at every iteration, starts from a predictor with the fairlead's
+        trapezoidal prediction and stops, after at least one correction, when the force
+        imbalance of the free nodes, summed and over ``1 - alpha_f``, is below 1e-4 of the
+        line's weight in air, accepting that iterate with its forces
+        (:func:`~.gen_alpha.gen_alpha_step`); an iterate with a slack element is judged by
+        the exact iteration's stops instead; a line with bending stiffness takes ``"exact"``
+        (with the force stop its steps create energy; :attr:`newton` is the iteration in
+        use).  About 36 % fewer force evaluations per step in
+        the flagship storm (2.13 against 3.36 per line step) with each line's maximum and
+        standard deviation within 0.001 % of the exact iteration's over three 3-hour storms;
+        opt-in, because in the surge decay of tests/solvers/test_time_domain_fe.py a leeward
+        line's fairlead tension is up to 11 kN off the converged one at 900 kN
+        (benchmarks/RESULTS.md); ``"modified"`` keeps the matrix
         of a step's first iteration while the residual falls fast enough and also stops on the
         estimated error left (same tolerance; 10-30 % less CPU; results not bit-identical
         to the exact iteration's and, over a storm, single-line extremes can differ by a few
@@ -520,11 +518,9 @@ class FELine:
         self.integrator = integrator
         if newton not in NEWTON_MODES:
             raise ValueError(f"newton must be one of {', '.join(NEWTON_MODES)}")
-        if newton == "force" and (self.S[K.S_BEND] > 0.0
-                                  or np.any(self.E_dynamic[:, EL_LAW] != 0.0)):
-            # not for bending or fibre-law elements: there the force stop's steps create energy
-            # (the energy audit stops a bending beam and a taut fibre rope at dt 0.05-0.5 s:
-            # tests/mooring/fe/test_newton_force.py); those lines take the exact iteration
+        if newton == "force" and self.S[K.S_BEND] > 0.0:
+            # with bending stiffness the force stop's steps create energy (the energy audit
+            # stops the beam of tests/mooring/fe/test_newton_force.py): the exact iteration
             newton = "exact"
         self.newton = newton
         self._newton_mode = _NEWTON_CODES[newton]

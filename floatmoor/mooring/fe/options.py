@@ -12,11 +12,9 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
         dt: 0.1                        # s, longest line step (or substeps: per body step)
         internal_damping: -0.8         # N s, or -zeta (fraction of critical per element)
         rho_inf: 0.7                   # generalised-alpha spectral radius
-        newton: force                  # stop in force terms (default; the exact iteration's
-                                       #   stops for iterates with a slack element); or
-                                       #   exact: 1 um position stop; modified: iteration
-                                       #   matrix kept across iterations; fast:
-                                       #   quadratic-estimate stop
+        newton: exact                  # 1 um position stop (default); or force: stop in force
+                                       #   terms; modified: iteration matrix kept across
+                                       #   iterations; fast: quadratic-estimate stop
         axial_stiffness_limit: 3.84e11 # N, optional (practically inextensible lines)
         fibre_law: two_component       # segments whose line type has a `fibre` model:
                                        #   two_component | working_curve | constant
@@ -80,7 +78,7 @@ class FEOptions:
     friction: Friction | None = None
     fibre_law: str = "two_component"
     fibre_time_constant: float = DEFAULT_TIME_CONSTANT
-    newton: str = "force"
+    newton: str = "exact"
 
     def seabed_for(self, water_depth: float) -> Seabed:
         """The :class:`Seabed` at ``water_depth`` (m) with the scene's settings."""

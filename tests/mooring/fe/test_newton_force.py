@@ -31,15 +31,13 @@ def _started(newton="force", n=30, **kw):
     return line
 
 
-def test_force_stop_is_the_default():
-    line = FELine(oc3_spec(n=30))
-    line.solve_static()
-    line.start()
-    assert line.bundle.par.newton == K.NW_TRAPEZ | K.NW_FORCE
+def test_force_stop_is_opt_in():
+    line = _started()
+    assert line.bundle.par.newton == K.NW_TRAPEZ | K.NW_FORCE and line.newton == "force"
     o = parse_fe_options(Node({}, "scene.yaml", "mooring.finite_element"))
-    assert o.start_kw()["newton"] == "force"
-    o = parse_fe_options(Node({"newton": "exact"}, "scene.yaml", "mooring.finite_element"))
     assert o.start_kw()["newton"] == "exact"
+    o = parse_fe_options(Node({"newton": "force"}, "scene.yaml", "mooring.finite_element"))
+    assert o.start_kw()["newton"] == "force"
 
 
 @pytest.mark.parametrize("amplitude,period", [((-3.0, 0.0, 0.0), 15.0),   # touchdown moving
@@ -172,32 +170,39 @@ def test_slack_snap_peak_within_the_exact_iterations_own_spread():
     assert np.all(np.abs(force - exact) < spread.max()), (force, exact, spread)
 
 
-def test_bending_and_fibre_lines_take_the_exact_iteration():
-    """The force stop is the default for lines of the polynomial law without bending (chain,
-    wire: the lines it was verified on).  A line with bending stiffness or fibre-law elements
-    takes the exact iteration, asked for ``force`` or not: with the force stop their steps
-    create energy, and the energy audit stops them (next test)."""
-    from .test_bending import _beam
+def test_force_stop_on_a_fibre_rope_creates_no_energy():
+    """The force stop on a taut fibre rope (``test_fibre_fe``'s cycle at the filter frequency:
+    100 m, 5 elements at 2 % strain, tau 10 s, stretched by 0.02 m at 0.1 rad/s, dt 0.1 s,
+    10 s).  Accepting a predictor whose forces balanced to the tolerance, with no correction
+    made, created energy until the energy audit stopped the run (measured 2026-11-27: at
+    t = 0.594 s); with at least one correction before the stop (as the exact iteration's
+    residual stop) it completes with the exact iteration's audit (one step at the smallest
+    sub-step left creating 2.5 % of the energy, in both) and its largest fairlead force
+    within 1e-6 (measured: the same to 1e-14)."""
     from .test_fibre_fe import _taut
 
-    chain = _started()
-    assert chain.newton == "force"
-    for line in (_beam(n=20, drag=True), _taut(0.01, n=10)):
-        line.solve_static()
-        for newton in ("force", "exact"):
-            line.start(newton=newton)
-            assert line.newton == "exact"
-            assert line.bundle.par.newton == 0
-        line.start(newton="fast")
-        assert line.newton == "fast"
+    out = {}
+    for newton in ("exact", "force"):
+        line = _taut(0.02, length=100.0, fibre_time_constant=10.0)
+        line.solve_static(restart=True)
+        line.start(newton=newton)
+        assert line.newton == newton
+        r0 = line.r[-1].copy()
+        F = [np.linalg.norm(line.step(k * 0.1, 0.1, r0 + [0.02 * np.sin(0.01 * k), 0.0, 0.0],
+                                      [0.002 * np.cos(0.01 * k), 0.0, 0.0]))
+             for k in range(1, 101)]
+        out[newton] = (max(F), line.audit["energy_unresolved_steps"])
+    assert out["force"][1] <= out["exact"][1]
+    assert out["force"][0] == pytest.approx(out["exact"][0], rel=1e-6), out
 
 
-def test_force_stop_on_a_bending_line_creates_energy():
-    """Why the bending lines keep the exact iteration: the beam of ``test_lanes.test_bending``
-    (20 elements, drag; its second line's motion, 0.2 m back and 0.5 m sideways at 8 s, dt
-    0.05 s) with the force stop forced on is stopped by the energy audit within 5 s (measured 2026-11-27: status -4 at step 62-70, whether or not
-    the force stop is limited to taut iterates); the exact iteration runs the same 10 s.  If
-    this test fails, the force stop may have become safe for bending lines."""
+def test_bending_lines_take_the_exact_iteration():
+    """A line with bending stiffness takes the exact iteration when ``force`` is asked for:
+    with the force stop forced on, the beam of ``test_lanes.test_bending`` (20 elements, drag;
+    0.2 m back and 0.5 m sideways at 8 s, dt 0.05 s) is stopped by the energy audit (measured
+    2026-11-27: at t = 3.48 s; its steps create energy, not understood yet), while the exact
+    iteration runs the 10 s.  If the forced run completes, the force stop may have become safe
+    for bending lines."""
     from floatmoor.core.errors import NumericalError
 
     from .test_bending import _beam
@@ -207,19 +212,18 @@ def test_force_stop_on_a_bending_line_creates_energy():
     for forced in (False, True):
         line = _beam(n=20, drag=True)
         line.solve_static()
-        line.start()
+        line.start(newton="force")
+        assert line.newton == "exact" and line.bundle.par.newton == 0
         if forced:
             line._newton_mode = K.NW_TRAPEZ | K.NW_FORCE
             line._set_params()
         r0 = line.r[-1].copy()
-        steps = 200
         done = 0
         try:
-            for k in range(1, steps + 1):
+            for k in range(1, 201):
                 d, v = motion(k * 0.05)
                 line.step(k * 0.05, 0.05, r0 + d, v)
                 done = k
         except NumericalError as exc:
             assert forced and "created energy" in str(exc), exc
-        # the exact iteration completes; the forced force stop is stopped within 5 s
-        assert done < 100 if forced else done == steps
+        assert done < 200 if forced else done == 200

@@ -83,7 +83,7 @@ def test_newton_option_is_read_and_checked():
     node = Node({"newton": "modified"}, "scene.yaml", "mooring.finite_element")
     o = parse_fe_options(node)
     assert o.newton == "modified" and o.start_kw()["newton"] == "modified"
-    assert parse_fe_options(None).start_kw()["newton"] == "force"
+    assert parse_fe_options(None).start_kw()["newton"] == "exact"
     with pytest.raises(SceneError, match=r"mooring.finite_element.newton"):
         parse_fe_options(Node({"newton": "quasi"}, "scene.yaml", "mooring.finite_element"))
     line = FELine(oc3_spec(n=5))

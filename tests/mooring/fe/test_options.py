@@ -42,7 +42,7 @@ def test_more_options_and_the_derived_keywords():
     assert o.substeps_for(0.1) == 3                    # ceil(0.1 / 0.04)
     assert o.substeps_for(0.04) == 1
     assert parse_fe_options(_node({"substeps": 4})).substeps_for(0.1) == 4
-    assert o.start_kw() == {"rho_inf": 0.7, "integrator": "explicit", "newton": "force"}
+    assert o.start_kw() == {"rho_inf": 0.7, "integrator": "explicit", "newton": "exact"}
     kw = o.spec_kw(320.0)
     assert kw["n_elements"] == 40 and kw["seabed"].depth == 320.0 and "friction" not in kw
 
