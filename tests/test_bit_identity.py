@@ -14,7 +14,8 @@ Cases (all from the shipped scenes, seed 1):
 * ``correction``: the correction formula (``notebooks/viscous_drift/case5.yaml``), 1500 s;
 * ``fe``: the coupled finite-element flagship (``scenes/floatel_100yr_fe.yaml``), 1500 s, with
   the FE lines' ``newton: exact`` iteration set explicitly (the default, a 1 um position
-  stop: its digests are those stored before the force stop existed, on both machine kinds);
+  stop; since 2026-11-27 from the fairlead's trapezoidal predictor, whose digest was written on
+  an x86-64-v3 machine only, so an x86-64-v4 machine skips it with the table's note);
 * ``fe_force``: the same with the opt-in ``newton: force`` iteration (a stop in force terms,
   which moves the FE answer within the stop's bound; its digest was written on an x86-64-v3
   machine only, so an x86-64-v4 machine skips it with the table's note);

@@ -43,7 +43,7 @@ NW_QSTOP = 4
 # nodes, over (1 - alpha_f), is below TENSION_TOL times the weight in air of the line's free
 # nodes (or the round-off of the axial forces, whichever is larger); see gen_alpha_step
 NW_FORCE = 8
-# ... and the predictor of the force-stop iteration: the fairlead's deviation from its trapezoidal
+# ... and the predictor of the exact and force-stop iterations: the fairlead's deviation from its trapezoidal
 # prediction r + dt (v0 + v1) / 2 (its velocity at both ends is given): exact for a fairlead
 # moving with constant acceleration, whatever the nodes' accelerations (see predict)
 NW_TRAPEZ = 16
@@ -56,7 +56,8 @@ def predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1):
     of the free nodes, plus the fairlead's deviation from its own constant-velocity prediction
     spread along the line in proportion to the node number (keeps the element lengths nearly
     unchanged: essential for very stiff lines).  With :data:`NW_TRAPEZ` in ``mode`` (the
-    force-stop iteration) the deviation from its trapezoidal prediction ``r + dt (v0 + v1) / 2``
+    exact and force-stop iterations, but not for lines with bending stiffness) the deviation
+    from its trapezoidal prediction ``r + dt (v0 + v1) / 2``
     (its velocity ``vf1`` at the end is given): what the nodes' constant accelerations do not
     already carry of a fairlead moving with constant acceleration is then its change of
     acceleration alone, and a rigid translation with constant acceleration is predicted
