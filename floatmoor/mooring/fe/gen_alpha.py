@@ -43,9 +43,9 @@ NW_QSTOP = 4
 # nodes, over (1 - alpha_f), is below TENSION_TOL times the weight in air of the line's free
 # nodes (or the round-off of the axial forces, whichever is larger); see gen_alpha_step
 NW_FORCE = 8
-# ... and the predictor of the exact and force-stop iterations: the fairlead's deviation from its trapezoidal
-# prediction r + dt (v0 + v1) / 2 (its velocity at both ends is given): exact for a fairlead
-# moving with constant acceleration, whatever the nodes' accelerations (see predict)
+# ... and the predictor of the exact and force-stop iterations: the fairlead's deviation from its
+# trapezoidal prediction r + dt (v0 + v1) / 2 (its velocity at both ends is given): exact for a
+# fairlead moving with constant acceleration, whatever the nodes' accelerations (see predict)
 NW_TRAPEZ = 16
 TENSION_TOL = 1e-4
 
@@ -231,12 +231,14 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     without this guard); an iterate with a slack element is judged by the exact iteration's
     stops below (a position stop then evaluates the accepted state once more).  Nor does it
     accept the predictor itself: at least one correction is made, as before the exact
-    iteration's residual stop (accepting a balanced predictor, a bending beam and a taut fibre
-    rope created energy until the energy audit stopped them: tests/mooring/fe/
-    test_newton_force.py).  Not the default: in the surge decay of the Floatel-like semi
-    (tests/solvers/test_time_domain_fe.py) a leeward line's fairlead tension differs from the
-    converged iteration's by up to 11 kN at 900 kN early in the decay (2.6 kN with a tolerance
-    100 times tighter), far above the bound above, for a reason not found yet
+    iteration's residual stop (accepting a balanced predictor, a taut fibre rope created energy
+    until the energy audit stopped it: tests/mooring/fe/test_newton_force.py; lines with
+    bending stiffness do not take this iteration, :meth:`~.line.FELine.start`).  Not the
+    default: in the surge decay of the Floatel-like semi (tests/solvers/test_time_domain_fe.py)
+    a leeward line's fairlead tension differs from the converged iteration's by up to 11 kN at
+    900 kN (2.6 kN with a tolerance 100 times tighter), far above the bound above: the stop's
+    ~0.1 mm state error is amplified by a touchdown node bouncing on the seabed, a rattle in
+    which a 1e-5 change of the input moves the exact iteration by 6.7 kN
     (benchmarks/RESULTS.md).  Without
     :data:`NW_FORCE` the iteration stops on the position correction (``tol``, m) as described
     above (``newton: exact``) and evaluates the accepted state once more.

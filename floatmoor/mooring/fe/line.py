@@ -523,16 +523,14 @@ class FELine:
         self.integrator = integrator
         if newton not in NEWTON_MODES:
             raise ValueError(f"newton must be one of {', '.join(NEWTON_MODES)}")
-        if newton == "force" and self.S[K.S_BEND] > 0.0:
-            # with bending stiffness the force stop's steps create energy (the energy audit
-            # stops the beam of tests/mooring/fe/test_newton_force.py): the exact iteration
-            newton = "exact"
-        self.newton = newton
         self._newton_mode = _NEWTON_CODES[newton]
-        if self.S[K.S_BEND] > 0.0 and newton == "exact":
-            # and from the constant-velocity predictor: the beam's steps create energy from the
-            # trapezoidal one too (test_lanes.test_bending stopped by the energy audit)
+        if self.S[K.S_BEND] > 0.0 and newton in ("force", "exact"):
+            # with bending stiffness the force stop's steps and the trapezoidal predictor's
+            # create energy (the energy audit stops the beam of test_newton_force.py and
+            # test_lanes.test_bending): the exact iteration from the constant-velocity predictor
+            newton = "exact"
             self._newton_mode = 0
+        self.newton = newton
         self.coef = gen_alpha_coefficients(rho_inf)
         self._tol = float(tol)
         self._maxit = int(maxit)

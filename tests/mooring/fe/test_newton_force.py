@@ -1,4 +1,4 @@
-"""The default generalised-alpha iteration, ``newton: force``: stopped in force terms (the force
+"""The opt-in generalised-alpha iteration ``newton: force``: stopped in force terms (the force
 imbalance of the free nodes, summed, below ``TENSION_TOL`` of the line's weight in air, times
 ``1 - alpha_f``), the last iterate accepted with its forces, from the predictor with the
 fairlead's trapezoidal prediction.
