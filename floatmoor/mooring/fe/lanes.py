@@ -7,8 +7,14 @@ a block's array of a node quantity with ``K`` components is one row of a 2-D arr
 ``X[b, (i * K + k) * LW + l]`` for node (or element) ``i``, component ``k`` and lane ``l``:
 node index outer, component, lane inner.  The lane width is a constant of the code, so every
 offset between two entries of a row is a constant: with the lane kernels compiled with
-``noalias`` array arguments (:class:`NoAliasCompiler`) and non-negative indices (:func:`ix`),
-LLVM vectorises the loops over the lanes of a node (AVX2: 4 doubles per instruction).  A
+``noalias`` array arguments (:class:`NoAliasCompiler`), non-negative indices (:func:`ix`), a
+lane loop whose trip count is read at run time (:func:`lanes_in`) and no run-time flag tested
+inside it (the passes take such flags as constants, or as selects after loads made for every
+lane), LLVM vectorises the loops over the lanes of a node (AVX2: 4 doubles per instruction;
+``benchmarks/check_lanes_asm.py`` counts the packed instructions of every pass).  Before
+2026-11-27 the lane loops were written over the constant :data:`LW` and tested run-time flags,
+and the assembly showed them scalar or two nodes per 128-bit register: the lanes were then
+only 10-18 % faster than line by line, now about 40 %.  A
 block not filled by lines is filled with copies of its first line (dummy lanes: the same
 arithmetic as that line, never written back).
 
@@ -59,6 +65,20 @@ error model (a float division by zero gives inf or NaN instead of raising: with 
 every division carries a branch to the exception, and the loop does not vectorise; the lanes
 compute both sides of a branch and select, so a division by zero on the side not taken must
 not raise)."""
+
+
+@njit(inline="always")
+def lanes_in(X, width):
+    """:data:`LW`, read at run time from the shape of the block array ``X`` (``X.shape[1] ==
+    width * LW``).  The lane passes loop ``for l in range(lanes_in(...))``, not over the
+    constant ``LW``: LLVM unrolls a loop of four known trips before its loop vectoriser runs,
+    then vectorises the loop over the nodes instead (two nodes per SSE register, with
+    shuffles), and numba leaves LLVM's SLP vectoriser, which would pack the unrolled lanes, off
+    (``NUMBA_SLP_VECTORIZE``).  With a trip count known only at run time the lane loop stays
+    the innermost loop and is vectorised as four lanes per AVX2 register (checked in the
+    assembly: ``benchmarks/check_lanes_asm.py``).  The arithmetic of each lane is the same
+    either way."""
+    return X.shape[1] // width
 
 
 @njit(inline="always")

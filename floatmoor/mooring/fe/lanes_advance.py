@@ -52,6 +52,7 @@ from .lanes import (
     LW,
     N_EC,
     ix,
+    lanes_in,
 )
 from .lanes_forces import geometry, lane_rows, tangents
 from .lanes_step import ST_IDLE, ST_RUN, block_step
@@ -87,11 +88,12 @@ def energy(b, n, P, E, EC, SC, r, v, f, el, q, eo):
     its force evaluation or :func:`~.lanes_forces.geometry` and
     :func:`~.lanes_forces.tangents`) into ``eo`` (``EO_*``), the sums in the line kernel's
     order."""
-    for l in range(LW):
+    lw = lanes_in(r, 3 * n)
+    for l in range(lw):
         eo[b, ix(EO_UE, 0, 1, l)] = 0.0
         eo[b, ix(EO_PW, 0, 1, l)] = 0.0
     for j in range(n - 1):
-        for l in range(LW):
+        for l in range(lw):
             L0 = E[b, ix(j, EL_L0, N_EL, l)]
             eps = el[b, ix(j, 3, 4, l)] / L0 - 1.0
             on = (E[b, ix(j, EL_LAW, N_EL, l)] == 0.0 and EC[b, ix(j, EC_STIFF, N_EC, l)] == 0.0
@@ -126,14 +128,14 @@ def energy(b, n, P, E, EC, SC, r, v, f, el, q, eo):
                         + el[b, ix(j, 2, 4, l)] * v[b, ix(j + 1, 2, 3, l)])
                 pw = pw + Td * fair if (on and Bj != 0.0) else pw
             eo[b, ix(EO_PW, 0, 1, l)] = pw
-    for l in range(LW):
+    for l in range(lw):
         eo[b, ix(EO_KE, 0, 1, l)] = 0.0
         eo[b, ix(EO_EN, 0, 1, l)] = 0.0     # (eg, the potential energy, until the end)
         eo[b, ix(EO_WSUM, 0, 1, l)] = 0.0
         eo[b, ix(EO_PEN, 0, 1, l)] = 0.0
         eo[b, ix(EO_IPEN, 0, 1, l)] = 0.0
     for i in range(1, n - 1):
-        for l in range(LW):
+        for l in range(lw):
             vx = v[b, ix(i, 0, 3, l)]
             vy = v[b, ix(i, 1, 3, l)]
             vz = v[b, ix(i, 2, 3, l)]
@@ -165,7 +167,7 @@ def energy(b, n, P, E, EC, SC, r, v, f, el, q, eo):
             eo[b, ix(EO_PEN, 0, 1, l)] = pen / lim if deeper else pm
             ip = eo[b, ix(EO_IPEN, 0, 1, l)]
             eo[b, ix(EO_IPEN, 0, 1, l)] = float(i) if deeper else ip
-    for l in range(LW):
+    for l in range(lw):
         ke = eo[b, ix(EO_KE, 0, 1, l)]
         ue = eo[b, ix(EO_UE, 0, 1, l)]
         eo[b, ix(EO_EN, 0, 1, l)] = ke + ue + eo[b, ix(EO_EN, 0, 1, l)]
@@ -173,37 +175,37 @@ def energy(b, n, P, E, EC, SC, r, v, f, el, q, eo):
 
 
 @njit(**LANE_JIT)
+def masked_copy(b, rows, mask, src, dst):
+    """Block row ``b`` of ``src`` into that of ``dst`` (``rows`` entries per lane) in the lanes
+    with ``mask[b, l]`` 1.  One array per call: the arrays of a state tuple are not arguments,
+    so not ``noalias``, and the copy of several at once does not vectorise."""
+    lw = lanes_in(mask, 1)
+    for i in range(rows):
+        for l in range(lw):
+            m = mask[b, l] != 0
+            dst[b, ix(i, 0, 1, l)] = src[b, ix(i, 0, 1, l)] if m else dst[b, ix(i, 0, 1, l)]
+
+
+@njit(cache=True)
 def take_step(b, n, mask, step, trial):
     """The sub-step result ``step`` (positions, velocities, accelerations, forces) into the
     trial state of the lanes with ``mask[b, l]`` 1."""
-    for i in range(n):
-        for k in range(3):
-            for l in range(LW):
-                m = mask[b, l] != 0
-                trial.r[b, ix(i, k, 3, l)] = step.r[b, ix(i, k, 3, l)] if m else trial.r[b, ix(i, k, 3, l)]
-                trial.v[b, ix(i, k, 3, l)] = step.v[b, ix(i, k, 3, l)] if m else trial.v[b, ix(i, k, 3, l)]
-                trial.a[b, ix(i, k, 3, l)] = step.a[b, ix(i, k, 3, l)] if m else trial.a[b, ix(i, k, 3, l)]
-                trial.f[b, ix(i, k, 3, l)] = step.f[b, ix(i, k, 3, l)] if m else trial.f[b, ix(i, k, 3, l)]
+    masked_copy(b, 3 * n, mask, step.r, trial.r)
+    masked_copy(b, 3 * n, mask, step.v, trial.v)
+    masked_copy(b, 3 * n, mask, step.a, trial.a)
+    masked_copy(b, 3 * n, mask, step.f, trial.f)
 
 
-@njit(**LANE_JIT)
+@njit(cache=True)
 def copy_state(b, n, mask, src, dst, with_fs):
     """The state ``src`` into ``dst`` for the lanes with ``mask[b, l]`` 1 (``with_fs``: the
     friction state too)."""
-    for i in range(n):
-        for k in range(3):
-            for l in range(LW):
-                m = mask[b, l] != 0
-                dst.r[b, ix(i, k, 3, l)] = src.r[b, ix(i, k, 3, l)] if m else dst.r[b, ix(i, k, 3, l)]
-                dst.v[b, ix(i, k, 3, l)] = src.v[b, ix(i, k, 3, l)] if m else dst.v[b, ix(i, k, 3, l)]
-                dst.a[b, ix(i, k, 3, l)] = src.a[b, ix(i, k, 3, l)] if m else dst.a[b, ix(i, k, 3, l)]
-                dst.f[b, ix(i, k, 3, l)] = src.f[b, ix(i, k, 3, l)] if m else dst.f[b, ix(i, k, 3, l)]
-        if with_fs:
-            for k in range(N_FS):
-                for l in range(LW):
-                    m = mask[b, l] != 0
-                    dst.fs[b, ix(i, k, N_FS, l)] = (src.fs[b, ix(i, k, N_FS, l)] if m
-                                                    else dst.fs[b, ix(i, k, N_FS, l)])
+    masked_copy(b, 3 * n, mask, src.r, dst.r)
+    masked_copy(b, 3 * n, mask, src.v, dst.v)
+    masked_copy(b, 3 * n, mask, src.a, dst.a)
+    masked_copy(b, 3 * n, mask, src.f, dst.f)
+    if with_fs:
+        masked_copy(b, N_FS * n, mask, src.fs, dst.fs)
 
 
 @njit(cache=True)

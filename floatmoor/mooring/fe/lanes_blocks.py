@@ -12,7 +12,7 @@ import math
 from numba import njit
 
 from .blocks import block_band_solve
-from .lanes import LANE_JIT, LW, ix
+from .lanes import LANE_JIT, LW, ix, lanes_in
 
 
 @njit(inline="always")
@@ -75,9 +75,10 @@ def tridiag_solve(b, n, Dg, Of, rhs, W, Y, x, keep, mask, bad, OfK):
     previous node's inverse pivot and right-hand side from ``W`` and ``Y`` (the line kernel
     keeps them in registers: the same numbers); the backward sweep the next node's solution
     from ``x``."""
-    for l in range(LW):
+    lw = lanes_in(mask, 1)
+    for l in range(lw):
         bad[b, l] = -1
-    for l in range(LW):
+    for l in range(lw):
         _pivot(b, 1, l, Dg[b, ix(1, 0, 9, l)], Dg[b, ix(1, 1, 9, l)], Dg[b, ix(1, 2, 9, l)],
                Dg[b, ix(1, 3, 9, l)], Dg[b, ix(1, 4, 9, l)], Dg[b, ix(1, 5, 9, l)],
                Dg[b, ix(1, 6, 9, l)], Dg[b, ix(1, 7, 9, l)], Dg[b, ix(1, 8, 9, l)],
@@ -85,7 +86,7 @@ def tridiag_solve(b, n, Dg, Of, rhs, W, Y, x, keep, mask, bad, OfK):
                W, Y, keep, mask, bad)
     for i in range(2, n - 1):
         p = i - 1
-        for l in range(LW):
+        for l in range(lw):
             g00 = Dg[b, ix(i, 0, 9, l)]
             g01 = Dg[b, ix(i, 1, 9, l)]
             g02 = Dg[b, ix(i, 2, 9, l)]
@@ -146,7 +147,7 @@ def tridiag_solve(b, n, Dg, Of, rhs, W, Y, x, keep, mask, bad, OfK):
             _pivot(b, i, l, g00, g01, g02, g10, g11, g12, g20, g21, g22, r0, r1, r2, W, Y,
                    keep, mask, bad)
     last = n - 2
-    for l in range(LW):
+    for l in range(lw):
         m = mask[b, l] != 0
         s0 = Y[b, ix(last, 0, 3, l)]
         s1 = Y[b, ix(last, 1, 3, l)]
@@ -162,7 +163,7 @@ def tridiag_solve(b, n, Dg, Of, rhs, W, Y, x, keep, mask, bad, OfK):
         x[b, ix(last, 2, 3, l)] = x2 if m else x[b, ix(last, 2, 3, l)]
     for k in range(n - 3):
         i = n - 3 - k
-        for l in range(LW):
+        for l in range(lw):
             m = mask[b, l] != 0
             x0 = x[b, ix(i + 1, 0, 3, l)]
             x1 = x[b, ix(i + 1, 1, 3, l)]
@@ -185,7 +186,7 @@ def tridiag_solve(b, n, Dg, Of, rhs, W, Y, x, keep, mask, bad, OfK):
     if keep:
         for j in range(n - 1):
             for k in range(9):
-                for l in range(LW):
+                for l in range(lw):
                     m = mask[b, l] != 0
                     OfK[b, ix(j, k, 9, l)] = Of[b, ix(j, k, 9, l)] if m else OfK[b, ix(j, k, 9, l)]
 
@@ -195,13 +196,14 @@ def tridiag_resolve(b, n, Of, rhs, W, Y, x):
     """:func:`~.blocks.block_tridiag_resolve` of the free nodes of block ``b`` (the sweeps
     with the inverse pivots ``W`` and off-diagonal blocks ``Of`` of a kept factorisation:
     ``OfK`` of :func:`tridiag_solve`)."""
-    for l in range(LW):
+    lw = lanes_in(rhs, 3 * n)
+    for l in range(lw):
         Y[b, ix(1, 0, 3, l)] = rhs[b, ix(1, 0, 3, l)]
         Y[b, ix(1, 1, 3, l)] = rhs[b, ix(1, 1, 3, l)]
         Y[b, ix(1, 2, 3, l)] = rhs[b, ix(1, 2, 3, l)]
     for i in range(2, n - 1):
         p = i - 1
-        for l in range(LW):
+        for l in range(lw):
             y0 = Y[b, ix(p, 0, 3, l)]
             y1 = Y[b, ix(p, 1, 3, l)]
             y2 = Y[b, ix(p, 2, 3, l)]
@@ -221,7 +223,7 @@ def tridiag_resolve(b, n, Of, rhs, W, Y, x):
                 Of[b, ix(p, 6, 9, l)] * xp0 + Of[b, ix(p, 7, 9, l)] * xp1
                 + Of[b, ix(p, 8, 9, l)] * xp2)
     last = n - 2
-    for l in range(LW):
+    for l in range(lw):
         s0 = Y[b, ix(last, 0, 3, l)]
         s1 = Y[b, ix(last, 1, 3, l)]
         s2 = Y[b, ix(last, 2, 3, l)]
@@ -231,7 +233,7 @@ def tridiag_resolve(b, n, Of, rhs, W, Y, x):
                                        + W[b, ix(last, 3 * a + 2, 9, l)] * s2)
     for k in range(n - 3):
         i = n - 3 - k
-        for l in range(LW):
+        for l in range(lw):
             x0 = x[b, ix(i + 1, 0, 3, l)]
             x1 = x[b, ix(i + 1, 1, 3, l)]
             x2 = x[b, ix(i + 1, 2, 3, l)]

@@ -37,6 +37,7 @@ from .lanes import (
     LW,
     N_EC,
     ix,
+    lanes_in,
 )
 from .layout import (
     EL_B,
@@ -90,8 +91,9 @@ def lane_rows(X, b, count, K, l):
 @njit(**LANE_JIT)
 def geometry(b, n, r, el):
     """:func:`~.elements.element_geometry` of block ``b``."""
+    lw = lanes_in(r, 3 * n)
     for j in range(n - 1):
-        for l in range(LW):
+        for l in range(lw):
             dx = r[b, ix(j + 1, 0, 3, l)] - r[b, ix(j, 0, 3, l)]
             dy = r[b, ix(j + 1, 1, 3, l)] - r[b, ix(j, 1, 3, l)]
             dz = r[b, ix(j + 1, 2, 3, l)] - r[b, ix(j, 2, 3, l)]
@@ -114,7 +116,8 @@ def _unit(qx, qy, qz):
 def tangents(b, n, el, q):
     """:func:`~.elements._tangents_from` of block ``b``: the sums in the same order (``0.0``
     plus the element before, plus the element after, each only if of non-zero length)."""
-    for l in range(LW):
+    lw = lanes_in(q, 3 * n)
+    for l in range(lw):
         ok = el[b, ix(0, 3, 4, l)] > 0.0
         qx = (0.0 + el[b, ix(0, 0, 4, l)]) if ok else 0.0
         qy = (0.0 + el[b, ix(0, 1, 4, l)]) if ok else 0.0
@@ -124,7 +127,7 @@ def tangents(b, n, el, q):
         q[b, ix(0, 1, 3, l)] = uy
         q[b, ix(0, 2, 3, l)] = uz
     for i in range(1, n - 1):
-        for l in range(LW):
+        for l in range(lw):
             oa = el[b, ix(i - 1, 3, 4, l)] > 0.0
             ob = el[b, ix(i, 3, 4, l)] > 0.0
             sx = (0.0 + el[b, ix(i - 1, 0, 4, l)]) if oa else 0.0
@@ -138,7 +141,7 @@ def tangents(b, n, el, q):
             q[b, ix(i, 1, 3, l)] = uy
             q[b, ix(i, 2, 3, l)] = uz
     j = n - 2
-    for l in range(LW):
+    for l in range(lw):
         ok = el[b, ix(j, 3, 4, l)] > 0.0
         qx = (0.0 + el[b, ix(j, 0, 4, l)]) if ok else 0.0
         qy = (0.0 + el[b, ix(j, 1, 4, l)]) if ok else 0.0
@@ -153,8 +156,9 @@ def tangents(b, n, el, q):
 def mass_blocks(b, n, P, q, Mb):
     """:func:`~.elements._mass_blocks` of block ``b`` (the nine entries written out, ``d`` 1.0
     on the diagonal and 0.0 off it as in the loop)."""
+    lw = lanes_in(q, 3 * n)
     for i in range(n):
-        for l in range(LW):
+        for l in range(lw):
             m = P[b, ix(i, NP_MASS, N_NP, l)] + P[b, ix(i, NP_MAC, N_NP, l)]
             man = P[b, ix(i, NP_MAN, N_NP, l)]
             mat = P[b, ix(i, NP_MAT, N_NP, l)]
@@ -189,8 +193,9 @@ def axial_law(b, n, E, EC, el, Tl, Dl):
     """Elastic tension and ``dT/deps`` of every element of the polynomial law
     (:func:`~.elements._tension`: zero in compression, the cubic below the slack strain, the
     law above; the cubic's coefficients are the element constants ``EC``) into ``Tl, Dl``."""
+    lw = lanes_in(el, 4 * (n - 1))
     for j in range(n - 1):
-        for l in range(LW):
+        for l in range(lw):
             ll = el[b, ix(j, 3, 4, l)]
             L0 = E[b, ix(j, EL_L0, N_EL, l)]
             c1 = E[b, ix(j, EL_C1, N_EL, l)]
@@ -239,14 +244,15 @@ def element_forces(b, n, v, P, E, EC, el, Tl, Dl, act, lf, want_jac, use_act, da
     ``tens``; with ``want_jac`` the element blocks into ``Dg`` and ``Of``.  ``cK`` and ``cC``
     are the lanes' ``lf`` entries; ``carry`` scratch (the node sums the line kernel keeps in
     registers)."""
-    for l in range(LW):
+    lw = lanes_in(el, 4 * (n - 1))
+    for l in range(lw):
         carry[b, ix(0, 0, 1, l)] = 0.0
         carry[b, ix(1, 0, 1, l)] = 0.0
         carry[b, ix(2, 0, 1, l)] = -P[b, ix(0, NP_W, N_NP, l)]
         for k in range(9):
             carry[b, ix(3 + k, 0, 1, l)] = 0.0
     for j in range(n - 1):
-        for l in range(LW):
+        for l in range(lw):
             ll = el[b, ix(j, 3, 4, l)]
             ex = el[b, ix(j, 0, 4, l)]
             ey = el[b, ix(j, 1, 4, l)]
@@ -255,17 +261,17 @@ def element_forces(b, n, v, P, E, EC, el, Tl, Dl, act, lf, want_jac, use_act, da
             eps = ll / L0 - 1.0
             T = Tl[b, ix(j, 0, 1, l)]
             dTde = Dl[b, ix(j, 0, 1, l)]
-            managed = False
-            held = False
-            actj = 0.0
-            if use_act:
-                actj = act[b, ix(j, 0, 1, l)]
-                managed = EC[b, ix(j, EC_STIFF, N_EC, l)] > 0.0
-                held = managed and actj > 0.0
-                c1 = E[b, ix(j, EL_C1, N_EL, l)]
-                bar = held and eps < 0.0
-                T = c1 * eps if bar else T
-                dTde = c1 if bar else dTde
+            # the bar of a held stiff element, as selects (the loads are made for every
+            # element: a load under a run-time branch keeps the lane loop from vectorising)
+            actl = act[b, ix(j, 0, 1, l)]
+            stf = EC[b, ix(j, EC_STIFF, N_EC, l)] > 0.0
+            c1 = E[b, ix(j, EL_C1, N_EL, l)]
+            actj = actl if use_act else 0.0
+            managed = use_act and stf
+            held = managed and actj > 0.0
+            bar = held and eps < 0.0
+            T = c1 * eps if bar else T
+            dTde = c1 if bar else dTde
             B = 0.0
             dvx = 0.0
             dvy = 0.0
@@ -367,13 +373,13 @@ def element_forces(b, n, v, P, E, EC, el, Tl, Dl, act, lf, want_jac, use_act, da
                 Of[b, ix(j, 6, 9, l)] = -v20
                 Of[b, ix(j, 7, 9, l)] = -v21
                 Of[b, ix(j, 8, 9, l)] = -v22
-    for l in range(LW):
+    for l in range(lw):
         f[b, ix(n - 1, 0, 3, l)] = carry[b, ix(0, 0, 1, l)]
         f[b, ix(n - 1, 1, 3, l)] = carry[b, ix(1, 0, 1, l)]
         f[b, ix(n - 1, 2, 3, l)] = carry[b, ix(2, 0, 1, l)]
     if want_jac:
         for k in range(9):
-            for l in range(LW):
+            for l in range(lw):
                 Dg[b, ix(n - 1, k, 9, l)] = carry[b, ix(3 + k, 0, 1, l)]
 
 
@@ -403,8 +409,9 @@ def fluid_forces(b, n, v, q, P, SC, uc, wk, lf, want_jac, waves, clump, f, Dg):
     """:func:`~.fluid.fluid_forces` of block ``b`` (current speeds ``uc`` of
     :func:`current_speeds`; ``waves``: some node has a wave acceleration, ``clump``: some node
     a clump drag)."""
+    lw = lanes_in(q, 3 * n)
     for i in range(n):
-        for l in range(LW):
+        for l in range(lw):
             qx = q[b, ix(i, 0, 3, l)]
             qy = q[b, ix(i, 1, 3, l)]
             qz = q[b, ix(i, 2, 3, l)]
@@ -422,18 +429,20 @@ def fluid_forces(b, n, v, q, P, SC, uc, wk, lf, want_jac, waves, clump, f, Dg):
             f0 = f[b, ix(i, 0, 3, l)] - (kdn * vn * vnx + kdt * abs(vq) * vq * qx)
             f1 = f[b, ix(i, 1, 3, l)] - (kdn * vn * vny + kdt * abs(vq) * vq * qy)
             f2 = f[b, ix(i, 2, 3, l)] - (kdn * vn * vnz + kdt * abs(vq) * vq * qz)
-            if waves:
-                awx = wk[b, ix(i, 3, 6, l)]
-                awy = wk[b, ix(i, 4, 6, l)]
-                awz = wk[b, ix(i, 5, 6, l)]
-                on = awx != 0.0 or awy != 0.0 or awz != 0.0
-                aq = awx * qx + awy * qy + awz * qz
-                md = P[b, ix(i, NP_MD, N_NP, l)]
-                man = P[b, ix(i, NP_MAN, N_NP, l)]
-                mat = P[b, ix(i, NP_MAT, N_NP, l)]
-                f0 = f0 + (md * awx + man * (awx - aq * qx) + mat * aq * qx) if on else f0
-                f1 = f1 + (md * awy + man * (awy - aq * qy) + mat * aq * qy) if on else f1
-                f2 = f2 + (md * awz + man * (awz - aq * qz) + mat * aq * qz) if on else f2
+            # the wave terms as selects, loaded for every node (``waves`` only decides
+            # whether any node has them: a load under a run-time branch keeps the lane loop
+            # from vectorising)
+            awx = wk[b, ix(i, 3, 6, l)]
+            awy = wk[b, ix(i, 4, 6, l)]
+            awz = wk[b, ix(i, 5, 6, l)]
+            on = waves and (awx != 0.0 or awy != 0.0 or awz != 0.0)
+            aq = awx * qx + awy * qy + awz * qz
+            md = P[b, ix(i, NP_MD, N_NP, l)]
+            man = P[b, ix(i, NP_MAN, N_NP, l)]
+            mat = P[b, ix(i, NP_MAT, N_NP, l)]
+            f0 = f0 + (md * awx + man * (awx - aq * qx) + mat * aq * qx) if on else f0
+            f1 = f1 + (md * awy + man * (awy - aq * qy) + mat * aq * qy) if on else f1
+            f2 = f2 + (md * awz + man * (awz - aq * qz) + mat * aq * qz) if on else f2
             kc = 0.0
             vr = 0.0
             if clump:
@@ -534,8 +543,9 @@ def contact(pen, w, ks, dc):
 def seabed_contact(b, n, r, v, P, SC, lf, want_jac, f, Dg):
     """Seabed contact of :func:`~.seabed.seabed_forces` (spring and damping) of block ``b``;
     friction: :func:`friction`."""
+    lw = lanes_in(r, 3 * n)
     for i in range(n):
-        for l in range(LW):
+        for l in range(lw):
             pen = SC[b, ix(0, S_ZC, N_S, l)] - r[b, ix(i, 2, 3, l)]
             ks = P[b, ix(i, NP_KS, N_NP, l)]
             on = pen > 0.0 and ks > 0.0
@@ -602,6 +612,17 @@ def bending(b, n, r, P, lf, want_jac, f, Dg, Of, BX, li):
                        Of[b].reshape((n - 1, 3, 3, LW))[:, :, :, l], BX[b * LW + l])
 
 
+@njit(inline="always")
+def _fluid(b, n, v, par, w, want_jac, waves, clump, f):
+    """:func:`fluid_forces` with ``clump`` as a constant (``want_jac`` is one)."""
+    if clump:
+        fluid_forces(b, n, v, w.q, par.P, par.SC, w.uc, par.wk, w.lf, want_jac, waves, True, f,
+                     w.Dg)
+    else:
+        fluid_forces(b, n, v, w.q, par.P, par.SC, w.uc, par.wk, w.lf, want_jac, waves, False, f,
+                     w.Dg)
+
+
 @njit(cache=True)
 def forces_into(b, n, par, r, v, fs, f, w, want_jac, use_act):
     """Nodal forces of block ``b`` at ``r, v`` (friction state ``fs``) into ``f`` and, with
@@ -616,14 +637,34 @@ def forces_into(b, n, par, r, v, fs, f, w, want_jac, use_act):
     axial_law(b, n, par.E, par.EC, w.el, w.Tl, w.Dl)
     if flags[b, BF_FIBRE]:
         fibre_law(b, n, par.E, par.EC, par.S, w.el, fs, w.Tl, w.Dl, w.li)
-    element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, want_jac,
-                   use_act, flags[b, BF_DAMP] != 0, w.tens, f, w.Dg, w.Of, w.carry)
+    # the passes with the tangent or without it, and with the element damping, wave or clump
+    # terms or without them, are called with these flags as constants (numba compiles one
+    # version per value): a run-time flag tested in the lane loop keeps LLVM from vectorising
+    # it (measured: the element and fluid passes twice as fast as constants)
+    damp = flags[b, BF_DAMP] != 0
+    if want_jac:
+        if damp:
+            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, True,
+                           use_act, True, w.tens, f, w.Dg, w.Of, w.carry)
+        else:
+            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, True,
+                           use_act, False, w.tens, f, w.Dg, w.Of, w.carry)
+    else:
+        if damp:
+            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, False,
+                           use_act, True, w.tens, f, w.Dg, w.Of, w.carry)
+        else:
+            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, False,
+                           use_act, False, w.tens, f, w.Dg, w.Of, w.carry)
     if flags[b, BF_BEND]:
         bending(b, n, r, par.P, w.lf, want_jac, f, w.Dg, w.Of, w.BX, w.li)
     current_speeds(b, n, r, par.cur_z, par.cur_u, par.cur_n, w.uc, w.li)
-    fluid_forces(b, n, v, w.q, par.P, par.SC, w.uc, par.wk, w.lf, want_jac,
-                 flags[b, BF_WAVES] != 0, flags[b, BF_CLUMP] != 0, f, w.Dg)
-    seabed_contact(b, n, r, v, par.P, par.SC, w.lf, want_jac, f, w.Dg)
+    if want_jac:
+        _fluid(b, n, v, par, w, True, flags[b, BF_WAVES] != 0, flags[b, BF_CLUMP] != 0, f)
+        seabed_contact(b, n, r, v, par.P, par.SC, w.lf, True, f, w.Dg)
+    else:
+        _fluid(b, n, v, par, w, False, flags[b, BF_WAVES] != 0, flags[b, BF_CLUMP] != 0, f)
+        seabed_contact(b, n, r, v, par.P, par.SC, w.lf, False, f, w.Dg)
     if flags[b, BF_FRIC] != 0:
         friction(b, n, r, v, w.q, fs, par.P, par.S, flags[b, BF_FRIC], w.lf, want_jac, f, w.Dg,
                  w.li)

@@ -61,6 +61,7 @@ from .lanes import (
     LI_ST,
     LW,
     ix,
+    lanes_in,
 )
 from .lanes_blocks import band_solve, tridiag_resolve, tridiag_solve
 from .lanes_forces import forces_into, geometry, lane_rows, mass_blocks, tangents
@@ -76,13 +77,14 @@ def predict(b, n, coef, mode, lf, fair, r, v, a, r1, v1, a1):
     """:func:`~.gen_alpha.predict` of block ``b`` (step sizes ``lf[LF_DT]``, the fairlead's
     end position and velocity in ``fair[0:3]``, ``fair[3:6]``; the deviations are kept in
     ``fair[6:9]``)."""
+    lw = lanes_in(r, 3 * n)
     for i in range(n):
         inner = 0 < i < n - 1
         for k in range(3):
-            for l in range(LW):
+            for l in range(lw):
                 a1[b, ix(i, k, 3, l)] = a[b, ix(i, k, 3, l)] if inner else 0.0
     for k in range(3):
-        for l in range(LW):
+        for l in range(lw):
             dt = lf[b, ix(LF_DT, 0, 1, l)]
             dev = fair[b, ix(k, 0, 1, l)] - (r[b, ix(n - 1, k, 3, l)]
                                               + dt * v[b, ix(n - 1, k, 3, l)])
@@ -92,13 +94,13 @@ def predict(b, n, coef, mode, lf, fair, r, v, a, r1, v1, a1):
                 dev -= 0.5 * dt * (fair[b, ix(3 + k, 0, 1, l)] - v[b, ix(n - 1, k, 3, l)])
             fair[b, ix(6 + k, 0, 1, l)] = dev
         for i in range(1, n - 1):
-            for l in range(LW):
+            for l in range(lw):
                 dt = lf[b, ix(LF_DT, 0, 1, l)]
                 beta = coef[b, ix(0, 2, 4, l)]
                 a1[b, ix(i, k, 3, l)] += (fair[b, ix(6 + k, 0, 1, l)] * (i / (n - 1.0))
                                           / (beta * dt * dt))
     for k in range(3):
-        for l in range(LW):
+        for l in range(lw):
             r1[b, ix(0, k, 3, l)] = r[b, ix(0, k, 3, l)]
             v1[b, ix(0, k, 3, l)] = 0.0
             r1[b, ix(n - 1, k, 3, l)] = fair[b, ix(k, 0, 1, l)]
@@ -108,9 +110,10 @@ def predict(b, n, coef, mode, lf, fair, r, v, a, r1, v1, a1):
 @njit(**LANE_JIT)
 def kinematics(b, n, coef, lf, r, v, a, a1, r1, v1):
     """:func:`~.gen_alpha.kinematics` of block ``b``."""
+    lw = lanes_in(r, 3 * n)
     for i in range(1, n - 1):
         for k in range(3):
-            for l in range(LW):
+            for l in range(lw):
                 dt = lf[b, ix(LF_DT, 0, 1, l)]
                 beta = coef[b, ix(0, 2, 4, l)]
                 gamma = coef[b, ix(0, 3, 4, l)]
@@ -127,11 +130,12 @@ def residual(b, n, coef, a, a1, fn, f1, Mb, fresh, Dg, R, lf, force):
     """:func:`~.gen_alpha.residual` of block ``b``: the residual into ``R``, its squared norm
     into ``lf[LF_RES]`` and, with ``force``, the force imbalance (:func:`~.gen_alpha.imbalance`)
     into ``lf[LF_IMB]``; with ``fresh`` the inertia block added to ``Dg``."""
-    for l in range(LW):
+    lw = lanes_in(a, 3 * n)
+    for l in range(lw):
         lf[b, ix(LF_RES, 0, 1, l)] = 0.0
         lf[b, ix(LF_IMB, 0, 1, l)] = 0.0
     for i in range(1, n - 1):
-        for l in range(LW):
+        for l in range(lw):
             am = coef[b, ix(0, 0, 4, l)]
             af = coef[b, ix(0, 1, 4, l)]
             b0 = (1.0 - am) * a1[b, ix(i, 0, 3, l)] + am * a[b, ix(i, 0, 3, l)]
@@ -160,13 +164,14 @@ def correct(b, n, da, a1, solve, lf, li, bad):
     """:func:`~.gen_alpha.correct` of the lanes with ``solve[b, l]``: ``a1 += da``, the largest
     correction into ``lf[LF_DMAX]`` and its node into ``li[LI_IMAX]``, the first node of a NaN
     correction into ``bad[b, l]`` (-1: none)."""
-    for l in range(LW):
+    lw = lanes_in(da, 3 * n)
+    for l in range(lw):
         lf[b, ix(LF_DMAX, 0, 1, l)] = 0.0
         li[b, ix(LI_IMAX, 0, 1, l)] = 1
         bad[b, l] = -1
     for i in range(1, n - 1):
         for k in range(3):
-            for l in range(LW):
+            for l in range(lw):
                 on = solve[b, l] != 0
                 d = da[b, ix(i, k, 3, l)]
                 nan = not math.isfinite(d)
@@ -186,9 +191,10 @@ def correct(b, n, da, a1, solve, lf, li, bad):
 def back(b, n, da, a1, lf, li):
     """Take back the part ``lf[LF_ALPHA]`` of the last correction in the lanes with
     ``li[LI_SOLVE]`` -1 (:func:`~.gen_alpha._back`)."""
+    lw = lanes_in(da, 3 * n)
     for i in range(1, n - 1):
         for k in range(3):
-            for l in range(LW):
+            for l in range(lw):
                 on = li[b, ix(LI_SOLVE, 0, 1, l)] == -1
                 old = a1[b, ix(i, k, 3, l)]
                 a1[b, ix(i, k, 3, l)] = old - lf[b, ix(LF_ALPHA, 0, 1, l)] * \
@@ -199,9 +205,10 @@ def back(b, n, da, a1, lf, li):
 def take_resolved(b, n, xr, dx, mask, li):
     """The corrections of the solving lanes that reused their factorisation (``li[LI_SOLVE]``
     1, ``mask[b, l]`` 0): their sweeps' result ``xr`` into ``dx``."""
+    lw = lanes_in(dx, 3 * n)
     for i in range(1, n - 1):
         for k in range(3):
-            for l in range(LW):
+            for l in range(lw):
                 keep = mask[b, l] == 0 and li[b, ix(LI_SOLVE, 0, 1, l)] == 1
                 old = dx[b, ix(i, k, 3, l)]
                 dx[b, ix(i, k, 3, l)] = xr[b, ix(i, k, 3, l)] if keep else old
@@ -212,22 +219,23 @@ def force_scales(b, n, r, E, weight, lf):
     """:func:`~.forces.force_tolerances` of every lane of block ``b`` at ``r``: ``ftol``,
     ``fcap`` and the force-terms tolerance ``max(TENSION_TOL weight, rfloor)`` into ``lf``
     (``weight``: the lanes' node-weight scale and weight in air, state independent)."""
-    for l in range(LW):
+    lw = lanes_in(r, 3 * n)
+    for l in range(lw):
         lf[b, ix(LF_RMAX, 0, 1, l)] = 0.0
         lf[b, ix(LF_FTOL, 0, 1, l)] = 0.0
     for i in range(n):
         for k in range(3):
-            for l in range(LW):
+            for l in range(lw):
                 lf[b, ix(LF_RMAX, 0, 1, l)] = max(lf[b, ix(LF_RMAX, 0, 1, l)],
                                                   abs(r[b, ix(i, k, 3, l)]))
     for j in range(n - 1):
-        for l in range(LW):
+        for l in range(lw):
             rmax = lf[b, ix(LF_RMAX, 0, 1, l)]
             lf[b, ix(LF_FTOL, 0, 1, l)] = max(
                 lf[b, ix(LF_FTOL, 0, 1, l)],
                 E[b, ix(j, EL_C1, N_EL, l)] * EPS_MACH * (2.0 + 2.0 * rmax
                                                           / E[b, ix(j, EL_L0, N_EL, l)]))
-    for l in range(LW):
+    for l in range(lw):
         fround = lf[b, ix(LF_FTOL, 0, 1, l)]
         ftol = weight[b, l]
         lf[b, ix(LF_FCAP, 0, 1, l)] = max(1e3 * ftol, math.sqrt(3.0 * n) * fround)
@@ -366,9 +374,13 @@ def block_step(b, n, par, s0, fs, s1, w):
             if nfresh > 0:
                 if bend:
                     band_solve(b, n, w.Dg, w.Of, w.BX, w.R, w.Y, w.T1, w.dx, w.mask, w.bad)
+                elif modified:
+                    # keep as a constant: the forward sweep vectorises
+                    tridiag_solve(b, n, w.Dg, w.Of, w.R, w.W, w.Y, w.dx, True, w.mask, w.bad,
+                                  w.OfK)
                 else:
-                    tridiag_solve(b, n, w.Dg, w.Of, w.R, w.W, w.Y, w.dx, modified, w.mask,
-                                  w.bad, w.OfK)
+                    tridiag_solve(b, n, w.Dg, w.Of, w.R, w.W, w.Y, w.dx, False, w.mask, w.bad,
+                                  w.OfK)
                 for l in range(LW):
                     if w.mask[b, l] != 0 and w.bad[b, l] >= 0:
                         info[b * LW + l, 1] = w.bad[b, l]
