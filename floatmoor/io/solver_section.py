@@ -41,7 +41,10 @@ Without FE lines the option changes nothing.
 (:func:`floatmoor.mooring.fe.multi.body_advance_parallel`); the results are bit for bit those of
 one thread (the lines are independent within a body step; their sum stays in the line order),
 so this is not an approximation and changes nothing without FE lines.  ``auto``: numba's
-thread pool (``NUMBA_NUM_THREADS``, the CPUs by default); a number above it is reduced to it.
+thread pool (``NUMBA_NUM_THREADS``, the CPUs by default), except for FE lines that fit one
+group of SIMD lanes (the same node count), which then advance on one thread as lanes
+(``fe_coupling.auto_threads``: faster than the lines in threads on the flagship since the lanes
+vectorise, benchmarks/RESULTS.md); a number above the pool is reduced to it.
 Processes that run several storms at once never oversubscribe the cores
 (:func:`with_thread_cap`): ``floatmoor run`` with ``--workers W`` runs each worker with at most
 ``cores // W`` threads (at least 1), and campaign tasks (one storm per single-threaded worker)
@@ -61,7 +64,7 @@ from ..core.errors import SceneError
 
 __all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES",
            "MEMORY_MODES", "FE_STAGE_MODES", "fe_stages", "catenary_tol", "THREADS_AUTO",
-           "parse_threads", "available_threads", "run_threads", "with_thread_cap",
+           "parse_threads", "available_threads", "run_threads", "with_thread_cap", "is_auto",
            "worker_thread_cap"]
 
 SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads", "fe_stages")
@@ -84,6 +87,9 @@ class SolverSpec:
     fe_stages: str = "catenary"
     """The coupled FE lines' force over the RK4 stages: ``catenary`` or ``linear``."""
     file: object = field(default=None, compare=False)
+    threads_auto: bool = field(default=False, compare=False)
+    """``threads`` is ``auto`` resolved to a number by :func:`with_thread_cap`: the FE run
+    still takes one thread when its lines fit the SIMD lanes (:func:`is_auto`)."""
 
     @property
     def exact(self) -> bool:
@@ -164,7 +170,15 @@ def with_thread_cap(spec: SolverSpec | None, cap: int, threads=None) -> SolverSp
     if spec is None:
         return None
     n = min(run_threads(spec), max(1, int(cap)))
-    return spec if n == spec.threads else dataclasses.replace(spec, threads=n)
+    auto = spec.threads == THREADS_AUTO or spec.threads_auto
+    return (spec if n == spec.threads
+            else dataclasses.replace(spec, threads=n, threads_auto=auto))
+
+
+def is_auto(spec: SolverSpec | None) -> bool:
+    """True when ``spec`` asks for ``threads: auto`` (as written or resolved against a cap by
+    :func:`with_thread_cap`)."""
+    return spec is not None and (spec.threads == THREADS_AUTO or spec.threads_auto)
 
 
 def fe_stages(spec: SolverSpec | None) -> str:

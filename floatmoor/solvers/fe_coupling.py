@@ -424,14 +424,15 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
 
 
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1,
-        fe_stages: str = "catenary", progress=None):
+        fe_stages: str = "catenary", progress=None, auto: bool = False):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
     ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
     the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
     n+1, n_lines))``; the FE channels are NaN for quasi-static lines.  ``threads`` > 1:
     the lines advance in that many threads (numba's count set for the kernel and restored
     after it; bit-identical results, :func:`floatmoor.mooring.fe.multi.body_advance_parallel`);
-    1: the serial kernel.  ``fe_stages`` ``"linear"``: the FE lines' catenaries left out of the
+    1: the serial kernel; ``auto`` (``solver: {threads: auto}``): ``threads`` is the most
+    allowed, :func:`auto_threads` chooses.  ``fe_stages`` ``"linear"``: the FE lines' catenaries left out of the
     RK4 stages, their stage variation linearised at the step start (``solver: {fe_stages:
     linear}``, module docstring); ``"catenary"`` the exact scheme.  ``progress``: called with the
     simulated time (s) and the run's end time after every :data:`PROGRESS_PIECES` th of the
@@ -483,7 +484,8 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                warm=np.zeros((n_lines, 2)), nsub=int(c.substeps),
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan),
-               mode=_mode(lines, threads), linear=linear, kfe=np.zeros((6, 6)))
+               mode=_mode(lines, auto_threads(lines, threads) if auto else threads),
+               linear=linear, kfe=np.zeros((6, 6)))
     fl = line_list(lines)
     n_total = n_steps + 1
     pieces = PROGRESS_PIECES if progress is not None else 1
@@ -510,6 +512,16 @@ LANES = True
 """One thread: the FE lines of the body advance as SIMD lanes (:mod:`~floatmoor.mooring.fe.lanes_body`,
 bit for bit the line-by-line kernel's numbers, faster: benchmarks/RESULTS.md) when they fit one
 lane group (the same node count, options shared per block of four); False: line by line."""
+
+
+def auto_threads(lines, pool: int) -> int:
+    """The threads of ``solver: {threads: auto}`` for the FE lines ``lines`` with ``pool``
+    threads available: one when the lines fit one lane group (:func:`lanes_fit`; on one thread
+    they then advance as SIMD lanes, which the lines in two threads no longer beat: the
+    flagship's 3600 s, benchmarks/RESULTS.md, "FE lanes vectorised"), else the whole pool."""
+    if LANES and lanes_fit(lines):
+        return 1
+    return max(1, int(pool))
 
 
 def _mode(lines, threads: int):

@@ -253,7 +253,9 @@ def test_threads_option_and_its_caps(tmp_path):
 
 def test_run_command_threads_flag(tmp_path, capsys):
     """``floatmoor run --threads``: a bad value is a usage error (exit 2); a good one runs and
-    the result file records the threads used (1 with two workers on two cores)."""
+    the result file records the threads used: ``auto`` takes one thread for lines that fit the
+    SIMD lanes (the same node count: the lanes on one thread beat the lines in threads,
+    benchmarks/RESULTS.md), the pool (at most the workers' cap) for lines that do not."""
     import xarray as xr
 
     from floatmoor.cli import main
@@ -269,7 +271,14 @@ def test_run_command_threads_flag(tmp_path, capsys):
         assert main(["run", str(p), "--out", str(out), "--workers", "1",
                      "--threads", "auto"]) == 0
     with xr.open_dataset(next(out.glob("*.nc"))) as ds:
-        assert ds.attrs["fe_threads"] == min(available_threads(), worker_thread_cap(1))
+        assert ds.attrs["fe_threads"] == 1
+    # lines of different node counts do not fit one lane group: auto is the pool
+    from types import SimpleNamespace as NS
+
+    from floatmoor.solvers.fe_coupling import auto_threads
+    mixed = [NS(n_nodes=51, integrator="generalized_alpha"),
+             NS(n_nodes=41, integrator="generalized_alpha")]
+    assert auto_threads(mixed, 2) == 2
 
 
 @pytest.mark.slow

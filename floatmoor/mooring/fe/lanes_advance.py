@@ -183,7 +183,9 @@ def masked_copy(b, rows, mask, src, dst):
     for i in range(rows):
         for l in range(lw):
             m = mask[b, l] != 0
-            dst[b, ix(i, 0, 1, l)] = src[b, ix(i, 0, 1, l)] if m else dst[b, ix(i, 0, 1, l)]
+            s = src[b, ix(i, 0, 1, l)]      # both loaded, then selected: a load inside the
+            d = dst[b, ix(i, 0, 1, l)]      # select's branch keeps the loop scalar
+            dst[b, ix(i, 0, 1, l)] = s if m else d
 
 
 @njit(cache=True)
