@@ -13,8 +13,9 @@ inside it (the passes take such flags as constants, or as selects after loads ma
 lane), LLVM vectorises the loops over the lanes of a node (AVX2: 4 doubles per instruction;
 ``benchmarks/check_lanes_asm.py`` counts the packed instructions of every pass).  Before
 2026-11-27 the lane loops were written over the constant :data:`LW` and tested run-time flags,
-and the assembly showed them scalar or two nodes per 128-bit register: the lanes were then
-only 10-18 % faster than line by line, now about 40 %.  A
+and the assembly showed them scalar or two nodes per 128-bit register: the lanes then took
+0.82-0.90 of the line-by-line time, now 0.44-0.57 (benchmarks/RESULTS.md, "FE lanes
+vectorised").  A
 block not filled by lines is filled with copies of its first line (dummy lanes: the same
 arithmetic as that line, never written back).
 
