@@ -413,8 +413,8 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
                 Sl = par.S[p]
                 fib = Sl.shape[0] > N_S
                 # the lane views only for a friction law that keeps a state or a fibre line
-                # (each view is a call into numba's reshape helper: 10.3 -> 6.3 kcycles per block step of this
-                # loop with rdtsc on the flagship, which has neither; RESULTS.md)
+                # (each view is a call into numba's reshape helper: this loop 10.3 -> 6.3
+                # kcycles per block step on the flagship, which has neither; RESULTS.md)
                 if fric == FR_VDQ or fric == FR_DISPVEL or fib:
                     rl = lane_rows(tr.r, b, n, 3, l)
                     fsl = lane_rows(tr.fs, b, n, N_FS, l)
