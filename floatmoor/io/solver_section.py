@@ -170,9 +170,8 @@ def with_thread_cap(spec: SolverSpec | None, cap: int, threads=None) -> SolverSp
     if spec is None:
         return None
     n = min(run_threads(spec), max(1, int(cap)))
-    auto = spec.threads == THREADS_AUTO or spec.threads_auto
     return (spec if n == spec.threads
-            else dataclasses.replace(spec, threads=n, threads_auto=auto))
+            else dataclasses.replace(spec, threads=n, threads_auto=is_auto(spec)))
 
 
 def is_auto(spec: SolverSpec | None) -> bool:

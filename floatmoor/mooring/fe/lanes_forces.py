@@ -613,6 +613,17 @@ def bending(b, n, r, P, lf, want_jac, f, Dg, Of, BX, li):
 
 
 @njit(inline="always")
+def _elements(b, n, v, par, w, want_jac, use_act, damp, f):
+    """:func:`element_forces` with ``damp`` as a constant (``want_jac`` is one)."""
+    if damp:
+        element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, want_jac,
+                       use_act, True, w.tens, f, w.Dg, w.Of, w.carry)
+    else:
+        element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, want_jac,
+                       use_act, False, w.tens, f, w.Dg, w.Of, w.carry)
+
+
+@njit(inline="always")
 def _fluid(b, n, v, par, w, want_jac, waves, clump, f):
     """:func:`fluid_forces` with ``clump`` as a constant (``want_jac`` is one)."""
     if clump:
@@ -637,25 +648,14 @@ def forces_into(b, n, par, r, v, fs, f, w, want_jac, use_act):
     axial_law(b, n, par.E, par.EC, w.el, w.Tl, w.Dl)
     if flags[b, BF_FIBRE]:
         fibre_law(b, n, par.E, par.EC, par.S, w.el, fs, w.Tl, w.Dl, w.li)
-    # the passes with the tangent or without it, and with the element damping, wave or clump
-    # terms or without them, are called with these flags as constants (numba compiles one
-    # version per value): a run-time flag tested in the lane loop keeps LLVM from vectorising
-    # it (measured: the element and fluid passes twice as fast as constants)
-    damp = flags[b, BF_DAMP] != 0
+    # the passes with the tangent or without it, and with the element damping or clump terms
+    # or without them, are called with these flags as constants (numba compiles one version
+    # per value): a run-time flag tested in the lane loop keeps LLVM from vectorising it
+    # (measured: the element and fluid passes twice as fast as constants)
     if want_jac:
-        if damp:
-            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, True,
-                           use_act, True, w.tens, f, w.Dg, w.Of, w.carry)
-        else:
-            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, True,
-                           use_act, False, w.tens, f, w.Dg, w.Of, w.carry)
+        _elements(b, n, v, par, w, True, use_act, flags[b, BF_DAMP] != 0, f)
     else:
-        if damp:
-            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, False,
-                           use_act, True, w.tens, f, w.Dg, w.Of, w.carry)
-        else:
-            element_forces(b, n, v, par.P, par.E, par.EC, w.el, w.Tl, w.Dl, w.act, w.lf, False,
-                           use_act, False, w.tens, f, w.Dg, w.Of, w.carry)
+        _elements(b, n, v, par, w, False, use_act, flags[b, BF_DAMP] != 0, f)
     if flags[b, BF_BEND]:
         bending(b, n, r, par.P, w.lf, want_jac, f, w.Dg, w.Of, w.BX, w.li)
     current_speeds(b, n, r, par.cur_z, par.cur_u, par.cur_n, w.uc, w.li)
