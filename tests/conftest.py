@@ -9,7 +9,7 @@ and compiled them side by side (measured on a clean clone, 2026-11-28: 154 s and
 one group, which runs first in one process; the other process meanwhile takes the other files.
 
 The list was found by recording which tests call ``fe_coupling.run`` (a scratch plugin over
-every file that mentions FE lines).  A file missing from it still passes; its process then
+the whole default run).  A file missing from it still passes; its process then
 compiles the kernels again.  ``-n 0`` runs everything in one process in file order.
 """
 
@@ -21,6 +21,7 @@ import pytest
 
 FE_COUPLED = "fe-coupled"
 FE_COUPLED_FILES = (
+    "tests/io/test_example_scenes.py",     # `floatmoor check` of the FE scene runs its lines
     "tests/io/test_import_moordyn.py",
     "tests/solvers/test_fe_lanes.py",
     "tests/solvers/test_fe_stages.py",
@@ -42,7 +43,9 @@ def pytest_collection_modifyitems(config, items):
     the order the processes take them: the coupled-FE group first, then the files by their
     number of tests, largest first (xdist's own order for ``loadfile``).  Runs before xdist's
     hook, which turns the ``xdist_group`` marks into the node-id suffix its scheduler reads."""
-    if config.getoption("dist", "no") != "loadgroup":
+    # the controller has --dist; xdist's workers run with dist "no" and its flag loadgroup
+    if config.getoption("dist", "no") != "loadgroup" and not getattr(config.option,
+                                                                    "loadgroup", False):
         return
     groups = collections.defaultdict(list)
     for item in items:

@@ -360,6 +360,12 @@ def test_a_full_disk_is_reported_as_such(tmp_path, capsys, monkeypatch):
         return real(folder, need, what)
 
     monkeypatch.setattr(folder_lock, "check_free_space", full_for_seed_2)
+    # the seeds run in worker processes, which see the patch only if forked (Linux's default);
+    # after a threaded FE run in this test process (tests/solvers/test_fe_threads.py before it
+    # in the same pytest worker) the runner spawns them instead: keep fork here (the seeds of
+    # this quasi-static scene do not use numba's thread pool)
+    from floatmoor.analyses import runner
+    monkeypatch.setattr(runner, "_worker_context", lambda: None)
     out = tmp_path / "out"
     code, err, text = _cli(["run", _oc3(tmp_path), "--out", out, "--workers", "1"], capsys)
     assert code == 2 and f"floatmoor: error: {out}: no space left on the device" in err, err
