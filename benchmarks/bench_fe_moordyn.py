@@ -216,10 +216,14 @@ def run_moordyn(case, tr: Track, nseg, dtm, scheme):
             T = np.zeros(nt)
             f = moordyn.Step(system, r[0].tolist(), [0.0, 0.0, 0.0], 0.0, 0.0)
             T[0] = math.sqrt(sum(x * x for x in f))
+            # the inputs as Python lists before the clock starts (floatmoor's run takes its
+            # fairlead track as arrays in one go: TimeSeriesMotion.track)
+            rk = [x.tolist() for x in r[:-1]]
+            vk = [((r[k + 1] - r[k]) / DT_C).tolist() for k in range(nt - 1)]
+            tk = [float(x) for x in tr.t[:-1]]
             c0 = time.process_time()
             for k in range(nt - 1):
-                v = (r[k + 1] - r[k]) / DT_C
-                f = moordyn.Step(system, r[k].tolist(), v.tolist(), float(tr.t[k]), DT_C)
+                f = moordyn.Step(system, rk[k], vk[k], tk[k], DT_C)
                 T[k + 1] = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
             cpu = time.process_time() - c0
             moordyn.Close(system)

@@ -69,6 +69,21 @@ class TimeSeriesMotion:
         vel = (X[j + 1] - X[j]) / (tt[j + 1] - tt[j])
         return pos, vel
 
+    def track(self, times):
+        """:meth:`__call__` at every time of the array ``times`` in one go: displacements and
+        velocities (len(times), 3), element by element the same arithmetic (the same numbers
+        as one call per time; :func:`run_prescribed` takes this instead of a Python call per
+        step)."""
+        tt = np.asarray(self.t, float)
+        X = np.asarray(self.xyz, float)
+        t = np.asarray(times, float)
+        j = np.clip(np.searchsorted(tt, t) - 1, 0, tt.size - 2)
+        h = tt[j + 1] - tt[j]
+        w = np.minimum(np.maximum((t - tt[j]) / h, 0.0), 1.0)[:, None]
+        pos = (1.0 - w) * X[j] + w * X[j + 1]
+        vel = (X[j + 1] - X[j]) / h[:, None]
+        return pos, vel
+
 
 def fairlead_track_from_body(t, poses, fairlead_body, reference_pose=None) -> TimeSeriesMotion:
     """Fairlead displacement history from body poses of a floater run.
@@ -137,10 +152,18 @@ def run_prescribed(line: FELine, motion, t_end: float, dt: float, *, substeps: i
         # the fairlead track first, then every step in one numba call
         rf = np.zeros((n + 1, 3))
         vf = np.zeros((n + 1, 3))
-        for k in range(1, n + 1):
-            d, v = motion(t0 + k * dt - t0)
-            rf[k] = r0 + d
-            vf[k] = v
+        track = getattr(motion, "track", None)
+        if track is not None:
+            # the motion's own vectorised evaluation (the same numbers as a call per step;
+            # the per-step Python calls cost a third of an OC3 line's run)
+            d, v = track((t0 + np.arange(1, n + 1) * dt) - t0)
+            rf[1:] = r0 + d
+            vf[1:] = v
+        else:
+            for k in range(1, n + 1):
+                d, v = motion(t0 + k * dt - t0)
+                rf[k] = r0 + d
+                vf[k] = v
         counts = np.zeros(2)
         pieces = PROGRESS_PIECES if progress is not None else 1
         k, st = 0, 0

@@ -217,10 +217,14 @@ def run_moordyn(c: Case, t, r_fair, *, n_segments=None, dtm=1e-3, friction=0.0,
             f = moordyn.Step(system, r_fair[0].tolist(), [0.0, 0.0, 0.0], 0.0, 0.0)
             Tf[0] = math.sqrt(sum(x * x for x in f))
             Ta[0] = float(np.linalg.norm(moordyn.GetLineNodeTen(anchor_line, 0)))
+            # MoorDyn's inputs as Python lists before the clock starts (the floatmoor run
+            # takes its fairlead track as arrays in one go)
+            rk = [x.tolist() for x in r_fair[:-1]]
+            vk = [((r_fair[k + 1] - r_fair[k]) / dt).tolist() for k in range(nt - 1)]
+            tk = [float(x) for x in t[:-1]]
             c0 = time.process_time()
             for k in range(nt - 1):
-                v = (r_fair[k + 1] - r_fair[k]) / dt
-                f = moordyn.Step(system, r_fair[k].tolist(), v.tolist(), float(t[k]), dt)
+                f = moordyn.Step(system, rk[k], vk[k], tk[k], dt)
                 Tf[k + 1] = math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
                 Ta[k + 1] = float(np.linalg.norm(moordyn.GetLineNodeTen(anchor_line, 0)))
             cpu = time.process_time() - c0
