@@ -1,23 +1,27 @@
-"""Scheduling of the default run over two test processes (pytest-xdist ``--dist loadgroup``).
+"""Scheduling of the default run over two test processes (pytest-xdist ``--dist loadfile``).
 
-Every test file is one group (as ``--dist loadfile``: a file's tests run in one process), except
-the files that run the coupled finite-element time domain (:mod:`floatmoor.solvers.fe_coupling`
-and the SIMD-lane kernels under it).  From an empty numba cache those kernels take 150-250 s to
-compile, and with one group per file both processes reached such a file at about the same time
-and compiled them side by side (measured on a clean clone, 2026-11-28: 154 s and 248 s of
+Every test file is one unit of work (a file's tests run in one process), except the files that
+run the coupled finite-element time domain (:mod:`floatmoor.solvers.fe_coupling` and the
+SIMD-lane kernels under it).  From an empty numba cache those kernels take 150-250 s to compile,
+and with one unit per file both processes reached such a file at about the same time and
+compiled them side by side (measured on a clean clone, 2026-11-28: 154 s and 248 s of
 ``fe_coupling`` compilation in the two processes; pytest 617 s in all).  The files below form
-one group, which runs first in one process; the other process meanwhile takes the other files.
+one unit, which runs first in one process; the other process meanwhile takes the other files.
+
+xdist's own ``loadgroup`` would do this with marks, but xdist 3.8 renames the node ids through
+an attribute pytest 9 no longer reads (the groups silently do not form); hence a scheduler of
+our own (:func:`pytest_xdist_make_scheduler`: ``loadfile`` with the group as one scope) and the
+order of the units set in the workers' collection (:func:`pytest_collection_modifyitems`,
+with ``--no-loadscope-reorder``).
 
 The list was found by recording which tests call ``fe_coupling.run`` (a scratch plugin over
-the whole default run).  A file missing from it still passes; its process then
-compiles the kernels again.  ``-n 0`` runs everything in one process in file order.
+the whole default run).  A file missing from it still passes; its process then compiles the
+kernels again.  ``-n 0`` runs everything in one process in file order.
 """
 
 from __future__ import annotations
 
 import collections
-
-import pytest
 
 FE_COUPLED = "fe-coupled"
 FE_COUPLED_FILES = (
@@ -33,25 +37,32 @@ FE_COUPLED_FILES = (
 )
 
 
-def _file(item) -> str:
-    return item.nodeid.split("::", 1)[0]
+def _scope(nodeid: str) -> str:
+    f = nodeid.split("::", 1)[0]
+    return FE_COUPLED if f in FE_COUPLED_FILES else f
 
 
-@pytest.hookimpl(tryfirst=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadfile`` with the coupled-FE files as one scope."""
+    if config.getoption("dist", "no") != "loadfile":
+        return None
+    from xdist.scheduler import LoadFileScheduling
+
+    class _FileScheduling(LoadFileScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _scope(nodeid)
+
+    return _FileScheduling(config, log)
+
+
 def pytest_collection_modifyitems(config, items):
-    """Group every test by its file (the coupled-FE files in one group) and put the groups in
-    the order the processes take them: the coupled-FE group first, then the files by their
-    number of tests, largest first (xdist's own order for ``loadfile``).  Runs before xdist's
-    hook, which turns the ``xdist_group`` marks into the node-id suffix its scheduler reads."""
-    # the controller has --dist; xdist's workers run with dist "no" and its flag loadgroup
-    if config.getoption("dist", "no") != "loadgroup" and not getattr(config.option,
-                                                                    "loadgroup", False):
+    """In xdist's workers (their collection gives the controller its order): the coupled-FE
+    scope first, then the files by their number of tests, largest first (xdist's own order,
+    which ``--no-loadscope-reorder`` turns off)."""
+    if not hasattr(config, "workerinput"):
         return
     groups = collections.defaultdict(list)
     for item in items:
-        f = _file(item)
-        name = FE_COUPLED if f in FE_COUPLED_FILES else f
-        item.add_marker(pytest.mark.xdist_group(name))
-        groups[name].append(item)
+        groups[_scope(item.nodeid)].append(item)
     order = sorted(groups, key=lambda g: (g != FE_COUPLED, -len(groups[g])))
     items[:] = [item for g in order for item in groups[g]]
