@@ -61,7 +61,7 @@ def td_tension_std(line, omega, auto_psd, *, duration: float = 600.0, seeds=(1, 
         ft = res.fairlead_tension.values[keep]
         out_std.append(float(ft.std()))
         out_max.append(float(ft.max()))
-        x = np.array([mo(tt)[0] for tt in t[keep]])
+        x = mo.track(t[keep])[0]
         m_std.append(x.std(axis=0))
     line.r[:] = r0
     s = np.array(out_std)
