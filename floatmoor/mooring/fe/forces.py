@@ -16,8 +16,18 @@ import math
 from numba import njit
 
 from .elements import _tangents_from, bending_forces, element_forces, element_geometry
+from .fibre_law import EL_LAW
+from .flat import (
+    block_sums,
+    element_geometry_flat,
+    element_pass,
+    element_pass_jac,
+    fluid_pass,
+    fluid_pass_jac,
+    node_sums,
+)
 from .fluid import fluid_forces
-from .layout import EL_C1, EL_L0, EPS_MACH, NP_MASS, NP_W, S_BEND
+from .layout import EL_C1, EL_L0, EPS_MACH, NP_KC, NP_MASS, NP_W, S_BEND, S_CURC, S_CURS
 from .seabed import seabed_forces
 
 
@@ -58,16 +68,69 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     instead of ``T = 0``, and the geometric stiffness of every element is ``max(act, 0) / l``.
     """
     S = par.S
-    # element directions and lengths once, the node tangents from them
-    element_geometry(r, w.el)
-    _tangents_from(w.el, w.q)
-    element_forces(v, fs, par.P, par.E, S, w.el, want_jac, cK, cC, use_act, w.act, w.tens, f,
-                   w.Dg, w.Of)
+    P = par.P
+    E = par.E
+    kind = flat_kind(P, E, par.wk, par.cur_z)
+    # the flat views need C-contiguous arrays (the bundles' arrays are: numba types them so and
+    # these tests are then constants)
+    contig = (r.flags.c_contiguous and v.flags.c_contiguous and f.flags.c_contiguous
+              and P.flags.c_contiguous and E.flags.c_contiguous and par.wk.flags.c_contiguous
+              and w.el.flags.c_contiguous and w.q.flags.c_contiguous
+              and w.Of.flags.c_contiguous and w.Dg.flags.c_contiguous
+              and w.tens.flags.c_contiguous)
+    if contig and (kind & 1) and not use_act and not (want_jac and cC == 0.0):
+        # the element passes vectorised across the elements (flat.py, the same bits); not for
+        # the tension estimates of stiff elements nor the static tangent
+        el = w.el.reshape(w.el.size)
+        element_geometry_flat(r.reshape(r.size), el)
+        _tangents_from(w.el, w.q)
+        vf = v.reshape(v.size)
+        Pf = P.reshape(P.size)
+        Ef = E.reshape(E.size)
+        if want_jac:
+            Of = w.Of.reshape(w.Of.size)
+            element_pass_jac(vf, Pf, Ef, el, cK, cC, w.tens, Of)
+            block_sums(Of, w.Dg.reshape(w.Dg.size))
+        else:
+            element_pass(vf, Pf, Ef, el, w.tens)
+        node_sums(Pf, el, w.tens, f.reshape(f.size))
+    else:
+        # element directions and lengths once, the node tangents from them
+        element_geometry(r, w.el)
+        _tangents_from(w.el, w.q)
+        element_forces(v, fs, P, E, S, w.el, want_jac, cK, cC, use_act, w.act, w.tens, f,
+                       w.Dg, w.Of)
     # bending (pinned ends): discrete elastica energy c_i (1 - e_a . e_b) at interior nodes
     if S[S_BEND] > 0.0:
         bending_forces(r, par.P, f, want_jac, cK, w.Dg, w.Of, w.BX)
-    fluid_forces(r, v, w.q, par.P, S, par.cur_z, par.cur_u, par.wk, want_jac, cC, f, w.Dg)
+    if contig and (kind & 2):
+        qf = w.q.reshape(w.q.size)
+        vf = v.reshape(v.size)
+        Pf = P.reshape(P.size)
+        wkf = par.wk.reshape(par.wk.size)
+        if want_jac:
+            fluid_pass_jac(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, cC, f.reshape(f.size),
+                           w.Dg.reshape(w.Dg.size))
+        else:
+            fluid_pass(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, f.reshape(f.size))
+    else:
+        fluid_forces(r, v, w.q, P, S, par.cur_z, par.cur_u, par.wk, want_jac, cC, f, w.Dg)
     seabed_forces(r, v, w.q, fs, par.P, S, par.fric, want_jac, cK, cC, f, w.Dg)
+
+
+@njit(cache=True)
+def flat_kind(P, E, wk, cur_z):
+    """Which passes of :mod:`.flat` a line's force evaluation can take: bit 1 the element
+    passes (no element with a fibre law), bit 2 the fluid passes (no current profile, no clump
+    drag, no wave accelerations at the nodes)."""
+    fib = False
+    for j in range(E.shape[0]):
+        fib = fib | (E[j, EL_LAW] != 0.0)
+    other = cur_z.shape[0] != 0
+    for i in range(P.shape[0]):
+        other = other | (P[i, NP_KC] > 0.0) | (wk[i, 3] != 0.0) | (wk[i, 4] != 0.0) \
+            | (wk[i, 5] != 0.0)
+    return (0 if fib else 1) | (0 if other else 2)
 
 
 @njit(cache=True)

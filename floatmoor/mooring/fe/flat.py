@@ -1,0 +1,378 @@
+"""The passes of a line kernel force evaluation (:func:`~.forces.line_forces`) vectorised across
+the elements and nodes of one line: element geometry, node tangents, the element pass of the
+forces and their tangent, and the fluid pass.
+
+The line kernel keeps its arrays as (node, axis); a loop over the nodes of such an array is
+scalar in numba's code (every index carries a negative-index wrap-around and every division a
+branch to ZeroDivisionError, and LLVM cannot prove the arrays apart).  These passes take flat
+views of the same arrays (``r.reshape(3 n)``: the entry of node ``i``, axis ``k`` at ``3 i +
+k``), unsigned indices and the lanes' compiler options (:data:`~.lanes.LANE_JIT`: ``noalias``
+arguments, numpy's error model), and they write both sides of a branch and select, as the lane
+kernels do (:mod:`.lanes`).  LLVM then packs four elements or nodes per AVX2 register,
+interleaving the axes of the (node, axis) rows in registers.  Each element or node gets the
+arithmetic of :func:`~.elements.element_forces`, :func:`~.elements.element_geometry`,
+:func:`~.elements._tangents_from` and :func:`~.fluid.fluid_forces` operation for operation, so
+the results are those of these functions to the bit (tests/mooring/fe/test_flat_passes.py).
+
+They cover the common lines: elements with the polynomial law (no fibre law), no tension
+estimates of stiff elements, the dynamic tangent (``cC`` > 0) or none; the fluid pass without a
+current profile and without clump drag.  :func:`~.forces._line_forces` takes them when a line
+qualifies and the general functions otherwise.
+
+The element pass is split in two: the element quantities (tension, tangent block) of every
+element (:func:`element_pass`, vectorised), then the node sums (:func:`node_sums`, the node's
+own load, element ``i - 1``, element ``i``, in that order as in the element loop of
+:func:`~.elements.element_forces`).  The upper off-diagonal blocks ``Of`` hold the elements'
+positive blocks in between.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .lanes import LANE_JIT
+from .layout import (
+    EL_B,
+    EL_C1,
+    EL_C2,
+    EL_C3,
+    EL_L0,
+    N_EL,
+    N_NP,
+    NP_KDN,
+    NP_KDT,
+    NP_W,
+)
+
+__all__ = ["element_geometry_flat", "element_pass", "element_pass_jac", "node_sums",
+           "block_sums", "fluid_pass", "fluid_pass_jac"]
+
+
+@njit(inline="always")
+def u(i):
+    """Unsigned index (no negative-index wrap-around; see :func:`~.lanes.ix`)."""
+    return np.uintp(i)
+
+
+@njit(**LANE_JIT)
+def element_geometry_flat(r, el):
+    """:func:`~.elements.element_geometry` on the flat views ``r`` (3 n) and ``el`` (4 (n-1))."""
+    m = el.shape[0] // 4
+    for j in range(m):
+        a = u(3 * j)
+        b = u(3 * j + 3)
+        e = u(4 * j)
+        dx = r[b] - r[a]
+        dy = r[b + 1] - r[a + 1]
+        dz = r[b + 2] - r[a + 2]
+        ll = math.sqrt(dx * dx + dy * dy + dz * dz)
+        el[e] = dx / ll
+        el[e + 1] = dy / ll
+        el[e + 2] = dz / ll
+        el[e + 3] = ll
+
+
+# The element law is written out in both element passes: called as a function (even inlined
+# by numba), it keeps LLVM from vectorising the loop, and so does a select of a loaded value
+# (checked in the assembly: benchmarks/check_flat_asm.py).
+@njit(**LANE_JIT)
+def element_pass(v, P, E, el, tens):
+    """Element tensions into ``tens`` (n-1) (:func:`~.elements.element_forces` without the
+    tangent): the polynomial law of :func:`~.elements._tension` with its slack cubic and the
+    internal damping faded in over the slack transition; ``v`` (3 n), ``P`` (N_NP n), ``E``
+    (N_EL (n-1)), ``el`` (4 (n-1)) flat."""
+    m = tens.shape[0]
+    for j in range(m):
+        e4 = u(4 * j)
+        ke = u(N_EL * j)
+        pa = u(N_NP * j)
+        pb = u(N_NP * j + N_NP)
+        a = u(3 * j)
+        b = u(3 * j + 3)
+        ll = el[e4 + 3]
+        ex = el[e4]
+        ey = el[e4 + 1]
+        ez = el[e4 + 2]
+        L0 = E[ke + EL_L0]
+        eps = ll / L0 - 1.0
+        c1 = E[ke + EL_C1]
+        c2 = E[ke + EL_C2]
+        c3 = E[ke + EL_C3]
+        e0 = max(abs(P[pa + NP_W]) + abs(P[pb + NP_W]), 1e-6) / c1
+        # elements._tension: 0 in compression, the law beyond e0, the cubic in between
+        Tl = c1 * eps + c2 * eps * eps + c3 * eps * eps * eps
+        Dl = c1 + 2.0 * c2 * eps + 3.0 * c3 * eps * eps
+        T0 = c1 * e0 + c2 * e0 * e0 + c3 * e0 * e0 * e0
+        D0 = c1 + 2.0 * c2 * e0 + 3.0 * c3 * e0 * e0
+        Bc = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
+        Ac = (T0 - Bc * e0 * e0 * e0) / (e0 * e0)
+        Tc = Ac * eps * eps + Bc * eps * eps * eps
+        Dc = 2.0 * Ac * eps + 3.0 * Bc * eps * eps
+        comp = eps <= 0.0
+        up = eps >= e0
+        T = 0.0 if comp else (Tl if up else Tc)
+        dTde = 0.0 if comp else (Dl if up else Dc)
+        # internal damping (element_forces: with Bj != 0 and eps > 0); the damping kinematics
+        # of every element (with Bj = 0 they enter no result, so the element kernel's zeros
+        # need not be selected)
+        Bj = E[ke + EL_B]
+        dvx = v[b] - v[a]
+        dvy = v[b + 1] - v[a + 1]
+        dvz = v[b + 2] - v[a + 2]
+        ldot = ex * dvx + ey * dvy + ez * dvz
+        on = (Bj != 0.0) & (eps > 0.0)
+        xs = eps / e0
+        inr = xs < 1.0
+        sm = xs * xs * (3.0 - 2.0 * xs) if inr else 1.0
+        dsm = 6.0 * xs * (1.0 - xs) / e0 if inr else 0.0
+        B = Bj * sm if on else 0.0
+        T = T + B * ldot / L0 if on else T
+        dTde = dTde + Bj * dsm * ldot / L0 if on else dTde
+        tens[u(j)] = T
+
+
+@njit(**LANE_JIT)
+def element_pass_jac(v, P, E, el, cK, cC, tens, Of):
+    """:func:`element_pass` and every element's block ``(ka + cb) e e^T + kg (I - e e^T)`` plus
+    the position derivative of the damping force, row by row into ``Of`` (9 (n-1)) (positive:
+    :func:`block_sums` forms the diagonal blocks and then negates them); the dynamic tangent
+    (``cC`` > 0) of :func:`~.elements.element_forces`."""
+    m = tens.shape[0]
+    for j in range(m):
+        e4 = u(4 * j)
+        ke = u(N_EL * j)
+        pa = u(N_NP * j)
+        pb = u(N_NP * j + N_NP)
+        a = u(3 * j)
+        b = u(3 * j + 3)
+        ll = el[e4 + 3]
+        ex = el[e4]
+        ey = el[e4 + 1]
+        ez = el[e4 + 2]
+        L0 = E[ke + EL_L0]
+        eps = ll / L0 - 1.0
+        c1 = E[ke + EL_C1]
+        c2 = E[ke + EL_C2]
+        c3 = E[ke + EL_C3]
+        e0 = max(abs(P[pa + NP_W]) + abs(P[pb + NP_W]), 1e-6) / c1
+        # elements._tension: 0 in compression, the law beyond e0, the cubic in between
+        Tl = c1 * eps + c2 * eps * eps + c3 * eps * eps * eps
+        Dl = c1 + 2.0 * c2 * eps + 3.0 * c3 * eps * eps
+        T0 = c1 * e0 + c2 * e0 * e0 + c3 * e0 * e0 * e0
+        D0 = c1 + 2.0 * c2 * e0 + 3.0 * c3 * e0 * e0
+        Bc = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
+        Ac = (T0 - Bc * e0 * e0 * e0) / (e0 * e0)
+        Tc = Ac * eps * eps + Bc * eps * eps * eps
+        Dc = 2.0 * Ac * eps + 3.0 * Bc * eps * eps
+        comp = eps <= 0.0
+        up = eps >= e0
+        T = 0.0 if comp else (Tl if up else Tc)
+        dTde = 0.0 if comp else (Dl if up else Dc)
+        # internal damping (element_forces: with Bj != 0 and eps > 0); the damping kinematics
+        # of every element (with Bj = 0 they enter no result, so the element kernel's zeros
+        # need not be selected)
+        Bj = E[ke + EL_B]
+        dvx = v[b] - v[a]
+        dvy = v[b + 1] - v[a + 1]
+        dvz = v[b + 2] - v[a + 2]
+        ldot = ex * dvx + ey * dvy + ez * dvz
+        on = (Bj != 0.0) & (eps > 0.0)
+        xs = eps / e0
+        inr = xs < 1.0
+        sm = xs * xs * (3.0 - 2.0 * xs) if inr else 1.0
+        dsm = 6.0 * xs * (1.0 - xs) / e0 if inr else 0.0
+        B = Bj * sm if on else 0.0
+        T = T + B * ldot / L0 if on else T
+        dTde = dTde + Bj * dsm * ldot / L0 if on else dTde
+        tens[u(j)] = T
+        ka = cK * dTde / L0
+        kg = cK * max(T, 0.0) / ll
+        nz = B != 0.0
+        cbv = cC * B / L0
+        kbv = cK * B / (L0 * ll)
+        cb = cbv if nz else 0.0
+        kb = kbv if nz else 0.0
+        kac = ka + cb
+        ee = ex * ex
+        v00 = kac * ee + kg * (1.0 - ee)
+        ee = ey * ey
+        v11 = kac * ee + kg * (1.0 - ee)
+        ee = ez * ez
+        v22 = kac * ee + kg * (1.0 - ee)
+        ee = ex * ey
+        v01 = kac * ee + kg * (0.0 - ee)
+        v10 = v01
+        ee = ex * ez
+        v02 = kac * ee + kg * (0.0 - ee)
+        v20 = v02
+        ee = ey * ez
+        v12 = kac * ee + kg * (0.0 - ee)
+        v21 = v12
+        kz = kb != 0.0
+        dpx = dvx - ldot * ex
+        dpy = dvy - ldot * ey
+        dpz = dvz - ldot * ez
+        w00 = v00 + kb * ex * dpx
+        w01 = v01 + kb * ex * dpy
+        w02 = v02 + kb * ex * dpz
+        w10 = v10 + kb * ey * dpx
+        w11 = v11 + kb * ey * dpy
+        w12 = v12 + kb * ey * dpz
+        w20 = v20 + kb * ez * dpx
+        w21 = v21 + kb * ez * dpy
+        w22 = v22 + kb * ez * dpz
+        o = u(9 * j)
+        Of[o] = w00 if kz else v00
+        Of[o + 1] = w01 if kz else v01
+        Of[o + 2] = w02 if kz else v02
+        Of[o + 3] = w10 if kz else v10
+        Of[o + 4] = w11 if kz else v11
+        Of[o + 5] = w12 if kz else v12
+        Of[o + 6] = w20 if kz else v20
+        Of[o + 7] = w21 if kz else v21
+        Of[o + 8] = w22 if kz else v22
+
+
+@njit(**LANE_JIT)
+def node_sums(P, el, tens, f):
+    """Every node's weight and element forces into ``f`` (3 n) from the element tensions
+    ``tens`` and directions ``el``: the sums of :func:`~.elements.element_forces` (the node's
+    own load, then element ``i - 1``, then element ``i``)."""
+    n = f.shape[0] // 3
+    m = n - 1
+    f[0] = 0.0 + tens[0] * el[0]
+    f[1] = 0.0 + tens[0] * el[1]
+    f[2] = -P[NP_W] + tens[0] * el[2]
+    for i in range(1, n - 1):
+        a = u(4 * i - 4)
+        b = u(4 * i)
+        ta = tens[u(i - 1)]
+        tb = tens[u(i)]
+        c = u(3 * i)
+        f[c] = (0.0 - ta * el[a]) + tb * el[b]
+        f[c + 1] = (0.0 - ta * el[a + 1]) + tb * el[b + 1]
+        f[c + 2] = (-P[u(N_NP * i) + NP_W] - ta * el[a + 2]) + tb * el[b + 2]
+    a = u(4 * m - 4)
+    ta = tens[u(m - 1)]
+    c = u(3 * m)
+    f[c] = 0.0 - ta * el[a]
+    f[c + 1] = 0.0 - ta * el[a + 1]
+    f[c + 2] = -P[u(N_NP * m) + NP_W] - ta * el[a + 2]
+
+
+@njit(**LANE_JIT)
+def block_sums(Of, Dg):
+    """The diagonal blocks ``Dg`` (9 n) of the element tangent from the elements' positive
+    blocks in ``Of`` (9 (n-1), :func:`element_pass_jac`): ``0 + K_(i-1) + K_i`` as the element
+    loop of :func:`~.elements.element_forces` sums them; then ``Of`` negated (the upper
+    off-diagonal blocks).  Entry ``k`` of the block of node ``i`` is at ``9 i + k``, so the
+    interior nodes are one loop over ``9 (i - 1) + k``."""
+    m9 = Of.shape[0]
+    for o in range(9):
+        Dg[u(o)] = 0.0 + Of[u(o)]
+    for o in range(m9 - 9):
+        Dg[u(o + 9)] = (0.0 + Of[u(o)]) + Of[u(o + 9)]
+    for o in range(m9 - 9, m9):
+        Dg[u(o + 9)] = 0.0 + Of[u(o)]
+    for o in range(m9):
+        Of[u(o)] = -Of[u(o)]
+
+
+@njit(**LANE_JIT)
+def fluid_pass(v, q, P, ccos, csin, wk, f):
+    """The drag of :func:`~.fluid.fluid_forces` added into ``f`` (3 n), for a line without a
+    current profile, clump drag and wave accelerations at the nodes (the fluid inertia is then
+    zero and the kernel skips it); ``v, q`` (3 n), ``P`` (N_NP n), ``wk`` (6 n) flat."""
+    n = f.shape[0] // 3
+    for i in range(n):
+        c = u(3 * i)
+        w = u(6 * i)
+        p = u(N_NP * i)
+        qx = q[c]
+        qy = q[c + 1]
+        qz = q[c + 2]
+        uc = 0.0
+        vrx = v[c] - uc * ccos - wk[w]
+        vry = v[c + 1] - uc * csin - wk[w + 1]
+        vrz = v[c + 2] - wk[w + 2]
+        vq = vrx * qx + vry * qy + vrz * qz
+        vnx = vrx - vq * qx
+        vny = vry - vq * qy
+        vnz = vrz - vq * qz
+        vn = math.sqrt(vnx * vnx + vny * vny + vnz * vnz)
+        kdn = P[p + NP_KDN]
+        kdt = P[p + NP_KDT]
+        f[c] = f[c] - (kdn * vn * vnx + kdt * abs(vq) * vq * qx)
+        f[c + 1] = f[c + 1] - (kdn * vn * vny + kdt * abs(vq) * vq * qy)
+        f[c + 2] = f[c + 2] - (kdn * vn * vnz + kdt * abs(vq) * vq * qz)
+
+
+@njit(**LANE_JIT)
+def fluid_pass_jac(v, q, P, ccos, csin, wk, cC, f, Dg):
+    """:func:`fluid_pass` and the drag blocks of :func:`~.fluid.fluid_forces` times ``cC``
+    added into ``Dg`` (9 n), in one pass."""
+    n = f.shape[0] // 3
+    for i in range(n):
+        c = u(3 * i)
+        w = u(6 * i)
+        p = u(N_NP * i)
+        qx = q[c]
+        qy = q[c + 1]
+        qz = q[c + 2]
+        uc = 0.0
+        vrx = v[c] - uc * ccos - wk[w]
+        vry = v[c + 1] - uc * csin - wk[w + 1]
+        vrz = v[c + 2] - wk[w + 2]
+        vq = vrx * qx + vry * qy + vrz * qz
+        vnx = vrx - vq * qx
+        vny = vry - vq * qy
+        vnz = vrz - vq * qz
+        vn = math.sqrt(vnx * vnx + vny * vny + vnz * vnz)
+        kdn = P[p + NP_KDN]
+        kdt = P[p + NP_KDT]
+        f[c] = f[c] - (kdn * vn * vnx + kdt * abs(vq) * vq * qx)
+        f[c + 1] = f[c + 1] - (kdn * vn * vny + kdt * abs(vq) * vq * qy)
+        f[c + 2] = f[c + 2] - (kdn * vn * vnz + kdt * abs(vq) * vq * qz)
+        kv = kdn * vn
+        kt = 2.0 * kdt * abs(vq)
+        qq = qx * qx
+        v00 = kv * (1.0 - qq) + kt * qq
+        qq = qy * qy
+        v11 = kv * (1.0 - qq) + kt * qq
+        qq = qz * qz
+        v22 = kv * (1.0 - qq) + kt * qq
+        qq = qx * qy
+        v01 = kv * (0.0 - qq) + kt * qq
+        v10 = v01
+        qq = qx * qz
+        v02 = kv * (0.0 - qq) + kt * qq
+        v20 = v02
+        qq = qy * qz
+        v12 = kv * (0.0 - qq) + kt * qq
+        v21 = v12
+        pos = vn > 0.0
+        kn = kdn * vnx
+        w00 = v00 + kn * vnx / vn
+        w01 = v01 + kn * vny / vn
+        w02 = v02 + kn * vnz / vn
+        kn = kdn * vny
+        w10 = v10 + kn * vnx / vn
+        w11 = v11 + kn * vny / vn
+        w12 = v12 + kn * vnz / vn
+        kn = kdn * vnz
+        w20 = v20 + kn * vnx / vn
+        w21 = v21 + kn * vny / vn
+        w22 = v22 + kn * vnz / vn
+        o = u(9 * i)
+        Dg[o] += cC * (w00 if pos else v00)
+        Dg[o + 1] += cC * (w01 if pos else v01)
+        Dg[o + 2] += cC * (w02 if pos else v02)
+        Dg[o + 3] += cC * (w10 if pos else v10)
+        Dg[o + 4] += cC * (w11 if pos else v11)
+        Dg[o + 5] += cC * (w12 if pos else v12)
+        Dg[o + 6] += cC * (w20 if pos else v20)
+        Dg[o + 7] += cC * (w21 if pos else v21)
+        Dg[o + 8] += cC * (w22 if pos else v22)

@@ -1,0 +1,109 @@
+"""The line kernel's force evaluation through the vectorised passes of ``mooring/fe/flat.py``
+gives the general passes' numbers to the bit.
+
+``forces._line_forces`` takes the flat passes for a line without fibre law, current profile,
+clump drag or wave accelerations (``forces.flat_kind``).  The reference here is the composition
+of the general functions it replaces (``element_geometry``, ``_tangents_from``,
+``element_forces``, ``fluid_forces``, ``seabed_forces``), called on copies of the same inputs;
+every output (forces, tensions, element directions, node tangents, diagonal and off-diagonal
+tangent blocks) must be equal bit for bit.  States: the OC3 line (internal damping, seabed
+contact) at rest and perturbed at random, with slack elements (an element shortened to a
+thousandth), nodes moving both ways through the seabed, wave particle velocities at the nodes,
+and without internal damping; with and without the tangent.
+"""
+
+import numpy as np
+import pytest
+
+from floatmoor.mooring.fe import FELine
+from floatmoor.mooring.fe.elements import (
+    _tangents_from,
+    element_forces,
+    element_geometry,
+)
+from floatmoor.mooring.fe.fluid import fluid_forces
+from floatmoor.mooring.fe.forces import _line_forces, flat_kind
+from floatmoor.mooring.fe.layout import EL_B, NP_KC
+from floatmoor.mooring.fe.seabed import seabed_forces
+
+from .conftest import oc3_spec
+
+
+def _reference(r, v, fs, par, want_jac, cK, cC, w):
+    """The general passes of ``_line_forces`` on copies of the work arrays."""
+    el = np.zeros_like(w.el)
+    q = np.zeros_like(w.q)
+    tens = np.zeros_like(w.tens)
+    Dg = np.zeros_like(w.Dg)
+    Of = np.zeros_like(w.Of)
+    f = np.zeros_like(r)
+    element_geometry(r, el)
+    _tangents_from(el, q)
+    element_forces(v, fs, par.P, par.E, par.S, el, want_jac, cK, cC, False, w.act, tens, f,
+                   Dg, Of)
+    fluid_forces(r, v, q, par.P, par.S, par.cur_z, par.cur_u, par.wk, want_jac, cC, f, Dg)
+    seabed_forces(r, v, q, fs, par.P, par.S, par.fric, want_jac, cK, cC, f, Dg)
+    return f, tens, el, q, Dg, Of
+
+
+def _states(line, rng, n_random=60):
+    r0 = line.r.copy()
+    yield r0, np.zeros_like(r0)
+    for k in range(n_random):
+        r = r0 + rng.normal(scale=0.05, size=r0.shape)
+        v = rng.normal(scale=0.3, size=r0.shape)
+        if k % 4 == 1:
+            j = 3 + k % 20
+            r[j + 1] = r[j] + 1e-3 * (r[j + 1] - r[j])      # a slack element
+        if k % 5 == 2:
+            v[:, 2] = np.where(np.arange(r.shape[0]) % 2, 0.005, -0.005)  # seabed damping zone
+        yield r, v
+
+
+@pytest.mark.parametrize("damping", [-0.8, 0.0])
+def test_flat_passes_are_the_general_passes_bit_for_bit(damping):
+    line = FELine(oc3_spec(n=40, damping=damping))
+    line.solve_static()
+    line.start()
+    b = line.bundle
+    par, w = b.par, b.work
+    # (the flat passes apply to this line; with damping 0 the elements have B = 0)
+    assert flat_kind(par.P, par.E, par.wk, par.cur_z) == 3
+    assert (par.E[:, EL_B] != 0.0).all() == (damping != 0.0)
+    assert not (par.P[:, NP_KC] > 0.0).any()
+    rng = np.random.default_rng(7)
+    fs = b.now.fs
+    for i, (r, v) in enumerate(_states(line, rng)):
+        par.wk[:, :3] = rng.normal(scale=0.5, size=(r.shape[0], 3)) if i % 3 == 2 else 0.0
+        for want_jac in (True, False):
+            ref = _reference(r, v, fs, par, want_jac, 0.0021, 0.043, w)
+            f = np.zeros_like(r)
+            _line_forces(r, v, fs, par, want_jac, 0.0021, 0.043, f, w, False)
+            got = (f, w.tens, w.el, w.q, w.Dg, w.Of)
+            names = ("f", "tens", "el", "q", "Dg", "Of") if want_jac else ("f", "tens", "el", "q")
+            for name, a, bb in zip(names, ref, got):
+                assert np.array_equal(a, bb, equal_nan=True), (i, want_jac, name,
+                                                               np.abs(a - bb).max())
+    par.wk[:] = 0.0
+
+
+def test_lines_outside_the_flat_passes_take_the_general_ones():
+    """A wave acceleration, a current profile or a clump weight turns the flat passes off
+    (``flat_kind``): the fluid inertia, the current lookup and the clump drag are only in the
+    general pass; an element with a fibre law turns the element passes off."""
+    line = FELine(oc3_spec(n=20))
+    line.solve_static()
+    line.start()
+    par = line.bundle.par
+    assert flat_kind(par.P, par.E, par.wk, par.cur_z) == 3
+    wk = par.wk.copy()
+    wk[5, 4] = 0.1
+    assert flat_kind(par.P, par.E, wk, par.cur_z) == 1
+    P = par.P.copy()
+    P[3, NP_KC] = 10.0
+    assert flat_kind(P, par.E, par.wk, par.cur_z) == 1
+    assert flat_kind(par.P, par.E, par.wk, np.array([-320.0, 0.0])) == 1
+    from floatmoor.mooring.fe.fibre_law import EL_LAW
+    E = par.E.copy()
+    E[2, EL_LAW] = 1.0
+    assert flat_kind(par.P, E, par.wk, par.cur_z) == 2
