@@ -31,9 +31,10 @@ from .energy import (
     line_energy,
 )
 from .fibre_law import fibre_commit
+from .flat import copy_nodes, energy_sums, energy_terms, flat
 from .forces import line_forces
 from .gen_alpha import gen_alpha_step
-from .layout import N_S, S_ZC
+from .layout import N_S, S_DC, S_ZC
 from .seabed import friction_commit, friction_decide
 
 
@@ -47,12 +48,9 @@ def accept_trial(ln):
     ec = ln.work.energy
     for k in range(ec.shape[1]):
         ec[1, k] = ec[0, k]
+    copy_nodes(flat(tr.r), flat(tr.v), flat(tr.a), flat(tr.f), flat(now.r), flat(now.v),
+               flat(now.a), flat(now.f))
     for i in range(tr.r.shape[0]):
-        for k in range(3):
-            now.r[i, k] = tr.r[i, k]
-            now.v[i, k] = tr.v[i, k]
-            now.a[i, k] = tr.a[i, k]
-            now.f[i, k] = tr.f[i, k]
         for k in range(tr.fs.shape[1]):
             now.fs[i, k] = tr.fs[i, k]
 
@@ -248,7 +246,11 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
             return it
         # energy audit: a step may not create energy (line_energy); one that does is halved,
         # and at the smallest sub-step it is recorded (or stops the run beyond AUDIT_HARD)
-        en1, pw1, bud1, _, pen, ipen = line_energy(rB, vB, fA, P, E, S, lw.el, q, False)
+        # (line_energy with geom False: its terms vectorised, summed in its order; the same
+        # numbers)
+        energy_terms(flat(rB), flat(vB), flat(fA), flat(P), flat(E), flat(lw.el), flat(q),
+                     S[S_ZC], S[S_DC], flat(lw.ew))
+        en1, pw1, bud1, _, pen, ipen = energy_sums(rB, vB, P, E, lw.el, lw.ew)
         created = en1 - en0 - 0.5 * sz * hmin * (pw0 + pw1)
         budget = max(bud0, bud1)
         if created > max(AUDIT_REL * budget, efloor):
@@ -288,12 +290,8 @@ def ga_advance(t1, dt, nsub, max_split, rf1, vf1, now, trial, step, par, w):
         pw0 = pw1
         bud0 = bud1
         stats[0] += it
-        for i in range(n):
-            for k in range(3):
-                rA[i, k] = rB[i, k]
-                vA[i, k] = vB[i, k]
-                aA[i, k] = aB[i, k]
-                fnA[i, k] = fA[i, k]
+        copy_nodes(flat(rB), flat(vB), flat(aB), flat(fA), flat(rA), flat(vA), flat(aA),
+                   flat(fnA))
         friction_commit(rA, vA, q, fric, fs1, P, S, S[S_ZC])
         if S.shape[0] > N_S:
             fibre_commit(rA, fs1, P, lp.E, S, sz * hmin)

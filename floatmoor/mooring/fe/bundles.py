@@ -26,6 +26,8 @@ N_AU = 12
 N_EN = 5
 """Columns of :attr:`LineWork.energy`: known (1.0) or not (0.0), then the energy, power,
 energy budget and summed submerged weight of :func:`~.energy.line_energy`."""
+N_EW = 10
+"""Rows of :attr:`LineWork.ew` (``flat.EW_*``)."""
 
 __all__ = ["LineParams", "LineState", "LineWork", "LineBundle", "new_state", "new_work"]
 
@@ -123,6 +125,9 @@ class LineWork(NamedTuple):
     audit: np.ndarray
     """(``kernels.N_AU``,) energy audit and self-check of the run (cumulative since
     :meth:`FELine.start`, not reset per call; columns ``kernels.AU_*``)."""
+    ew: np.ndarray
+    """(``flat.N_EW``, n) scratch of the energy audit: the terms of every element and node
+    (:func:`~.flat.energy_terms`), summed in the audit's order (:func:`~.flat.energy_sums`)."""
     energy: np.ndarray
     """(2, :data:`N_EN`) the energy audit's figures of the trial state's end (row 0, written
     by a completed :func:`~.advance.ga_advance`) and of the accepted state (row 1, copied
@@ -159,5 +164,5 @@ def new_work(n: int) -> LineWork:
                     BX=np.zeros((7, n, 3, 3)), R=z3(), W=np.zeros((n, 3, 3)), Y=z3(),
                     T1=np.zeros((3, 3)), dx=z3(), rtry=z3(), rf=np.zeros(3), vf=np.zeros(3),
                     info=np.zeros(3), stats=np.zeros(2),
-                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU),
+                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU), ew=np.zeros((N_EW, n)),
                     energy=np.zeros((2, N_EN)))

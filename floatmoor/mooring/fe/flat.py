@@ -31,8 +31,16 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.core import cgutils
+from numba.core.imputils import impl_ret_borrowed
+from numba.extending import intrinsic, overload
+from numba.np.arrayobj import make_array, populate_array
 
+from .bundles import N_EW
+from .elements import E0_STIFF
+from .energy import PEN_FLOOR, PEN_WEIGHTS
+from .fibre_law import EL_LAW
 from .lanes import LANE_JIT
 from .layout import (
     EL_B,
@@ -44,11 +52,54 @@ from .layout import (
     N_NP,
     NP_KDN,
     NP_KDT,
+    NP_KS,
+    NP_MAC,
+    NP_MAN,
+    NP_MASS,
+    NP_MAT,
     NP_W,
 )
 
-__all__ = ["element_geometry_flat", "element_pass", "element_pass_jac", "node_sums",
-           "block_sums", "fluid_pass", "fluid_pass_jac"]
+__all__ = ["flat", "element_geometry_flat", "element_pass", "element_pass_jac", "node_sums",
+           "block_sums", "fluid_pass", "fluid_pass_jac", "kinematics_flat", "mass_blocks_flat",
+           "copy_nodes", "energy_terms", "energy_sums", "N_EW"]
+
+
+@intrinsic
+def _flat_view(typingctx, arr):
+    """The 1-D view of a C-contiguous array (same data, ``size`` entries): what
+    ``arr.reshape(arr.size)`` returns, built directly (numba's reshape calls a helper that
+    checks the strides, about 30 ns, more than a small pass over a line takes)."""
+    if not (isinstance(arr, types.Array) and arr.layout == "C"):
+        return None
+    ret = types.Array(arr.dtype, 1, "C", readonly=not arr.mutable)
+
+    def codegen(context, builder, sig, args):
+        ary = make_array(sig.args[0])(context, builder, value=args[0])
+        out = make_array(sig.return_type)(context, builder)
+        shape = cgutils.unpack_tuple(builder, ary.shape)
+        size = shape[0]
+        for s in shape[1:]:
+            size = builder.mul(size, s)
+        populate_array(out, data=ary.data, shape=cgutils.pack_array(builder, [size]),
+                       strides=cgutils.pack_array(builder, [ary.itemsize]),
+                       itemsize=ary.itemsize, meminfo=ary.meminfo, parent=ary.parent)
+        return impl_ret_borrowed(context, builder, sig.return_type, out._getvalue())
+
+    return ret(arr), codegen
+
+
+def flat(a):
+    """The 1-D view of the contiguous array ``a`` (``a.reshape(a.size)``; in numba code
+    without the reshape helper for a C-contiguous array type)."""
+    return a.reshape(a.size)
+
+
+@overload(flat)
+def _flat_overload(a):
+    if isinstance(a, types.Array) and a.layout == "C":
+        return lambda a: _flat_view(a)
+    return lambda a: a.reshape(a.size)
 
 
 @njit(inline="always")
@@ -376,3 +427,185 @@ def fluid_pass_jac(v, q, P, ccos, csin, wk, cC, f, Dg):
         Dg[o + 6] += cC * (w20 if pos else v20)
         Dg[o + 7] += cC * (w21 if pos else v21)
         Dg[o + 8] += cC * (w22 if pos else v22)
+
+
+@njit(**LANE_JIT)
+def kinematics_flat(dt, beta, gamma, r, v, a, a1, r1, v1):
+    """:func:`~.gen_alpha.kinematics` on flat views (3 n): positions and velocities of the
+    free nodes (entries 3 to 3 n - 4) from the accelerations ``a1``, the same arithmetic."""
+    m = r.shape[0] - 3
+    for o in range(3, m):
+        k = u(o)
+        r1[k] = r[k] + dt * v[k] + dt * dt * ((0.5 - beta) * a[k] + beta * a1[k])
+        v1[k] = v[k] + dt * ((1.0 - gamma) * a[k] + gamma * a1[k])
+
+
+@njit(**LANE_JIT)
+def mass_blocks_flat(P, q, Mb):
+    """:func:`~.elements._mass_blocks` on flat views: the 3x3 mass block (structural plus
+    added mass) of every node from its tangent, ``P`` (N_NP n), ``q`` (3 n), ``Mb`` (9 n)."""
+    n = q.shape[0] // 3
+    for i in range(n):
+        p = u(N_NP * i)
+        c = u(3 * i)
+        o = u(9 * i)
+        m = P[p + NP_MASS] + P[p + NP_MAC]
+        man = P[p + NP_MAN]
+        mat = P[p + NP_MAT]
+        q0 = q[c]
+        q1 = q[c + 1]
+        q2 = q[c + 2]
+        qq = q0 * q0
+        Mb[o] = m * 1.0 + man * (1.0 - qq) + mat * qq
+        qq = q0 * q1
+        Mb[o + 1] = m * 0.0 + man * (0.0 - qq) + mat * qq
+        qq = q0 * q2
+        Mb[o + 2] = m * 0.0 + man * (0.0 - qq) + mat * qq
+        qq = q1 * q0
+        Mb[o + 3] = m * 0.0 + man * (0.0 - qq) + mat * qq
+        qq = q1 * q1
+        Mb[o + 4] = m * 1.0 + man * (1.0 - qq) + mat * qq
+        qq = q1 * q2
+        Mb[o + 5] = m * 0.0 + man * (0.0 - qq) + mat * qq
+        qq = q2 * q0
+        Mb[o + 6] = m * 0.0 + man * (0.0 - qq) + mat * qq
+        qq = q2 * q1
+        Mb[o + 7] = m * 0.0 + man * (0.0 - qq) + mat * qq
+        qq = q2 * q2
+        Mb[o + 8] = m * 1.0 + man * (1.0 - qq) + mat * qq
+
+
+@njit(**LANE_JIT)
+def copy_nodes(r, v, a, f, r2, v2, a2, f2):
+    """``r2, v2, a2, f2 = r, v, a, f`` entry by entry on flat views (a state's nodes: the
+    copies of an accepted sub-step and of an accept, vectorised)."""
+    for o in range(r.shape[0]):
+        k = u(o)
+        r2[k] = r[k]
+        v2[k] = v[k]
+        a2[k] = a[k]
+        f2[k] = f[k]
+
+
+# rows of LineWork.ew (the energy pass's per-element and per-node terms, flat_energy)
+EW_UE, EW_PWE, EW_EON, EW_KE, EW_EZ, EW_PV, EW_ES, EW_PS, EW_PEN, EW_CON = range(N_EW)
+
+
+@njit(**LANE_JIT)
+def energy_terms(r, v, f, P, E, el, q, zc, dc, ew):
+    """The terms of :func:`~.energy.line_energy` (``geom`` False) of every element and node
+    into the rows of ``ew`` (N_EW n, flat; :data:`EW_UE` ...), computed for all and summed in
+    the kernel's order by :func:`energy_sums`: element elastic energy, its tension power and
+    whether it counts (polynomial law, not stiff, taut); node kinetic energy, weight term,
+    force power, seabed spring energy and power, penetration over its bound and contact."""
+    n = r.shape[0] // 3
+    m = n - 1
+    for j in range(m):
+        e4 = u(4 * j)
+        ke = u(N_EL * j)
+        pa = u(N_NP * j)
+        pb = u(N_NP * j + N_NP)
+        a = u(3 * j)
+        b = u(3 * j + 3)
+        L0 = E[ke + EL_L0]
+        eps = el[e4 + 3] / L0 - 1.0
+        c1 = E[ke + EL_C1]
+        c2 = E[ke + EL_C2]
+        c3 = E[ke + EL_C3]
+        # elements._stiff and _slack_strain
+        wa = (9.80665 * (P[pa + NP_MASS] + P[pb + NP_MASS]) + abs(P[pa + NP_W])
+              + abs(P[pb + NP_W]))
+        law = E[ke + EL_LAW] == 0.0
+        stiff = (wa < E0_STIFF * c1) & law
+        e0 = max(abs(P[pa + NP_W]) + abs(P[pb + NP_W]), 1e-6) / c1
+        # elements._tension for eps > 0
+        T0 = c1 * e0 + c2 * e0 * e0 + c3 * e0 * e0 * e0
+        D0 = c1 + 2.0 * c2 * e0 + 3.0 * c3 * e0 * e0
+        Bc = (D0 * e0 - 2.0 * T0) / (e0 * e0 * e0)
+        Ac = (T0 - Bc * e0 * e0 * e0) / (e0 * e0)
+        up = eps >= e0
+        Tl = c1 * eps + c2 * eps * eps + c3 * eps * eps * eps
+        Tc = Ac * eps * eps + Bc * eps * eps * eps
+        T = Tl if up else Tc
+        # elements._elastic_energy for eps > 0
+        Ul = L0 * (Ac * e0 ** 3 / 3.0 + Bc * e0 ** 4 / 4.0
+                   + c1 * (eps * eps - e0 * e0) / 2.0 + c2 * (eps ** 3 - e0 ** 3) / 3.0
+                   + c3 * (eps ** 4 - e0 ** 4) / 4.0)
+        Uc = L0 * (Ac * eps ** 3 / 3.0 + Bc * eps ** 4 / 4.0)
+        lo = eps < e0
+        ldot = (el[e4] * (v[b] - v[a]) + el[e4 + 1] * (v[b + 1] - v[a + 1])
+                + el[e4 + 2] * (v[b + 2] - v[a + 2]))
+        ew[u(EW_UE * n + j)] = Uc if lo else Ul
+        ew[u(EW_PWE * n + j)] = T * ldot
+        on = law & (stiff == False) & ((eps <= 0.0) == False)  # noqa: E712
+        ew[u(EW_EON * n + j)] = 1.0 if on else 0.0
+    for i in range(1, n - 1):
+        c = u(3 * i)
+        p = u(N_NP * i)
+        vx = v[c]
+        vy = v[c + 1]
+        vz = v[c + 2]
+        vv = vx * vx + vy * vy + vz * vz
+        vq = vx * q[c] + vy * q[c + 1] + vz * q[c + 2]
+        ew[u(EW_KE * n + i)] = 0.5 * ((P[p + NP_MASS] + P[p + NP_MAC]) * vv
+                                      + P[p + NP_MAN] * (vv - vq * vq)
+                                      + P[p + NP_MAT] * vq * vq)
+        w = P[p + NP_W]
+        ew[u(EW_EZ * n + i)] = w * r[c + 2]
+        ew[u(EW_PV * n + i)] = f[c] * vx + f[c + 1] * vy + f[c + 2] * vz + w * vz
+        pen = zc - r[c + 2]
+        ks = P[p + NP_KS]
+        dpen = max(0.5 * max(w, 1e-12) / ks, dc)
+        x = pen / dpen
+        inr = pen < dpen
+        gp = pen * x * (2.0 - x) if inr else pen
+        esc = ks * (2.0 * pen ** 3 / (3.0 * dpen) - pen ** 4 / (4.0 * dpen * dpen))
+        esl = ks * (5.0 * dpen * dpen / 12.0 + 0.5 * (pen * pen - dpen * dpen))
+        ew[u(EW_ES * n + i)] = esc if inr else esl
+        ew[u(EW_PS * n + i)] = ks * gp * vz
+        lim = max(PEN_WEIGHTS * max(w, 0.0) / ks, PEN_FLOOR)
+        ew[u(EW_PEN * n + i)] = pen / lim
+        con = (pen > 0.0) & (ks > 0.0)
+        ew[u(EW_CON * n + i)] = 1.0 if con else 0.0
+
+
+@njit(error_model="numpy")
+def energy_sums(r, v, P, E, el, ew):
+    """:func:`~.energy.line_energy`'s sums from the terms of :func:`energy_terms`, in its order
+    (elements, with the internal damping power of the fairlead's element, then the free
+    nodes); the same return value ``(E_m, P, budget, wsum, pen, ipen)``."""
+    n = r.shape[0]
+    ue = 0.0
+    pw = 0.0
+    for j in range(n - 1):
+        if ew[EW_EON, j] == 0.0:
+            continue
+        ue += ew[EW_UE, j]
+        pw += ew[EW_PWE, j]
+        if j == n - 2 and E[j, EL_B] != 0.0:
+            L0 = E[j, EL_L0]
+            eps = el[j, 3] / L0 - 1.0
+            e0 = max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / E[j, EL_C1]
+            ldot = (el[j, 0] * (v[j + 1, 0] - v[j, 0]) + el[j, 1] * (v[j + 1, 1] - v[j, 1])
+                    + el[j, 2] * (v[j + 1, 2] - v[j, 2]))
+            xs = eps / e0
+            sm = xs * xs * (3.0 - 2.0 * xs) if xs < 1.0 else 1.0
+            Td = E[j, EL_B] * sm * ldot / L0
+            pw += Td * (el[j, 0] * v[j + 1, 0] + el[j, 1] * v[j + 1, 1] + el[j, 2] * v[j + 1, 2])
+    ke = 0.0
+    eg = 0.0
+    wsum = 0.0
+    pen_max = 0.0
+    ipen = 0
+    for i in range(1, n - 1):
+        ke += ew[EW_KE, i]
+        wsum += abs(P[i, NP_W])
+        eg += ew[EW_EZ, i]
+        pw += ew[EW_PV, i]
+        if ew[EW_CON, i] != 0.0:
+            eg += ew[EW_ES, i]
+            pw -= ew[EW_PS, i]
+            if ew[EW_PEN, i] > pen_max:
+                pen_max = ew[EW_PEN, i]
+                ipen = i
+    return ke + ue + eg, pw, ke + ue, wsum, pen_max, ipen

@@ -22,6 +22,7 @@ from .flat import (
     element_geometry_flat,
     element_pass,
     element_pass_jac,
+    flat,
     fluid_pass,
     fluid_pass_jac,
     node_sums,
@@ -81,19 +82,19 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     if contig and (kind & 1) and not use_act and not (want_jac and cC == 0.0):
         # the element passes vectorised across the elements (flat.py, the same bits); not for
         # the tension estimates of stiff elements nor the static tangent
-        el = w.el.reshape(w.el.size)
-        element_geometry_flat(r.reshape(r.size), el)
+        el = flat(w.el)
+        element_geometry_flat(flat(r), el)
         _tangents_from(w.el, w.q)
-        vf = v.reshape(v.size)
-        Pf = P.reshape(P.size)
-        Ef = E.reshape(E.size)
+        vf = flat(v)
+        Pf = flat(P)
+        Ef = flat(E)
         if want_jac:
-            Of = w.Of.reshape(w.Of.size)
+            Of = flat(w.Of)
             element_pass_jac(vf, Pf, Ef, el, cK, cC, w.tens, Of)
-            block_sums(Of, w.Dg.reshape(w.Dg.size))
+            block_sums(Of, flat(w.Dg))
         else:
             element_pass(vf, Pf, Ef, el, w.tens)
-        node_sums(Pf, el, w.tens, f.reshape(f.size))
+        node_sums(Pf, el, w.tens, flat(f))
     else:
         # element directions and lengths once, the node tangents from them
         element_geometry(r, w.el)
@@ -104,15 +105,15 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     if S[S_BEND] > 0.0:
         bending_forces(r, par.P, f, want_jac, cK, w.Dg, w.Of, w.BX)
     if contig and (kind & 2):
-        qf = w.q.reshape(w.q.size)
-        vf = v.reshape(v.size)
-        Pf = P.reshape(P.size)
-        wkf = par.wk.reshape(par.wk.size)
+        qf = flat(w.q)
+        vf = flat(v)
+        Pf = flat(P)
+        wkf = flat(par.wk)
         if want_jac:
-            fluid_pass_jac(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, cC, f.reshape(f.size),
-                           w.Dg.reshape(w.Dg.size))
+            fluid_pass_jac(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, cC, flat(f),
+                           flat(w.Dg))
         else:
-            fluid_pass(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, f.reshape(f.size))
+            fluid_pass(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, flat(f))
     else:
         fluid_forces(r, v, w.q, P, S, par.cur_z, par.cur_u, par.wk, want_jac, cC, f, w.Dg)
     seabed_forces(r, v, w.q, fs, par.P, S, par.fric, want_jac, cK, cC, f, w.Dg)

@@ -19,12 +19,13 @@ from numba import njit
 
 from .blocks import block_tridiag_resolve, solve_blocks
 from .elements import (
-    _node_mass_el,
+    _tangents_from,
     bar_push,
     release_bars,
     start_tension_estimates,
     update_tension_estimates,
 )
+from .flat import element_geometry_flat, flat, kinematics_flat, mass_blocks_flat
 from .forces import _line_forces, force_tolerances
 from .layout import FR_DISPVEL, S_BEND, S_ZC
 from .seabed import friction_decide
@@ -88,12 +89,8 @@ def predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1):
 def kinematics(dt, beta, gamma, r, v, a, a1, r1, v1):
     """Positions and velocities of the free nodes at the end of the step from their
     accelerations ``a1`` (Newmark's formulas of the scheme)."""
-    n = r.shape[0]
-    for i in range(1, n - 1):
-        for k in range(3):
-            r1[i, k] = r[i, k] + dt * v[i, k] + dt * dt * ((0.5 - beta) * a[i, k]
-                                                           + beta * a1[i, k])
-            v1[i, k] = v[i, k] + dt * ((1.0 - gamma) * a[i, k] + gamma * a1[i, k])
+    # (on the flat views, vectorised: flat.kinematics_flat, the same arithmetic)
+    kinematics_flat(dt, beta, gamma, flat(r), flat(v), flat(a), flat(a1), flat(r1), flat(v1))
 
 
 @njit(cache=True)
@@ -270,7 +267,11 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     bend = S[S_BEND] > 0.0
     ftol, fcap, weight, rfloor = force_tolerances(r, P, E)
     nstiff = start_tension_estimates(r, v, P, E, act)
-    _node_mass_el(r, P, w.el, w.q, w.Mb)
+    # node mass blocks from the element geometry of the start state (elements._node_mass_el on
+    # the flat views: the same numbers)
+    element_geometry_flat(flat(r), flat(w.el))
+    _tangents_from(w.el, w.q)
+    mass_blocks_flat(flat(P), flat(w.q), flat(w.Mb))
     mode = par.newton
     predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1)
     cK = (1.0 - af) * beta * dt * dt
