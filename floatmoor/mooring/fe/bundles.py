@@ -125,6 +125,9 @@ class LineWork(NamedTuple):
     audit: np.ndarray
     """(``kernels.N_AU``,) energy audit and self-check of the run (cumulative since
     :meth:`FELine.start`, not reset per call; columns ``kernels.AU_*``)."""
+    uc: np.ndarray
+    """(n,) current speed at the nodes of the last force evaluation (m/s;
+    :func:`~.flat.current_speeds`)."""
     ew: np.ndarray
     """(``flat.N_EW``, n) scratch of the energy audit: the terms of every element and node
     (:func:`~.flat.energy_terms`), summed in the audit's order (:func:`~.flat.energy_sums`)."""
@@ -164,5 +167,6 @@ def new_work(n: int) -> LineWork:
                     BX=np.zeros((7, n, 3, 3)), R=z3(), W=np.zeros((n, 3, 3)), Y=z3(),
                     T1=np.zeros((3, 3)), dx=z3(), rtry=z3(), rf=np.zeros(3), vf=np.zeros(3),
                     info=np.zeros(3), stats=np.zeros(2),
-                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU), ew=np.zeros((N_EW, n)),
+                    el=np.zeros((n - 1, 4)), audit=np.zeros(N_AU), uc=np.zeros(n),
+                    ew=np.zeros((N_EW, n)),
                     energy=np.zeros((2, N_EN)))

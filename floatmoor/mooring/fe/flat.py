@@ -38,9 +38,10 @@ from numba.extending import intrinsic, overload
 from numba.np.arrayobj import make_array, populate_array
 
 from .bundles import N_EW
-from .elements import E0_STIFF
+from .elements import E0_STIFF, _set_unit
 from .energy import PEN_FLOOR, PEN_WEIGHTS
 from .fibre_law import EL_LAW
+from .fluid import _current, _current_scale
 from .lanes import LANE_JIT
 from .layout import (
     EL_B,
@@ -62,7 +63,8 @@ from .layout import (
 
 __all__ = ["flat", "element_geometry_flat", "element_pass", "element_pass_jac", "node_sums",
            "block_sums", "fluid_pass", "fluid_pass_jac", "kinematics_flat", "mass_blocks_flat",
-           "copy_nodes", "energy_terms", "energy_sums", "N_EW"]
+           "copy_nodes", "energy_terms", "energy_sums", "current_speeds",
+           "node_tangents"]
 
 
 @intrinsic
@@ -333,10 +335,11 @@ def block_sums(Of, Dg):
 
 
 @njit(**LANE_JIT)
-def fluid_pass(v, q, P, ccos, csin, wk, f):
-    """The drag of :func:`~.fluid.fluid_forces` added into ``f`` (3 n), for a line without a
-    current profile, clump drag and wave accelerations at the nodes (the fluid inertia is then
-    zero and the kernel skips it); ``v, q`` (3 n), ``P`` (N_NP n), ``wk`` (6 n) flat."""
+def fluid_pass(v, q, P, uc, ccos, csin, wk, f):
+    """The drag of :func:`~.fluid.fluid_forces` added into ``f`` (3 n), for a line without
+    clump drag and wave accelerations at the nodes (the fluid inertia is then zero and the
+    kernel skips it); ``v, q`` (3 n), ``P`` (N_NP n), ``wk`` (6 n) flat, ``uc`` (n) the
+    current speed at every node (:func:`current_speeds`)."""
     n = f.shape[0] // 3
     for i in range(n):
         c = u(3 * i)
@@ -345,9 +348,9 @@ def fluid_pass(v, q, P, ccos, csin, wk, f):
         qx = q[c]
         qy = q[c + 1]
         qz = q[c + 2]
-        uc = 0.0
-        vrx = v[c] - uc * ccos - wk[w]
-        vry = v[c + 1] - uc * csin - wk[w + 1]
+        ui = uc[u(i)]
+        vrx = v[c] - ui * ccos - wk[w]
+        vry = v[c + 1] - ui * csin - wk[w + 1]
         vrz = v[c + 2] - wk[w + 2]
         vq = vrx * qx + vry * qy + vrz * qz
         vnx = vrx - vq * qx
@@ -362,7 +365,7 @@ def fluid_pass(v, q, P, ccos, csin, wk, f):
 
 
 @njit(**LANE_JIT)
-def fluid_pass_jac(v, q, P, ccos, csin, wk, cC, f, Dg):
+def fluid_pass_jac(v, q, P, uc, ccos, csin, wk, cC, f, Dg):
     """:func:`fluid_pass` and the drag blocks of :func:`~.fluid.fluid_forces` times ``cC``
     added into ``Dg`` (9 n), in one pass."""
     n = f.shape[0] // 3
@@ -373,9 +376,9 @@ def fluid_pass_jac(v, q, P, ccos, csin, wk, cC, f, Dg):
         qx = q[c]
         qy = q[c + 1]
         qz = q[c + 2]
-        uc = 0.0
-        vrx = v[c] - uc * ccos - wk[w]
-        vry = v[c + 1] - uc * csin - wk[w + 1]
+        ui = uc[u(i)]
+        vrx = v[c] - ui * ccos - wk[w]
+        vry = v[c + 1] - ui * csin - wk[w + 1]
         vrz = v[c + 2] - wk[w + 2]
         vq = vrx * qx + vry * qy + vrz * qz
         vnx = vrx - vq * qx
@@ -609,3 +612,62 @@ def energy_sums(r, v, P, E, el, ew):
                 pen_max = ew[EW_PEN, i]
                 ipen = i
     return ke + ue + eg, pw, ke + ue, wsum, pen_max, ipen
+
+
+@njit(cache=True)
+def current_speeds(r, cur_z, cur_u, uc):
+    """The current speed at every node's level into ``uc`` (n): the lookup of
+    :func:`~.fluid.fluid_forces` (:func:`~.fluid._current`, the same numbers), node by node
+    (the walk through the profile levels does not vectorise); zeros without a profile, as the
+    lookup returns."""
+    n = r.shape[0]
+    if cur_z.shape[0] == 0:
+        for i in range(n):
+            uc[i] = 0.0
+        return
+    csc = _current_scale(cur_z)
+    for i in range(n):
+        uc[i] = _current(r[i, 2], cur_z, cur_u, csc)
+
+
+@njit(**LANE_JIT)
+def _tangents_interior(el, q):
+    """The interior nodes' tangents of :func:`~.elements._tangents_from` for adjacent elements
+    of positive length and a non-zero sum (the common case, vectorised; the others are
+    redone by :func:`node_tangents`): ``(0 + e_(i-1) + e_i) / |...|``; ``el`` (4 (n-1)), ``q``
+    (3 n) flat."""
+    n = q.shape[0] // 3
+    for i in range(1, n - 1):
+        a = u(4 * i - 4)
+        b = u(4 * i)
+        qx = (0.0 + el[a]) + el[b]
+        qy = (0.0 + el[a + 1]) + el[b + 1]
+        qz = (0.0 + el[a + 2]) + el[b + 2]
+        nq = math.sqrt(qx * qx + qy * qy + qz * qz)
+        c = u(3 * i)
+        q[c] = qx / nq
+        q[c + 1] = qy / nq
+        q[c + 2] = qz / nq
+
+
+@njit(cache=True)
+def node_tangents(el, q):
+    """:func:`~.elements._tangents_from` (the node tangents from the element directions ``el``
+    (n-1, 4)) into ``q`` (n, 3), the same numbers: the interior nodes vectorised
+    (:func:`_tangents_interior`), then the end nodes, and any node next to an element of zero
+    or undefined length or with a zero or undefined sum (its quotient is then NaN), as the
+    general function does them."""
+    n = q.shape[0]
+    _tangents_interior(flat(el), flat(q))
+    for i in range(n):
+        if 0 < i < n - 1 and el[i - 1, 3] > 0.0 and el[i, 3] > 0.0 and q[i, 0] == q[i, 0]:
+            continue
+        qx = 0.0
+        qy = 0.0
+        qz = 0.0
+        for j in (i - 1, i):
+            if 0 <= j < n - 1 and el[j, 3] > 0.0:
+                qx += el[j, 0]
+                qy += el[j, 1]
+                qz += el[j, 2]
+        _set_unit(q, i, qx, qy, qz)

@@ -19,6 +19,7 @@ from .elements import _tangents_from, bending_forces, element_forces, element_ge
 from .fibre_law import EL_LAW
 from .flat import (
     block_sums,
+    current_speeds,
     element_geometry_flat,
     element_pass,
     element_pass_jac,
@@ -26,6 +27,7 @@ from .flat import (
     fluid_pass,
     fluid_pass_jac,
     node_sums,
+    node_tangents,
 )
 from .fluid import fluid_forces
 from .layout import EL_C1, EL_L0, EPS_MACH, NP_KC, NP_MASS, NP_W, S_BEND, S_CURC, S_CURS
@@ -84,7 +86,7 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
         # the tension estimates of stiff elements nor the static tangent
         el = flat(w.el)
         element_geometry_flat(flat(r), el)
-        _tangents_from(w.el, w.q)
+        node_tangents(w.el, w.q)
         vf = flat(v)
         Pf = flat(P)
         Ef = flat(E)
@@ -104,16 +106,17 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     # bending (pinned ends): discrete elastica energy c_i (1 - e_a . e_b) at interior nodes
     if S[S_BEND] > 0.0:
         bending_forces(r, par.P, f, want_jac, cK, w.Dg, w.Of, w.BX)
-    if contig and (kind & 2):
+    if contig and w.uc.flags.c_contiguous and (kind & 2):
+        current_speeds(r, par.cur_z, par.cur_u, w.uc)
         qf = flat(w.q)
         vf = flat(v)
         Pf = flat(P)
         wkf = flat(par.wk)
         if want_jac:
-            fluid_pass_jac(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, cC, flat(f),
+            fluid_pass_jac(vf, qf, Pf, w.uc, S[S_CURC], S[S_CURS], wkf, cC, flat(f),
                            flat(w.Dg))
         else:
-            fluid_pass(vf, qf, Pf, S[S_CURC], S[S_CURS], wkf, flat(f))
+            fluid_pass(vf, qf, Pf, w.uc, S[S_CURC], S[S_CURS], wkf, flat(f))
     else:
         fluid_forces(r, v, w.q, P, S, par.cur_z, par.cur_u, par.wk, want_jac, cC, f, w.Dg)
     seabed_forces(r, v, w.q, fs, par.P, S, par.fric, want_jac, cK, cC, f, w.Dg)
@@ -122,12 +125,12 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
 @njit(cache=True)
 def flat_kind(P, E, wk, cur_z):
     """Which passes of :mod:`.flat` a line's force evaluation can take: bit 1 the element
-    passes (no element with a fibre law), bit 2 the fluid passes (no current profile, no clump
-    drag, no wave accelerations at the nodes)."""
+    passes (no element with a fibre law), bit 2 the fluid passes (no clump drag, no wave
+    accelerations at the nodes)."""
     fib = False
     for j in range(E.shape[0]):
         fib = fib | (E[j, EL_LAW] != 0.0)
-    other = cur_z.shape[0] != 0
+    other = False
     for i in range(P.shape[0]):
         other = other | (P[i, NP_KC] > 0.0) | (wk[i, 3] != 0.0) | (wk[i, 4] != 0.0) \
             | (wk[i, 5] != 0.0)

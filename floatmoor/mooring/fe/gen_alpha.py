@@ -19,13 +19,12 @@ from numba import njit
 
 from .blocks import block_tridiag_resolve, solve_blocks
 from .elements import (
-    _tangents_from,
     bar_push,
     release_bars,
     start_tension_estimates,
     update_tension_estimates,
 )
-from .flat import element_geometry_flat, flat, kinematics_flat, mass_blocks_flat
+from .flat import element_geometry_flat, flat, kinematics_flat, mass_blocks_flat, node_tangents
 from .forces import _line_forces, force_tolerances
 from .layout import FR_DISPVEL, S_BEND, S_ZC
 from .seabed import friction_decide
@@ -270,7 +269,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     # node mass blocks from the element geometry of the start state (elements._node_mass_el on
     # the flat views: the same numbers)
     element_geometry_flat(flat(r), flat(w.el))
-    _tangents_from(w.el, w.q)
+    node_tangents(w.el, w.q)
     mass_blocks_flat(flat(P), flat(w.q), flat(w.Mb))
     mode = par.newton
     predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1)

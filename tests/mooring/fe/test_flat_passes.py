@@ -1,13 +1,13 @@
 """The line kernel's force evaluation through the vectorised passes of ``mooring/fe/flat.py``
 gives the general passes' numbers to the bit.
 
-``forces._line_forces`` takes the flat passes for a line without fibre law, current profile,
-clump drag or wave accelerations (``forces.flat_kind``).  The reference here is the composition
+``forces._line_forces`` takes the flat passes for a line without fibre law, clump drag or wave
+accelerations (``forces.flat_kind``).  The reference here is the composition
 of the general functions it replaces (``element_geometry``, ``_tangents_from``,
 ``element_forces``, ``fluid_forces``, ``seabed_forces``), called on copies of the same inputs;
 every output (forces, tensions, element directions, node tangents, diagonal and off-diagonal
 tangent blocks) must be equal bit for bit.  States: the OC3 line (internal damping, seabed
-contact) at rest and perturbed at random, with slack elements (an element shortened to a
+contact; also in a sheared current oblique to the line) at rest and perturbed at random, with slack elements (an element shortened to a
 thousandth), nodes moving both ways through the seabed, wave particle velocities at the nodes,
 and without internal damping; with and without the tangent.
 """
@@ -60,9 +60,13 @@ def _states(line, rng, n_random=60):
         yield r, v
 
 
-@pytest.mark.parametrize("damping", [-0.8, 0.0])
-def test_flat_passes_are_the_general_passes_bit_for_bit(damping):
-    line = FELine(oc3_spec(n=40, damping=damping))
+CURRENT = dict(current_z=(-320.0, -200.0, -100.0, 0.0), current_speed=(0.3, 0.5, 0.8, 1.1),
+               current_heading=0.6)
+
+
+@pytest.mark.parametrize("damping,current", [(-0.8, False), (0.0, False), (-0.8, True)])
+def test_flat_passes_are_the_general_passes_bit_for_bit(damping, current):
+    line = FELine(oc3_spec(n=40, damping=damping, **(CURRENT if current else {})))
     line.solve_static()
     line.start()
     b = line.bundle
@@ -88,9 +92,9 @@ def test_flat_passes_are_the_general_passes_bit_for_bit(damping):
 
 
 def test_lines_outside_the_flat_passes_take_the_general_ones():
-    """A wave acceleration, a current profile or a clump weight turns the flat passes off
-    (``flat_kind``): the fluid inertia, the current lookup and the clump drag are only in the
-    general pass; an element with a fibre law turns the element passes off."""
+    """A wave acceleration or a clump weight turns the flat fluid passes off (``flat_kind``):
+    the fluid inertia and the clump drag are only in the general pass; an element with a fibre
+    law turns the element passes off."""
     line = FELine(oc3_spec(n=20))
     line.solve_static()
     line.start()
@@ -102,7 +106,8 @@ def test_lines_outside_the_flat_passes_take_the_general_ones():
     P = par.P.copy()
     P[3, NP_KC] = 10.0
     assert flat_kind(P, par.E, par.wk, par.cur_z) == 1
-    assert flat_kind(par.P, par.E, par.wk, np.array([-320.0, 0.0])) == 1
+    # a current profile is looked up node by node (flat.current_speeds), then the flat drag
+    assert flat_kind(par.P, par.E, par.wk, np.array([-320.0, 0.0])) == 3
     from floatmoor.mooring.fe.fibre_law import EL_LAW
     E = par.E.copy()
     E[2, EL_LAW] = 1.0
@@ -134,3 +139,29 @@ def test_flat_energy_terms_sum_to_line_energy_bit_for_bit():
                          flat(w.q), par.S[S_ZC], par.S[S_DC], flat(w.ew))
             got = energy_sums(r, v, par.P, par.E, w.el, w.ew)
             assert all(np.array_equal(a, bb) for a, bb in zip(ref, got)), (damping, i, ref, got)
+
+
+def test_node_tangents_as_the_general_function_also_at_degenerate_elements():
+    """``flat.node_tangents`` (interior nodes vectorised, the rest redone node by node) gives
+    ``elements._tangents_from`` to the bit, also next to an element of zero length (left out
+    of the sum), at two opposite elements (zero sum: the tangent (1, 0, 0)) and next to an
+    element with NaN geometry."""
+    from floatmoor.mooring.fe.flat import node_tangents
+
+    rng = np.random.default_rng(5)
+    n = 12
+    for case in range(4):
+        el = rng.normal(size=(n - 1, 4))
+        el[:, :3] /= np.linalg.norm(el[:, :3], axis=1)[:, None]
+        el[:, 3] = rng.uniform(1.0, 20.0, n - 1)
+        if case == 1:
+            el[4, :] = [np.nan, np.nan, np.nan, 0.0]      # zero length
+        if case == 2:
+            el[6, :3] = -el[5, :3]                         # opposite: the sum vanishes
+        if case == 3:
+            el[2, :] = np.nan
+        q1 = np.zeros((n, 3))
+        q2 = np.zeros((n, 3))
+        _tangents_from(el, q1)
+        node_tangents(el, q2)
+        assert np.array_equal(q1, q2, equal_nan=True), case
