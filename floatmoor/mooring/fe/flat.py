@@ -1,23 +1,30 @@
-"""The passes of a line kernel force evaluation (:func:`~.forces.line_forces`) vectorised across
-the elements and nodes of one line: element geometry, node tangents, the element pass of the
-forces and their tangent, and the fluid pass.
+"""The passes of the line kernel (one line at a time: :func:`~.forces.line_forces`,
+:func:`~.gen_alpha.gen_alpha_step`, :func:`~.advance.ga_advance`) vectorised across the
+elements and nodes of the line: element geometry, node tangents, the element pass of the forces
+and their tangent, the drag pass; per step the kinematics, node mass blocks, the copies of a
+state and the energy audit's terms.
 
 The line kernel keeps its arrays as (node, axis); a loop over the nodes of such an array is
 scalar in numba's code (every index carries a negative-index wrap-around and every division a
 branch to ZeroDivisionError, and LLVM cannot prove the arrays apart).  These passes take flat
-views of the same arrays (``r.reshape(3 n)``: the entry of node ``i``, axis ``k`` at ``3 i +
-k``), unsigned indices and the lanes' compiler options (:data:`~.lanes.LANE_JIT`: ``noalias``
+views of the same arrays (:func:`flat`: the entry of node ``i``, axis ``k`` at ``3 i + k``),
+unsigned indices and the lanes' compiler options (:data:`~.lanes.LANE_JIT`: ``noalias``
 arguments, numpy's error model), and they write both sides of a branch and select, as the lane
 kernels do (:mod:`.lanes`).  LLVM then packs four elements or nodes per AVX2 register,
 interleaving the axes of the (node, axis) rows in registers.  Each element or node gets the
-arithmetic of :func:`~.elements.element_forces`, :func:`~.elements.element_geometry`,
-:func:`~.elements._tangents_from` and :func:`~.fluid.fluid_forces` operation for operation, so
-the results are those of these functions to the bit (tests/mooring/fe/test_flat_passes.py).
+arithmetic of the general function it replaces (:func:`~.elements.element_forces`,
+:func:`~.elements.element_geometry`, :func:`~.elements._tangents_from`,
+:func:`~.fluid.fluid_forces`, :func:`~.gen_alpha.kinematics`, :func:`~.energy.line_energy`,
+...) operation for operation, so the results are those of these functions to the bit
+(tests/mooring/fe/test_flat_passes.py; ``benchmarks/check_flat_asm.py`` shows the packed
+instructions).
 
-They cover the common lines: elements with the polynomial law (no fibre law), no tension
-estimates of stiff elements, the dynamic tangent (``cC`` > 0) or none; the fluid pass without a
-current profile and without clump drag.  :func:`~.forces._line_forces` takes them when a line
-qualifies and the general functions otherwise.
+The force passes cover the common lines (:func:`~.forces.flat_kind`): elements with the
+polynomial law (no fibre law), no tension estimates of stiff elements, the dynamic tangent
+(``cC`` > 0) or none; the drag pass for lines without clump drag or wave accelerations at the
+nodes (a current profile is looked up node by node first, :func:`current_speeds`).
+:func:`~.forces._line_forces` takes them when a line qualifies and the general functions
+otherwise.
 
 The element pass is split in two: the element quantities (tension, tangent block) of every
 element (:func:`element_pass`, vectorised), then the node sums (:func:`node_sums`, the node's
@@ -572,7 +579,7 @@ def energy_terms(r, v, f, P, E, el, q, zc, dc, ew):
         ew[u(EW_CON * n + i)] = 1.0 if con else 0.0
 
 
-@njit(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def energy_sums(r, v, P, E, el, ew):
     """:func:`~.energy.line_energy`'s sums from the terms of :func:`energy_terms`, in its order
     (elements, with the internal damping power of the fairlead's element, then the free
