@@ -19,7 +19,8 @@ start), ``code=2`` (a raw ``kernels.NW_*`` code of the iteration, here the predi
 e.g. ``--newton exact exact:tol=1e-8 exact:x0=1e-6 exact:code=2 modified``; ``--per-line`` prints
 every line's maximum and its time.
 
-``--fe-stages catenary linear``: the scene option ``solver: {fe_stages: ...}``, interleaved
+``--fe-stages linear catenary``: the scene option ``solver: {fe_stages: ...}`` (default
+``linear``, the scene default), interleaved
 with the other options (the first one is the reference of the comparison lines).
 
 ``--lanes on off``: one thread, the FE lines as SIMD lanes (``fe_coupling.LANES``, the
@@ -66,10 +67,11 @@ def main() -> None:
     ap.add_argument("--no-qs", action="store_true")
     ap.add_argument("--threads", type=int, nargs="+", default=[1])
     ap.add_argument("--lanes", nargs="+", default=["on"], choices=("on", "off"))
-    ap.add_argument("--fe-stages", nargs="+", default=["catenary"],
+    ap.add_argument("--fe-stages", nargs="+", default=["linear"],
                     choices=("catenary", "linear"),
-                    help="solver: {fe_stages: ...}: the FE lines' catenaries at every RK4 stage "
-                    "(catenary) or their stiffness at the step start (linear); interleaved")
+                    help="solver: {fe_stages: ...}: the FE lines' stiffness at the step start "
+                    "(linear, the default) or their catenaries at every RK4 stage (catenary); "
+                    "interleaved")
     ap.add_argument("--catenary", choices=("exact", "predictor"), default="exact",
                     help="solver: {catenary: ...} of the body side (the FE lines' catenaries "
                     "in the RK4 stages)")

@@ -116,7 +116,7 @@ def main() -> None:
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--elements", type=int, default=50)
     ap.add_argument("--newton", default="force")
-    ap.add_argument("--fe-stages", default="catenary", choices=("catenary", "linear"))
+    ap.add_argument("--fe-stages", default="linear", choices=("catenary", "linear"))
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--duration", type=float, default=12000.0)
     ap.add_argument("--tag", default=None)

@@ -13,12 +13,15 @@ Cases (all from the shipped scenes, seed 1):
 * ``slender``: slender-element viscous drift (``notebooks/viscous_drift/case2.yaml``), 1500 s;
 * ``correction``: the correction formula (``notebooks/viscous_drift/case5.yaml``), 1500 s;
 * ``fe``: the coupled finite-element flagship (``scenes/floatel_100yr_fe.yaml``), 1500 s, with
-  the FE lines' ``newton: exact`` iteration set explicitly (the default, a 1 um position
+  the FE lines' ``newton: exact`` iteration and the ``solver: {fe_stages: catenary}`` stages
+  (the default until 2026-11-28) set explicitly (the default, a 1 um position
   stop; since 2026-11-27 from the fairlead's trapezoidal predictor, whose digest was written on
   an x86-64-v3 machine only, so an x86-64-v4 machine skips it with the table's note);
 * ``fe_force``: the same with the opt-in ``newton: force`` iteration (a stop in force terms,
   which moves the FE answer within the stop's bound; its digest was written on an x86-64-v3
   machine only, so an x86-64-v4 machine skips it with the table's note);
+* ``fe_linear``: the same scene as the shipped file runs it (``newton: exact``, the default
+  ``fe_stages: linear`` since 2026-11-28; written on an x86-64-v3 machine only, like ``fe``);
 * ``fd``: the frequency-domain analysis of the flagship scene (every variable of the Dataset).
 
 The bits depend on the machine's vector instruction set, not only on the code: numpy picks its
@@ -51,8 +54,11 @@ CASES = {
     "qs_forces": ("scenes/floatel_100yr.yaml", {"duration": 1500.0, "record_forces": True}),
     "slender": ("notebooks/viscous_drift/case2.yaml", {"duration": 1500.0}),
     "correction": ("notebooks/viscous_drift/case5.yaml", {"duration": 1500.0}),
-    "fe": ("scenes/floatel_100yr_fe.yaml", {"duration": 1500.0, "fe": {"newton": "exact"}}),
-    "fe_force": ("scenes/floatel_100yr_fe.yaml", {"duration": 1500.0, "fe": {"newton": "force"}}),
+    "fe": ("scenes/floatel_100yr_fe.yaml", {"duration": 1500.0, "fe": {"newton": "exact"},
+                                            "solver": {"fe_stages": "catenary"}}),
+    "fe_force": ("scenes/floatel_100yr_fe.yaml", {"duration": 1500.0, "fe": {"newton": "force"},
+                                                  "solver": {"fe_stages": "catenary"}}),
+    "fe_linear": ("scenes/floatel_100yr_fe.yaml", {"duration": 1500.0}),
     "fd": ("scenes/floatel_100yr.yaml", None),
 }
 
@@ -90,6 +96,10 @@ def compute(case: str) -> dict:
     if kw is not None and "fe" in kw:
         kw = dict(kw)
         scene = with_fe_options(scene, **kw.pop("fe"))
+    if kw is not None and "solver" in kw:
+        from floatmoor.io.solver_section import SolverSpec
+        kw = dict(kw)
+        kw["solver"] = SolverSpec(**kw["solver"])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if kw is None:

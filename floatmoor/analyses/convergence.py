@@ -4,7 +4,8 @@
 horizontal offset and the maximum line tension after the transient, the relative error against
 the finest run beside the wall time of the time loop; with ``solver`` options
 (:mod:`floatmoor.io.solver_section`) every dt runs with them too, and their rows give their
-difference from the exact run at the same dt (the error of the approximation itself).
+difference from the run with the default options at the same dt (the error of the
+approximation itself).
 ``floatmoor convergence`` prints :func:`format_table` and plots the rows.
 """
 
@@ -16,10 +17,10 @@ __all__ = ["convergence_study", "format_table"]
 def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, echo=None,
                       solver=None):
     """Run the halving sequence; returns a list of dicts (dt, solver, max_offset,
-    max_tension, wall_time, error_offset, error_tension; errors relative to the finest exact
-    run).  With ``solver`` (a :class:`~floatmoor.io.solver_section.SolverSpec`) every dt is
+    max_tension, wall_time, error_offset, error_tension; errors relative to the finest run
+    with the default options, named ``default``).  With ``solver`` (a :class:`~floatmoor.io.solver_section.SolverSpec`) every dt is
     also run with those options; their rows carry ``difference``, the larger relative
-    difference of the max offset and max tension from the exact run at the same dt."""
+    difference of the max offset and max tension from the default run at the same dt."""
     import warnings
 
     import numpy as np
@@ -27,13 +28,13 @@ def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, ech
     from ..analyses.simulate import simulate
     from ..io.solver_section import SolverSpec
 
-    exact = SolverSpec()
-    specs = [exact] if solver is None or solver.exact else [exact, solver]
+    default = SolverSpec()
+    specs = [default] if solver is None or solver.is_default else [default, solver]
     rows = []
     for k in range(levels):
         dt = dt0 / 2 ** k
         for spec in specs:
-            name = "exact" if spec is exact else spec.describe()
+            name = "default" if spec is default else spec.describe()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 try:
@@ -54,7 +55,7 @@ def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, ech
             rows.append(row)
             if echo:
                 echo(f"dt {dt:g} s ({name}) done in {row['wall_time']:.2f} s")
-    ok = [r for r in rows if "error" not in r and r["solver"] == "exact"]
+    ok = [r for r in rows if "error" not in r and r["solver"] == "default"]
     if ok:
         ref = ok[-1]
         same = {r["dt"]: r for r in ok}
@@ -64,16 +65,16 @@ def convergence_study(scene, *, seed=None, duration=None, dt0=0.4, levels=5, ech
             r["error_offset"] = abs(r["max_offset"] / ref["max_offset"] - 1.0)
             r["error_tension"] = abs(r["max_tension"] / ref["max_tension"] - 1.0)
             e = same.get(r["dt"])
-            if r["solver"] != "exact" and e is not None:
+            if r["solver"] != "default" and e is not None:
                 r["difference"] = max(abs(r["max_offset"] / e["max_offset"] - 1.0),
                                       abs(r["max_tension"] / e["max_tension"] - 1.0))
     return rows
 
 
 def format_table(rows) -> str:
-    options = any(r.get("solver", "exact") != "exact" for r in rows)
+    options = any(r.get("solver", "default") != "default" for r in rows)
     out = [f"{'dt (s)':>8s}{'max offset (m)':>16s}{'error':>10s}{'max tension (kN)':>18s}"
-           f"{'error':>10s}{'wall (s)':>10s}" + ("  solver (difference from exact)"
+           f"{'error':>10s}{'wall (s)':>10s}" + ("  solver (difference from default)"
                                                    if options else "")]
     for r in rows:
         if "error" in r:
@@ -83,10 +84,10 @@ def format_table(rows) -> str:
                 f"{r['max_tension'] / 1e3:18.1f}{100 * r['error_tension']:9.3f}%"
                 f"{r['wall_time']:10.2f}")
         if options:
-            line += f"  {r.get('solver', 'exact')}"
+            line += f"  {r.get('solver', 'default')}"
             if "difference" in r:
                 line += f" ({100 * r['difference']:.2g} %)"
         out.append(line)
-    out.append("errors relative to the finest time step" + (" of the exact path" if options
+    out.append("errors relative to the finest time step" + (" of the default options" if options
                                                             else ""))
     return "\n".join(out)

@@ -6,7 +6,7 @@ what it was computed from.  :func:`scene_fingerprint` hashes, section by section
 
 * the values the scene gives: ``site``, ``environment`` (sea state, wind, current and their
   headings), ``analysis`` (without the seeds: one file per seed), ``forces``, ``solver`` (the
-  opt-in approximations; not the thread count, which changes no result), ``frequency_domain``,
+  approximations of the time loop; not the thread count, which changes no result), ``frequency_domain``,
   the ``models`` it builds and the run's ``overrides`` (``--duration``, ``--dt``);
 * the files it reads, by content: ``vessel`` and ``vessel.database`` (the hydrodynamic
   database), ``mooring`` (or the inline mapping) and ``mooring.line_type_library``;
@@ -46,7 +46,8 @@ FINGERPRINT_ATTR = "input_fingerprint"
 NUMERICAL_SOURCES = ("core", "metocean", "hydro", "mooring", "forces", "solvers",
                      "analyses/simulate.py", "analyses/frequency_domain.py",
                      "analyses/fd_*.py", "analyses/statics.py", "io/build.py",
-                     "io/mooring_section.py", "post/extremes.py", "campaign/matrix.py",
+                     "io/mooring_section.py", "io/solver_section.py",
+                     "post/extremes.py", "campaign/matrix.py",
                      "campaign/tasks.py", "data/line_types.yaml")
 """The files of the package (relative to ``floatmoor/``, folders taken whole) whose content
 decides the numbers of a result: the physics, the solvers, model building, the statistics a
@@ -158,8 +159,8 @@ def file_sections(scene) -> dict[str, str]:
 
 def _solver_value(solver):
     """The scene's ``solver`` options without the thread count (threads are bit-identical);
-    None for the exact path (no approximation)."""
-    if solver is None or getattr(solver, "exact", False):
+    None for the default path (the same numbers as a scene without the section)."""
+    if solver is None or getattr(solver, "is_default", False):
         return None
     if dataclasses.is_dataclass(solver) and hasattr(solver, "threads"):
         return dataclasses.replace(solver, threads=1)

@@ -153,7 +153,7 @@ def simulate(scene, *, seed: int | None = None, duration: float | None = None,
     om = float(r.info.get("omega_max", 0.0))
     ds.attrs["stiffest_mode_period_s"] = float(2 * np.pi / om) if om > 0 else float("inf")
     ds.attrs["real_time_factor"] = float(a.n_steps * dt / max(r.wall_time, 1e-12))
-    if solver is not None and not solver.exact:
+    if solver is not None and not solver.is_default:
         ds.attrs["solver"] = solver.describe()
         rad = a.models.get("radiation")
         if rad is not None and rad.state_space is not None:

@@ -6,8 +6,8 @@ horizontal offset and the maximum line tension (after the transient), the relati
 against the finest run next to the wall time of the time loop; ``--plot FILE`` draws both
 (matplotlib, optional).  ``--solver catenary=predictor,memory=state_space`` also runs every
 time step with those ``solver:`` options (:mod:`floatmoor.io.solver_section`): their rows give
-the error against the same finest exact run, their difference from the exact run at the same
-time step (the error of the approximation itself) and their wall time.
+the error against the same finest run with the default options, their difference from the
+default run at the same time step (the error of the approximation itself) and their wall time.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", default=None, metavar="FILE", help="save a plot (png/pdf/svg)")
     p.add_argument("--solver", default=None, metavar="KEY=VALUE[,KEY=VALUE]",
                    help="also run with these solver options, e.g. "
-                        "catenary=predictor,memory=state_space or fe_stages=linear")
+                        "catenary=predictor,memory=state_space or fe_stages=catenary")
 
 
 def parse_solver_option(text: str):
@@ -61,8 +61,8 @@ def parse_solver_option(text: str):
 def plot(rows, path) -> None:
     from matplotlib.figure import Figure
 
-    fast = [r for r in rows if "error" not in r and r.get("solver", "exact") != "exact"]
-    ok = [r for r in rows if "error" not in r and r.get("solver", "exact") == "exact"][:-1]
+    fast = [r for r in rows if "error" not in r and r.get("solver", "default") != "default"]
+    ok = [r for r in rows if "error" not in r and r.get("solver", "default") == "default"][:-1]
     fig = Figure(figsize=(6, 4))
     ax = fig.add_subplot()
     if fast:

@@ -1,4 +1,5 @@
-"""The ``solver:`` section of a scene: faster approximations of the time loop (opt-in).
+"""The ``solver:`` section of a scene: faster approximations of the time loop (opt-in, apart from
+``fe_stages``, whose default is ``linear``: see below).
 
 ```yaml
 solver:
@@ -6,7 +7,7 @@ solver:
   memory: state_space      # convolution (default) | state_space
   memory_fit_tol: 0.01     # relative L2 error of the state-space fits (default 0.01)
   threads: 2               # threads for the finite-element lines: 1 (default) | N | auto
-  fe_stages: linear        # coupled FE lines in the RK4 stages: catenary (default) | linear
+  fe_stages: catenary      # coupled FE lines in the RK4 stages: linear (default) | catenary
 ```
 
 ``catenary``: ``exact`` solves every quasi-static line at every RK4 stage by Newton's method to
@@ -27,15 +28,18 @@ order of the time-step error at dt 0.1 s (benchmarks/RESULTS.md).
 ``fe_stages`` (runs with finite-element lines coupled to the body,
 :mod:`floatmoor.solvers.fe_coupling`): over a body step the FE lines' force is their accepted
 force at the step start plus the change of their elastic catenary from the step start to each
-RK4 stage.  ``catenary`` solves those catenaries at every stage (4 solves per line and step);
-``linear`` takes the change from the catenaries' 6x6 stiffness at the step start (one solve
-with stiffness per line and step; the change over a stage is a fraction of a metre, so the
-dropped term is of second order in it).  On the 3-hour flagship FE storm (12 lines x 50
-elements, dt 0.1 s, two threads) the loop went from 23.3 to 20.2 s (20.9 to 18.0 s with
-``finite_element: {newton: fast}``); the maximum fairlead tension moved by 0.0003 % and each
-line's maximum by at most 0.004 % (benchmarks/RESULTS.md); in 240 s test storms the tensions
-stay within 1 % of the exact path's own time-step error (``tests/solvers/test_fe_stages.py``).
-Without FE lines the option changes nothing.
+RK4 stage, a model of the lines' variation within the step (neither choice is the FE lines'
+own variation, which the scheme holds over the step).  ``catenary`` solves those catenaries at
+every stage (4 solves per line and step); ``linear`` (the default since 2026-11-28) takes the
+change from the catenaries' 6x6 stiffness at the step start (one solve with stiffness per line
+and step; the change over a stage is a fraction of a metre, so the dropped term is of second
+order in it).  On the 3-hour flagship FE storm (12 lines x 50 elements, dt 0.1 s, two threads)
+the loop went from 23.3 to 20.2 s (20.9 to 18.0 s with ``finite_element: {newton: fast}``); the
+maximum fairlead tension moved by 0.0003 % and each line's maximum by at most 0.004 %, against
+the time step's own 0.018 % (benchmarks/RESULTS.md); 3600 s of it on one core with the FE lines
+as lanes: 7.6 / 7.9 s against 9.0 / 9.9 s, each line's maximum within 0.0006 % (section
+"``fe_stages: linear`` the default").  In 240 s test storms the tensions stay within 1 % of
+the time step's own error (``tests/solvers/test_fe_stages.py``).  Without FE lines the option changes nothing.
 
 ``threads``: the finite-element lines of the body are advanced in that many threads
 (:func:`floatmoor.mooring.fe.multi.body_advance_parallel`); the results are bit for bit those of
@@ -51,7 +55,8 @@ Processes that run several storms at once never oversubscribe the cores
 with 1.  One thread (the default) runs the serial kernel, which neither contains nor compiles
 the parallel one.
 
-Every key is optional; the defaults are the exact path (bit-identical results).
+Every key is optional; the defaults are the exact catenaries and memory, one thread and the
+linearised FE stages (:attr:`SolverSpec.is_default`).
 """
 
 from __future__ import annotations
@@ -84,22 +89,23 @@ class SolverSpec:
     memory_fit_tol: float = 0.01
     threads: int | str = 1
     """Threads for the FE lines: a positive integer or ``"auto"`` (:func:`run_threads`)."""
-    fe_stages: str = "catenary"
-    """The coupled FE lines' force over the RK4 stages: ``catenary`` or ``linear``."""
+    fe_stages: str = "linear"
+    """The coupled FE lines' force over the RK4 stages: ``linear`` (default) or ``catenary``."""
     file: object = field(default=None, compare=False)
     threads_auto: bool = field(default=False, compare=False)
     """``threads`` is ``auto`` resolved to a number by :func:`with_thread_cap`: the FE run
     still takes one thread when its lines fit the SIMD lanes (:func:`is_auto`)."""
 
     @property
-    def exact(self) -> bool:
-        """True when every option is the exact path."""
+    def is_default(self) -> bool:
+        """True when every option is its default (the reference path of ``floatmoor
+        convergence --solver``; the thread count changes no number and is not looked at)."""
         return (self.catenary == "exact" and self.memory == "convolution"
-                and self.fe_stages == "catenary")
+                and self.fe_stages == "linear")
 
     def describe(self) -> str:
         fit = (f" (fit {self.memory_fit_tol:g})" if self.memory == "state_space" else "")
-        fe = ", FE stages linear" if self.fe_stages == "linear" else ""
+        fe = ", FE stages catenary" if self.fe_stages == "catenary" else ""
         return f"catenary {self.catenary}, memory {self.memory}{fit}{fe}"
 
     def describe_threads(self) -> str:
@@ -181,8 +187,8 @@ def is_auto(spec: SolverSpec | None) -> bool:
 
 
 def fe_stages(spec: SolverSpec | None) -> str:
-    """The coupled FE lines' stage model of ``spec`` (``catenary`` without a spec)."""
-    return spec.fe_stages if spec is not None else "catenary"
+    """The coupled FE lines' stage model of ``spec`` (``linear`` without a spec)."""
+    return spec.fe_stages if spec is not None else "linear"
 
 
 def catenary_tol(spec: SolverSpec | None) -> float:
@@ -195,7 +201,7 @@ def describe_solver(spec: SolverSpec | None, scene=None) -> list[str]:
     """Lines for ``Scene.describe()``."""
     if spec is None:
         return []
-    words = [] if spec.exact else [spec.describe()]
+    words = [] if spec.is_default else [spec.describe()]
     if spec.describe_threads():
         words.append(spec.describe_threads())
     return [f"solver: {', '.join(words)}"] if words else []

@@ -232,7 +232,7 @@ def test_threads_option_and_its_caps(tmp_path):
     most cores // W threads (at least 1), a campaign task 1; a command-line value replaces the
     scene's before the cap."""
     sc = load_scene(_flagship(tmp_path, {"threads": 2}))
-    assert sc.solver.threads == 2 and sc.solver.exact
+    assert sc.solver.threads == 2 and sc.solver.is_default
     assert "threads 2" in sc.describe()
     auto = load_scene(_flagship(tmp_path, {"threads": "auto"})).solver
     pool = available_threads()

@@ -50,7 +50,7 @@ def test_bad_option_is_a_scene_error(tmp_path):
     with pytest.raises(SceneError, match="solver.memory_fit_tol"):
         load_scene(flagship(tmp_path, {"memory": "state_space", "memory_fit_tol": 0.0}))
     spec = load_scene(flagship(tmp_path, {"memory": "state_space", "memory_fit_tol": 1e-3}))
-    assert spec.solver.memory_fit_tol == 1e-3 and not spec.solver.exact
+    assert spec.solver.memory_fit_tol == 1e-3 and not spec.solver.is_default
 
 
 def test_predictor_catenary_against_the_exact_path(tmp_path, exact_storm):
