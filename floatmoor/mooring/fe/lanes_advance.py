@@ -32,6 +32,7 @@ from .energy import (
 )
 from .fibre_law import EL_LAW, fibre_commit
 from .lanes import (
+    BF_FIBRE,
     BF_FRIC,
     EC_A,
     EC_B,
@@ -63,6 +64,7 @@ from .layout import (
     EL_C3,
     EL_L0,
     FR_DISPVEL,
+    FR_NONE,
     FR_VDQ,
     N_EL,
     N_FS,
@@ -262,12 +264,15 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
             lf[b, ix(LF_PW0, 0, 1, l)] = eo[b, ix(EO_PW, 0, 1, l)]
             lf[b, ix(LF_BUD0, 0, 1, l)] = eo[b, ix(EO_BUD, 0, 1, l)]
             lf[b, ix(LF_EFLOOR, 0, 1, l)] = AUDIT_FLOOR * eo[b, ix(EO_WSUM, 0, 1, l)]
-    # the trial state starts as the accepted one: its friction state is copied
-    for i in range(n):
-        for k in range(N_FS):
-            for l in range(LW):
-                if w.mask[b, l] != 0:
-                    tr.fs[b, ix(i, k, N_FS, l)] = now.fs[b, ix(i, k, N_FS, l)]
+    # the trial state starts as the accepted one: its friction state is copied (a block
+    # without seabed friction and fibre laws never reads or writes it: no copy)
+    with_fs = fric != FR_NONE or par.flags[b, BF_FIBRE] != 0
+    if with_fs:
+        for i in range(n):
+            for k in range(N_FS):
+                for l in range(LW):
+                    if w.mask[b, l] != 0:
+                        tr.fs[b, ix(i, k, N_FS, l)] = now.fs[b, ix(i, k, N_FS, l)]
     t0 = t1 - dt
     full = 1
     for _ in range(max_split):
@@ -459,7 +464,10 @@ def accept(b, n, g, on):
         if on[b * LW + l]:
             for k in range(5):
                 w.eacc[b, ix(k, 0, 1, l)] = w.etr[b, ix(k, 0, 1, l)]
-    copy_state(b, n, w.mask, g.trial, g.now, True)
+    # the friction state only where it is used (block_advance)
+    flags = g.par.flags
+    copy_state(b, n, w.mask, g.trial, g.now,
+               flags[b, BF_FRIC] != FR_NONE or flags[b, BF_FIBRE] != 0)
 
 
 @njit(cache=True)
