@@ -34,7 +34,7 @@ from .fibre_law import fibre_commit
 from .flat import copy_nodes, energy_sums, energy_terms, flat
 from .forces import line_forces
 from .gen_alpha import gen_alpha_step
-from .layout import N_S, S_DC, S_ZC
+from .layout import KERNEL_JIT, N_S, S_DC, S_ZC
 from .seabed import friction_commit, friction_decide
 
 
@@ -55,7 +55,7 @@ def accept_trial(ln):
             now.fs[i, k] = tr.fs[i, k]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def explicit_step(t1, dt, rf1, vf1, s, par, w):
     """Semi-implicit (symplectic) Euler step: ``v += dt M^-1 f(r, v)``, ``r += dt v``; the
     fairlead node follows ``rf1, vf1``.  Updates ``s.r, s.v`` in place (``s`` a
@@ -88,7 +88,7 @@ def explicit_step(t1, dt, rf1, vf1, s, par, w):
     return -1
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def end_forces(r, v, P, f, tens, out):
     """Force of the line on its end points (N, earth axes): ``out[0:3]`` on the anchor,
     ``out[3:6]`` on the fairlead.  It is minus the nodal force of the end node without its
@@ -100,7 +100,7 @@ def end_forces(r, v, P, f, tens, out):
         out[3 + k] = f[n - 1, k]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def record_into(r, f, tens, zc, s_nodes, out):
     """Output channels of one step into ``out`` (13,): fairlead force (3), anchor force (3),
     max element tension, its element, touchdown element tension, touchdown x, y, grounded

@@ -13,8 +13,10 @@ import math
 
 from numba import njit
 
+from .layout import KERNEL_JIT
 
-@njit(cache=True)
+
+@njit(**KERNEL_JIT)
 def _inv3(A, out):
     a, b, c = A[0, 0], A[0, 1], A[0, 2]
     d, e, g = A[1, 0], A[1, 1], A[1, 2]
@@ -38,7 +40,7 @@ def _inv3(A, out):
     return True
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _inv3_vals(a, b, c, d, e, g, h, k, m):
     """:func:`_inv3` of the block ``[[a, b, c], [d, e, g], [h, k, m]]`` given by its entries
     (the same arithmetic): ``ok`` and the nine entries of the inverse by rows."""
@@ -54,7 +56,7 @@ def _inv3_vals(a, b, c, d, e, g, h, k, m):
             c02 * inv, -(a * k - b * h) * inv, (a * e - b * d) * inv)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def solve_blocks(Dg, Of, BX, bend, rhs, i0, i1, W, Y, T1, x):
     """Solve the iteration system: block-tridiagonal, or block bandwidth 2 with bending."""
     if bend:
@@ -62,7 +64,7 @@ def solve_blocks(Dg, Of, BX, bend, rhs, i0, i1, W, Y, T1, x):
     return block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def block_band_solve(Dg, Of, BX, rhs, i0, i1, Y, T1, x):
     """Block Gaussian elimination (no pivoting between blocks, exact 3x3 inverses) for block
     bandwidth 2: diagonal ``Dg``, first upper ``Of[i]`` (i, i+1), first lower ``Of[i] +
@@ -128,7 +130,7 @@ def block_band_solve(Dg, Of, BX, rhs, i0, i1, Y, T1, x):
     return -1
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
     """Solve the block-tridiagonal system on nodes ``i0 .. i1-1`` (3x3 blocks).
 
@@ -239,7 +241,7 @@ def block_tridiag_solve(Dg, Of, rhs, i0, i1, W, Y, T1, x):
     return -1
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def block_tridiag_resolve(Of, rhs, i0, i1, W, Y, x):
     """Solve the system factorised by the last :func:`block_tridiag_solve` (its inverse pivots
     ``W`` and off-diagonal blocks ``Of``, unchanged since) for a new right-hand side ``rhs``:

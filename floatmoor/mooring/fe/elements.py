@@ -16,7 +16,20 @@ import math
 from numba import njit
 
 from .fibre_law import EL_FIB, EL_LAW, fibre_tension
-from .layout import EL_B, EL_C1, EL_C2, EL_C3, EL_L0, NP_CB, NP_MAC, NP_MAN, NP_MASS, NP_MAT, NP_W
+from .layout import (
+    EL_B,
+    EL_C1,
+    EL_C2,
+    EL_C3,
+    EL_L0,
+    KERNEL_JIT,
+    NP_CB,
+    NP_MAC,
+    NP_MAN,
+    NP_MASS,
+    NP_MAT,
+    NP_W,
+)
 
 # An element is "stiff" when its strain under its own weight (in air plus submerged) is below
 # E0_STIFF (OC3 chain: 1.4e-4 at EA = 3.84e8 N, 1.4e-7 at 3.84e11, 1.4e-10 at 3.84e14): its
@@ -27,7 +40,7 @@ from .layout import EL_B, EL_C1, EL_C2, EL_C3, EL_L0, NP_CB, NP_MAC, NP_MAN, NP_
 E0_STIFF = 1e-6
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _tension(eps, c1, c2, c3, e0):
     """Elastic tension and dT/deps: zero in compression, the axial law beyond the small strain
     ``e0``, and in between the cubic ``A eps^2 + B eps^3`` matching the law's value and slope
@@ -44,13 +57,13 @@ def _tension(eps, c1, c2, c3, e0):
     return A * eps * eps + B * eps * eps * eps, 2.0 * A * eps + 3.0 * B * eps * eps
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _slack_strain(P, E, j):
     """Slack transition strain of element ``j``: its weight over its axial stiffness."""
     return max(abs(P[j, NP_W]) + abs(P[j + 1, NP_W]), 1e-6) / E[j, EL_C1]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _stiff(P, E, j):
     """Element ``j`` is stiff: the strain under its weight in air is below :data:`E0_STIFF`
     (the slack transition e0 uses the net weight; the weight in air keeps weightless test
@@ -59,7 +72,7 @@ def _stiff(P, E, j):
     return w < E0_STIFF * E[j, EL_C1] and E[j, EL_LAW] == 0.0
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _elem_tension(r, v, P, E, j):
     """Tension of element ``j`` (N) as :func:`element_forces` computes it (elastic law with the
     slack transition plus the faded-in internal damping)."""
@@ -83,7 +96,7 @@ def _elem_tension(r, v, P, E, j):
 # --------------------------------------------------------------------------------------------
 # geometry
 # --------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def element_geometry(r, el):
     """Unit direction and length of every element into ``el`` (n-1, 4): ``el[j, 0:3]`` the
     direction of node ``j`` to ``j+1``, ``el[j, 3]`` the length (m)."""
@@ -99,7 +112,7 @@ def element_geometry(r, el):
         el[j, 3] = ll
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _direction_sum(r, i):
     """Sum of the unit directions of the elements adjacent to node ``i`` (not normalised;
     zero-length elements left out)."""
@@ -120,7 +133,7 @@ def _direction_sum(r, i):
     return qx, qy, qz
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _set_unit(q, i, qx, qy, qz):
     """``q[i]`` the unit vector along ``(qx, qy, qz)``, or (1, 0, 0) for a zero vector."""
     nq = math.sqrt(qx * qx + qy * qy + qz * qz)
@@ -134,7 +147,7 @@ def _set_unit(q, i, qx, qy, qz):
         q[i, 2] = 0.0
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def node_tangents(r, q):
     """Unit tangent at every node (average of the adjacent element directions)."""
     n = r.shape[0]
@@ -143,7 +156,7 @@ def node_tangents(r, q):
         _set_unit(q, i, qx, qy, qz)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _tangents_from(el, q):
     """:func:`node_tangents` from the element directions and lengths ``el`` (n-1, 4) of
     :func:`element_geometry` (the same sums in the same order: the same bits)."""
@@ -160,7 +173,7 @@ def _tangents_from(el, q):
         _set_unit(q, i, qx, qy, qz)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _mass_blocks(P, q, Mb):
     """3x3 mass blocks (structural + added mass) of every node from the node tangents ``q``."""
     n = q.shape[0]
@@ -175,14 +188,14 @@ def _mass_blocks(P, q, Mb):
                 Mb[i, a, b] = m * d + man * (d - qq) + mat * qq
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def node_mass(r, P, q, Mb):
     """3x3 mass blocks (structural + added mass) of every node into ``Mb`` (n, 3, 3)."""
     node_tangents(r, q)
     _mass_blocks(P, q, Mb)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _node_mass_el(r, P, el, q, Mb):
     """:func:`node_mass` with the element directions and lengths computed once into ``el``
     (n-1, 4) (:func:`element_geometry`) and the tangents taken from them
@@ -195,7 +208,7 @@ def _node_mass_el(r, P, el, q, Mb):
 # --------------------------------------------------------------------------------------------
 # the element pass of a force evaluation
 # --------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def element_forces(v, fs, P, E, S, el, want_jac, cK, cC, use_act, act, tens, f, Dg, Of):
     """Axial element forces on the nodes and the element blocks of the tangent.
 
@@ -377,7 +390,7 @@ def element_forces(v, fs, P, E, S, el, want_jac, cK, cC, use_act, act, tens, f, 
 # --------------------------------------------------------------------------------------------
 # bending
 # --------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _hab(ea, eb, a, b):
     """(P_a P_b)[a, b] with P = I - e e^T."""
     s = 0.0
@@ -387,7 +400,7 @@ def _hab(ea, eb, a, b):
     return s
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def bending_forces(r, P, f, want_jac, cK, Dg, Of, BX):
     """Bending at the interior nodes from the discrete elastica energy
     ``U_i = c_i (1 - e_a . e_b)``, ``c_i = EI / L_mean`` (``U ~ EI kappa^2 L / 2`` for small
@@ -459,7 +472,7 @@ def bending_forces(r, P, f, want_jac, cK, Dg, Of, BX):
 # --------------------------------------------------------------------------------------------
 # energy
 # --------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _elastic_energy(eps, c1, c2, c3, e0, L0):
     """Elastic energy (J) of an element of unstretched length ``L0`` at strain ``eps``: the
     integral of :func:`_tension` (zero in compression, the cubic transition below ``e0``, the
@@ -480,7 +493,7 @@ def _elastic_energy(eps, c1, c2, c3, e0, L0):
 # --------------------------------------------------------------------------------------------
 # very stiff elements: the tension estimates of the generalised-alpha iteration
 # --------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def start_tension_estimates(r, v, P, E, act):
     """Tension estimate of every stiff element (:func:`_stiff`) at the start of a step: its
     tension in the state ``r, v`` (zero for the other elements: only stiff ones use it).
@@ -494,7 +507,7 @@ def start_tension_estimates(r, v, P, E, act):
     return nstiff
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def bar_push(act, tens):
     """Largest push (N) of an element held as a bar in compression: the converged state must
     not rely on it (the cable law has no compression)."""
@@ -505,7 +518,7 @@ def bar_push(act, tens):
     return fbar
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def update_tension_estimates(r1, da, bs, cK, P, E, Of, tens, act):
     """Tension estimate of every stiff element for the next iterate: the linearised tension
     ``T + dT/dl dl`` of the correction ``bs da`` (m; ``dl`` from it, ``dT/dl = e^T K_j e / cK``
@@ -554,7 +567,7 @@ def update_tension_estimates(r1, da, bs, cK, P, E, Of, tens, act):
         act[j] = Tl
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def release_bars(act, tens):
     """Tension of the accepted state: an element held as a bar in compression (a push below
     the tolerance) carries none."""

@@ -21,6 +21,7 @@ from .layout import (
     EL_C3,
     EL_L0,
     EL_LAW,
+    KERNEL_JIT,
     NP_KS,
     NP_MAC,
     NP_MAN,
@@ -58,7 +59,7 @@ PEN_FLOOR = 0.5
 """m: the seabed bound is never shallower than this."""
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _largest(x):
     """Index of the largest entry of ``x``."""
     k = 0
@@ -68,7 +69,7 @@ def _largest(x):
     return k
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def line_energy(r, v, f, P, E, S, el, q, geom):
     """Mechanical energy of a line state and the power put into it, for the energy audit of
     the time steps (:func:`~.advance.ga_advance`).

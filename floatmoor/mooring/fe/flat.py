@@ -38,11 +38,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import config as numba_config
 from numba import njit, types
 from numba.core import cgutils
 from numba.core.imputils import impl_ret_borrowed
-from numba.extending import intrinsic, overload
-from numba.np.arrayobj import make_array, populate_array
+from numba.extending import intrinsic
+from numba.np.arrayobj import _call_contiguous_check, make_array, populate_array
+from numba.np.numpy_support import is_contiguous
 
 from .bundles import N_EW
 from .elements import E0_STIFF, _set_unit
@@ -56,6 +58,7 @@ from .layout import (
     EL_C2,
     EL_C3,
     EL_L0,
+    KERNEL_JIT,
     N_EL,
     N_NP,
     NP_KDN,
@@ -68,23 +71,53 @@ from .layout import (
     NP_W,
 )
 
-__all__ = ["flat", "element_geometry_flat", "element_pass", "element_pass_jac", "node_sums",
+__all__ = ["flat", "c_contiguous", "element_geometry_flat", "element_pass", "element_pass_jac", "node_sums",
            "block_sums", "fluid_pass", "fluid_pass_jac", "kinematics_flat", "mass_blocks_flat",
            "copy_nodes", "energy_terms", "energy_sums", "current_speeds",
            "node_tangents"]
+
+
+def _contiguous_bit(context, builder, aryty, ary):
+    """LLVM i1: the array value ``ary`` of type ``aryty`` is C-contiguous (a constant for a
+    C-layout type, else numba's own stride check)."""
+    if aryty.layout == "C":
+        return cgutils.true_bit
+    return _call_contiguous_check(is_contiguous, context, builder, aryty, ary)
+
+
+@intrinsic
+def c_contiguous(typingctx, arr):
+    """``arr.flags.c_contiguous`` for the FE kernels, which compile without reference counting
+    (``layout.KERNEL_JIT``): numba's ``flags`` object needs it.  A constant for a C-layout
+    array type, a stride check for the others."""
+    if not isinstance(arr, types.Array):
+        return None
+
+    def codegen(context, builder, sig, args):
+        return _contiguous_bit(context, builder, sig.args[0], args[0])
+
+    return types.boolean(arr), codegen
 
 
 @intrinsic
 def _flat_view(typingctx, arr):
     """The 1-D view of a C-contiguous array (same data, ``size`` entries): what
     ``arr.reshape(arr.size)`` returns, built directly (numba's reshape calls a helper that
-    checks the strides, about 30 ns, more than a small pass over a line takes)."""
-    if not (isinstance(arr, types.Array) and arr.layout == "C"):
+    checks the strides, about 30 ns, more than a small pass over a line takes).  For an array
+    type of another layout the strides are checked at run time and a ValueError raised when
+    the array is not C-contiguous (as ``reshape`` does)."""
+    if not isinstance(arr, types.Array):
         return None
     ret = types.Array(arr.dtype, 1, "C", readonly=not arr.mutable)
 
     def codegen(context, builder, sig, args):
-        ary = make_array(sig.args[0])(context, builder, value=args[0])
+        aryty = sig.args[0]
+        ary = make_array(aryty)(context, builder, value=args[0])
+        if aryty.layout != "C":
+            ok = _contiguous_bit(context, builder, aryty, args[0])
+            with builder.if_then(builder.not_(ok), likely=False):
+                context.call_conv.return_user_exc(
+                    builder, ValueError, ("flat: the array is not C-contiguous",))
         out = make_array(sig.return_type)(context, builder)
         shape = cgutils.unpack_tuple(builder, ary.shape)
         size = shape[0]
@@ -98,17 +131,23 @@ def _flat_view(typingctx, arr):
     return ret(arr), codegen
 
 
-def flat(a):
-    """The 1-D view of the contiguous array ``a`` (``a.reshape(a.size)``; in numba code
-    without the reshape helper for a C-contiguous array type)."""
-    return a.reshape(a.size)
+if numba_config.DISABLE_JIT:
+    def flat(a):
+        """The 1-D view of the contiguous array ``a`` (plain Python: ``a.reshape(a.size)``)."""
+        return a.reshape(a.size)
 
-
-@overload(flat)
-def _flat_overload(a):
-    if isinstance(a, types.Array) and a.layout == "C":
-        return lambda a: _flat_view(a)
-    return lambda a: a.reshape(a.size)
+    def c_contiguous(a):  # noqa: F811 (plain Python: the intrinsic cannot run)
+        """``a.flags.c_contiguous`` (plain Python)."""
+        return a.flags.c_contiguous
+else:
+    @njit(inline="always")
+    def flat(a):
+        """The 1-D view of the C-contiguous array ``a`` (``a.reshape(a.size)`` without numba's
+        reshape helper; a ValueError for an array that is not C-contiguous).  Inlined into the
+        caller's IR: the FE kernels compile without reference counting
+        (``layout.KERNEL_JIT``), under which numba refuses a called function that returns an
+        array other than its argument."""
+        return _flat_view(a)
 
 
 @njit(inline="always")
@@ -579,7 +618,7 @@ def energy_terms(r, v, f, P, E, el, q, zc, dc, ew):
         ew[u(EW_CON * n + i)] = 1.0 if con else 0.0
 
 
-@njit(cache=True, error_model="numpy")
+@njit(**KERNEL_JIT, error_model="numpy")
 def energy_sums(r, v, P, E, el, ew):
     """:func:`~.energy.line_energy`'s sums from the terms of :func:`energy_terms`, in its order
     (elements, with the internal damping power of the fairlead's element, then the free
@@ -621,7 +660,7 @@ def energy_sums(r, v, P, E, el, ew):
     return ke + ue + eg, pw, ke + ue, wsum, pen_max, ipen
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def current_speeds(r, cur_z, cur_u, uc):
     """The current speed at every node's level into ``uc`` (n): the lookup of
     :func:`~.fluid.fluid_forces` (:func:`~.fluid._current`, the same numbers), node by node
@@ -657,7 +696,7 @@ def _tangents_interior(el, q):
         q[c + 2] = qz / nq
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def node_tangents(el, q):
     """:func:`~.elements._tangents_from` (the node tangents from the element directions ``el``
     (n-1, 4)) into ``q`` (n, 3), the same numbers: the interior nodes vectorised

@@ -14,10 +14,10 @@ import math
 
 from numba import njit
 
-from .layout import NP_KC, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_MD, S_CURC, S_CURS
+from .layout import KERNEL_JIT, NP_KC, NP_KDN, NP_KDT, NP_MAN, NP_MAT, NP_MD, S_CURC, S_CURS
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _current_scale(cur_z):
     """Levels per metre of the current profile (the guess of :func:`_current`; 0 for fewer
     than two levels)."""
@@ -27,7 +27,7 @@ def _current_scale(cur_z):
     return (n - 1) / (cur_z[n - 1] - cur_z[0])
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _current(z, cur_z, cur_u, sc):
     """Current speed at the level ``z`` (m/s), linear between the levels ``cur_z``; ``sc`` the
     levels per metre of :func:`_current_scale`."""
@@ -54,7 +54,7 @@ def _current(z, cur_z, cur_u, sc):
     return (1.0 - w) * cur_u[j] + w * cur_u[j + 1]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def fluid_forces(r, v, q, P, S, cur_z, cur_u, wk, want_jac, cC, f, Dg):
     """Drag, fluid inertia and clump drag on every node, added into ``f`` (n, 3); with
     ``want_jac`` their damping blocks times ``cC`` added into the diagonal blocks ``Dg``.

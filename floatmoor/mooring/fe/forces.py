@@ -19,6 +19,7 @@ from .elements import _tangents_from, bending_forces, element_forces, element_ge
 from .fibre_law import EL_LAW
 from .flat import (
     block_sums,
+    c_contiguous,
     current_speeds,
     element_geometry_flat,
     element_pass,
@@ -30,11 +31,11 @@ from .flat import (
     node_tangents,
 )
 from .fluid import fluid_forces
-from .layout import EL_C1, EL_L0, EPS_MACH, NP_KC, NP_MASS, NP_W, S_BEND, S_CURC, S_CURS
+from .layout import EL_C1, EL_L0, EPS_MACH, KERNEL_JIT, NP_KC, NP_MASS, NP_W, S_BEND, S_CURC, S_CURS
 from .seabed import seabed_forces
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def line_forces(r, v, fs, par, want_jac, cK, cC, f, w):
     """Nodal forces of the line and (optionally) the combined tangent ``cK K + cC C``.
 
@@ -63,7 +64,7 @@ def line_forces(r, v, fs, par, want_jac, cK, cC, f, w):
     _line_forces(r, v, fs, par, bool(want_jac), cK, cC, f, w, bool(False))  # noqa: UP018
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     """:func:`line_forces`; with ``use_act``, ``w.act`` (n-1,) holds a tension estimate of
     every element (N, see :func:`~.gen_alpha.gen_alpha_step`): an element in compression with
@@ -76,11 +77,10 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     kind = flat_kind(P, E, par.wk, par.cur_z)
     # the flat views need C-contiguous arrays (the bundles' arrays are: numba types them so and
     # these tests are then constants)
-    contig = (r.flags.c_contiguous and v.flags.c_contiguous and f.flags.c_contiguous
-              and P.flags.c_contiguous and E.flags.c_contiguous and par.wk.flags.c_contiguous
-              and w.el.flags.c_contiguous and w.q.flags.c_contiguous
-              and w.Of.flags.c_contiguous and w.Dg.flags.c_contiguous
-              and w.tens.flags.c_contiguous)
+    contig = (c_contiguous(r) and c_contiguous(v) and c_contiguous(f) and c_contiguous(P)
+              and c_contiguous(E) and c_contiguous(par.wk) and c_contiguous(w.el)
+              and c_contiguous(w.q) and c_contiguous(w.Of) and c_contiguous(w.Dg)
+              and c_contiguous(w.tens))
     if contig and (kind & 1) and not use_act and not (want_jac and cC == 0.0):
         # the element passes vectorised across the elements (flat.py, the same bits); not for
         # the tension estimates of stiff elements nor the static tangent
@@ -106,7 +106,7 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     # bending (pinned ends): discrete elastica energy c_i (1 - e_a . e_b) at interior nodes
     if S[S_BEND] > 0.0:
         bending_forces(r, par.P, f, want_jac, cK, w.Dg, w.Of, w.BX)
-    if contig and w.uc.flags.c_contiguous and (kind & 2):
+    if contig and c_contiguous(w.uc) and (kind & 2):
         current_speeds(r, par.cur_z, par.cur_u, w.uc)
         qf = flat(w.q)
         vf = flat(v)
@@ -122,7 +122,7 @@ def _line_forces(r, v, fs, par, want_jac, cK, cC, f, w, use_act):
     seabed_forces(r, v, w.q, fs, par.P, S, par.fric, want_jac, cK, cC, f, w.Dg)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def flat_kind(P, E, wk, cur_z):
     """Which passes of :mod:`.flat` a line's force evaluation can take: bit 1 the element
     passes (no element with a fibre law), bit 2 the fluid passes (no clump drag, no wave
@@ -137,7 +137,7 @@ def flat_kind(P, E, wk, cur_z):
     return (0 if fib else 1) | (0 if other else 2)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def force_tolerances(r, P, E):
     """Force scale of the line for the iteration's convergence tests:
     ``(ftol, fcap, weight, rfloor)`` (N).

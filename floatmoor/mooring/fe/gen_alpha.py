@@ -26,7 +26,7 @@ from .elements import (
 )
 from .flat import element_geometry_flat, flat, kinematics_flat, mass_blocks_flat, node_tangents
 from .forces import _line_forces, force_tolerances
-from .layout import FR_DISPVEL, S_BEND, S_ZC
+from .layout import FR_DISPVEL, KERNEL_JIT, S_BEND, S_ZC
 from .seabed import friction_decide
 
 # Modified Newton (``LineParams.newton`` 1, see gen_alpha_step): the kept iteration matrix is
@@ -50,7 +50,7 @@ NW_TRAPEZ = 16
 TENSION_TOL = 1e-4
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1):
     """Predictor of a step of ``dt`` from the state ``r, v, a`` (n, 3): constant accelerations
     of the free nodes, plus the fairlead's deviation from its own constant-velocity prediction
@@ -84,7 +84,7 @@ def predict(dt, beta, mode, rf1, vf1, r, v, a, r1, v1, a1):
         v1[n - 1, k] = vf1[k]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def kinematics(dt, beta, gamma, r, v, a, a1, r1, v1):
     """Positions and velocities of the free nodes at the end of the step from their
     accelerations ``a1`` (Newmark's formulas of the scheme)."""
@@ -92,7 +92,7 @@ def kinematics(dt, beta, gamma, r, v, a, a1, r1, v1):
     kinematics_flat(dt, beta, gamma, flat(r), flat(v), flat(a), flat(a1), flat(r1), flat(v1))
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def residual(am, af, a, a1, fn, f1, Mb, fresh, Dg, R):
     """Residual ``R = (1-af) f(r1, v1) + af fn - M ((1-am) a1 + am a)`` of the free nodes into
     ``R`` (n, 3) and its squared 2-norm (returned); with ``fresh`` the inertia block
@@ -117,7 +117,7 @@ def residual(am, af, a, a1, fn, f1, Mb, fresh, Dg, R):
     return res
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def imbalance(R):
     """The force imbalance of an iterate: the residual ``R`` (n, 3) of the free nodes summed in
     absolute value (N)."""
@@ -127,7 +127,7 @@ def imbalance(R):
     return s
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def correct(da, a1):
     """Apply the Newton correction ``da`` to the accelerations ``a1`` of the free nodes.
     Returns ``(dmax, imax)``: the largest correction component and its node, or ``(-1, i)``
@@ -146,7 +146,7 @@ def correct(da, a1):
     return dmax, imax
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _first_nan(f1):
     """The first node of ``f1`` (n, 3) with a NaN or infinite entry, or -1."""
     for i in range(f1.shape[0]):
@@ -156,7 +156,7 @@ def _first_nan(f1):
     return -1
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     """One generalised-alpha step (Chung & Hulbert 1993) of the free nodes with Newton
     iterations on the accelerations.
@@ -392,7 +392,7 @@ def gen_alpha_step(t1, dt, rf1, vf1, s0, s1, par, w):
     return it
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def all_taut(tens):
     """True when every element tension of the iterate is positive (no slack element, no
     held bar in compression): the condition of the force stop."""
@@ -402,7 +402,7 @@ def all_taut(tens):
     return True
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _back(alpha, da, a1):
     """Take back the part ``alpha`` of the last correction ``da`` (residual-increase
     backtracking)."""

@@ -39,7 +39,20 @@ from numba.core.compiler import Compiler
 from .elements import _slack_strain, _stiff
 from .energy import AUDIT_FLOOR
 from .fibre_law import EL_LAW
-from .layout import EL_C1, EL_C2, EL_C3, N_EL, N_FS, N_NP, N_S, NP_KC, NP_MASS, NP_W, S_BEND
+from .layout import (
+    EL_C1,
+    EL_C2,
+    EL_C3,
+    KERNEL_JIT,
+    N_EL,
+    N_FS,
+    N_NP,
+    N_S,
+    NP_KC,
+    NP_MASS,
+    NP_W,
+    S_BEND,
+)
 
 __all__ = ["LW", "NoAliasCompiler", "LANE_JIT", "ix", "LaneParams", "LaneState", "LaneWork",
            "LaneGroup", "build_group", "N_EC", "EC_E0", "EC_A", "EC_B", "EC_STIFF"]
@@ -60,12 +73,12 @@ class NoAliasCompiler(Compiler):
         super().__init__(typingctx, targetctx, library, args, return_type, flags, locals)
 
 
-LANE_JIT = {"cache": True, "error_model": "numpy", "pipeline_class": NoAliasCompiler}
-"""numba options of the vectorised lane kernels: cached, ``noalias`` arguments, and numpy's
-error model (a float division by zero gives inf or NaN instead of raising: with Python's model
-every division carries a branch to the exception, and the loop does not vectorise; the lanes
-compute both sides of a branch and select, so a division by zero on the side not taken must
-not raise)."""
+LANE_JIT = {**KERNEL_JIT, "error_model": "numpy", "pipeline_class": NoAliasCompiler}
+"""numba options of the vectorised lane kernels: :data:`~.layout.KERNEL_JIT`, ``noalias`` arguments, and
+numpy's error model (a float division by zero gives inf or NaN instead of raising: with
+Python's model every division carries a branch to the exception, and the loop does not
+vectorise; the lanes compute both sides of a branch and select, so a division by zero on the
+side not taken must not raise)."""
 
 
 @njit(inline="always")

@@ -66,6 +66,7 @@ from .layout import (
     FR_DISPVEL,
     FR_NONE,
     FR_VDQ,
+    KERNEL_JIT,
     N_EL,
     N_FS,
     N_NP,
@@ -192,7 +193,7 @@ def masked_copy(b, rows, mask, src, dst):
             dst[b, ix(i, 0, 1, l)] = s if m else d
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def take_step(b, n, mask, step, trial):
     """The sub-step result ``step`` (positions, velocities, accelerations, forces) into the
     trial state of the lanes with ``mask[b, l]`` 1."""
@@ -202,7 +203,7 @@ def take_step(b, n, mask, step, trial):
     masked_copy(b, 3 * n, mask, step.f, trial.f)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def copy_state(b, n, mask, src, dst, with_fs):
     """The state ``src`` into ``dst`` for the lanes with ``mask[b, l]`` 1 (``with_fs``: the
     friction state too)."""
@@ -214,7 +215,7 @@ def copy_state(b, n, mask, src, dst, with_fs):
         masked_copy(b, N_FS * n, mask, src.fs, dst.fs)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def block_advance(b, n, t1, dt, nsub, max_split, g, on):
     """Trial advance of the lanes of block ``b`` with ``on[b * LW + l]`` from their accepted
     state to ``t1`` in ``nsub`` generalised-alpha steps (:func:`~.advance.ga_advance`, lane by
@@ -446,7 +447,7 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
             w.etr[b, ix(4, 0, 1, l)] = lf[b, ix(LF_EFLOOR, 0, 1, l)]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _has_fibre(E, b, n, l):
     for j in range(n - 1):
         if E[b, ix(j, EL_LAW, N_EL, l)] != 0.0:
@@ -454,7 +455,7 @@ def _has_fibre(E, b, n, l):
     return False
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def accept(b, n, g, on):
     """Commit the trial state of the lanes of block ``b`` with ``on[b * LW + l]`` (the copies
     of :func:`~.advance.accept_trial`)."""
@@ -470,7 +471,7 @@ def accept(b, n, g, on):
                flags[b, BF_FRIC] != FR_NONE or flags[b, BF_FIBRE] != 0)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def record(g, p, n, out):
     """The output channels of lane row ``p``'s accepted state into ``out``
     (:func:`~.advance.record_into`; the element tensions of its last force evaluation)."""

@@ -13,6 +13,7 @@ from numba import njit
 
 from .blocks import block_band_solve
 from .lanes import LANE_JIT, LW, ix, lanes_in
+from .layout import KERNEL_JIT
 
 
 @njit(inline="always")
@@ -249,7 +250,7 @@ def tridiag_resolve(b, n, Of, rhs, W, Y, x):
                                         + W[b, ix(i, 3 * a + 2, 9, l)] * s2)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def band_solve(b, n, Dg, Of, BX, rhs, Y, T1, x, mask, bad):
     """:func:`~.blocks.block_band_solve` (bending) of the free nodes of the lanes of block
     ``b`` with ``mask[b, l]`` 1, lane by lane (``BX`` and ``T1``: one per lane row)."""

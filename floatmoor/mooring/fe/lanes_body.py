@@ -69,7 +69,7 @@ def lanes_mode(lines, recs: np.ndarray) -> LaneLines:
                      group=g, on=on)
 
 
-@njit(cache=True)
+@njit(cache=True)  # with reference counting: it reads the typed list of the line bundles
 def lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     """Advance the lanes of ``mode`` (:class:`LaneLines`) to ``t1`` with the body at ``pose``
     moving with ``vel``, and on success accept them and record their channels into

@@ -45,6 +45,7 @@ from .layout import (
     EL_C2,
     EL_C3,
     EL_L0,
+    KERNEL_JIT,
     N_EL,
     N_FS,
     N_NP,
@@ -215,7 +216,7 @@ def axial_law(b, n, E, EC, el, Tl, Dl):
             Dl[b, ix(j, 0, 1, l)] = D if taut else 0.0
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def fibre_law(b, n, E, EC, S, el, fs, Tl, Dl, li):
     """The fibre elements' tension and ``dT/deps`` (:func:`~.fibre_law.fibre_tension`), lane
     by lane (the :func:`live` ones), over those of :func:`axial_law`."""
@@ -386,7 +387,7 @@ def element_forces(b, n, v, P, E, EC, el, Tl, Dl, act, lf, want_jac, use_act, da
 # --------------------------------------------------------------------------------------------
 # nodes: fluid loads and seabed
 # --------------------------------------------------------------------------------------------
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def current_speeds(b, n, r, cur_z, cur_u, cur_n, uc, li):
     """The current speed at every node of block ``b`` (:func:`~.fluid._current`, lane by lane:
     the level lookup does not vectorise; zero in the lanes not :func:`live`)."""
@@ -570,7 +571,7 @@ def seabed_contact(b, n, r, v, P, SC, lf, want_jac, f, Dg):
                                          if on else d22)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def friction(b, n, r, v, q, fs, P, S, fric, lf, want_jac, f, Dg, li):
     """Seabed friction (:func:`~.seabed._friction_node`) of every node of block ``b`` in
     contact, lane by lane, after :func:`seabed_contact` (which changes only the vertical force
@@ -599,7 +600,7 @@ def friction(b, n, r, v, q, fs, P, S, fric, lf, want_jac, f, Dg, li):
                            want_jac, cK, cC, fl, Dl)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def bending(b, n, r, P, lf, want_jac, f, Dg, Of, BX, li):
     """Bending (:func:`~.elements.bending_forces`) of block ``b``, lane by lane (the
     :func:`live` ones; ``BX``: one (7, n, 3, 3) array per lane row)."""
@@ -634,7 +635,7 @@ def _fluid(b, n, v, par, w, want_jac, waves, clump, f):
                      w.Dg)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def forces_into(b, n, par, r, v, fs, f, w, want_jac, use_act):
     """Nodal forces of block ``b`` at ``r, v`` (friction state ``fs``) into ``f`` and, with
     ``want_jac``, the tangent ``cK K + cC C`` (``cK, cC`` per lane in ``w.lf``) into ``w.Dg``,

@@ -65,7 +65,7 @@ from .lanes import (
 )
 from .lanes_blocks import band_solve, tridiag_resolve, tridiag_solve
 from .lanes_forces import forces_into, geometry, lane_rows, mass_blocks, tangents
-from .layout import EL_C1, EL_L0, EPS_MACH, FR_DISPVEL, N_EL, N_FS, N_NP, S_ZC
+from .layout import EL_C1, EL_L0, EPS_MACH, FR_DISPVEL, KERNEL_JIT, N_EL, N_FS, N_NP, S_ZC
 from .seabed import friction_decide
 
 # Newton status of a lane (li[LI_ST])
@@ -244,7 +244,7 @@ def force_scales(b, n, r, E, weight, lf):
                                           3.0 * (n - 2) * fround)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def block_step(b, n, par, s0, fs, s1, w):
     """One generalised-alpha step of the running lanes of block ``b`` (``w.li[LI_ST]``
     :data:`ST_RUN`; the others :data:`ST_IDLE`) from the states ``s0`` to ``s1``

@@ -33,3 +33,15 @@ FR_NONE, FR_VEL, FR_DISPVEL, FR_STATIC, FR_VDQ = 0, 1, 2, 3, 4
 N_FS = 11
 FS_UPREV, FS_FPREV = 0, 1
 EPS_MACH = 2.220446049250313e-16
+
+KERNEL_JIT = {"cache": True, "_nrt": False}
+"""numba options of the FE step kernels (the line kernel's force, step and advance functions,
+the lanes' passes): cached, and no reference counting (``_nrt=False``, as the quasi-static
+kernels' ``td_kernel.INTERNAL``).  With it numba emits an atomic increment and decrement of an
+array's reference count for every array argument and every array taken out of a bundle
+(``lanes_forces.forces_into`` had about 100 of each per call, ``lanes_step.block_step`` 140):
+10 % of the flagship's lanes replay in a ``perf`` profile (2026-11-28).  These kernels
+allocate nothing and return no array (their arrays are the bundles', made in Python), and numba
+refuses to compile an allocation under ``_nrt=False``, so one added later fails loudly.  A
+kernel that reads a typed list (``multi``, ``lanes_body.lanes_advance_lines``) keeps the
+reference counts."""

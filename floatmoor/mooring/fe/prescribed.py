@@ -19,6 +19,7 @@ from numba import njit
 from ...core.frames import rotation_matrix_into
 from ..catenary import solve_line
 from . import kernels as K
+from .layout import KERNEL_JIT
 from .line import FELine
 
 __all__ = ["HarmonicMotion", "TimeSeriesMotion", "fairlead_track_from_body", "run_prescribed",
@@ -248,7 +249,7 @@ PROGRESS_PIECES = 20
 """Pieces a prescribed-motion run is split into when progress is reported (a line per 5 %)."""
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _run_steps(t0, dt, k0, k1, nsub, max_split, rf, vf, record_every, snap_steps, si, tracked,
                ln, times, recs, snaps_r, snaps_t, pos_tr, counts):
     """Steps ``k0 .. k1`` of :func:`run_prescribed` for a line without wave kinematics: advance

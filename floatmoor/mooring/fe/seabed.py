@@ -19,6 +19,7 @@ from .layout import (
     FR_VEL,
     FS_FPREV,
     FS_UPREV,
+    KERNEL_JIT,
     NP_CS,
     NP_KS,
     NP_MUA,
@@ -36,7 +37,7 @@ D_MEANINGFUL = 1e-4     # Lu (2012): displacement ramp active beyond this (m)
 V_SB = 0.01             # seabed damping switches off between -V_SB and +V_SB (m/s)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _friction_dirs(qx, qy):
     h = math.sqrt(qx * qx + qy * qy)
     if h > 1e-12:
@@ -48,7 +49,7 @@ def _friction_dirs(qx, qy):
     return ax, ay, -ay, ax
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def dq_transition(x, xp, fp):
     """Double-quadratic transition factor (ANSYS 2013 sec. 9.x, eq. 9-62/9-64/9-65 as
     reconstructed in :mod:`floatmoor.mooring.fe.config`) and its slope ``df/dx``.
@@ -83,7 +84,7 @@ def dq_transition(x, xp, fp):
     return c * x * x, 2.0 * c * x
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _dq_g(u, vR, up, fp):
     """``g = f(u / v_R) / u`` (s/m) of the double-quadratic ramp and ``dg/du``, without 0/0 at
     rest (the friction force is ``-N g (mu_a v_a a + mu_l v_l b)``)."""
@@ -107,7 +108,7 @@ def _dq_g(u, vR, up, fp):
     return g, (df / vR - g) / u
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
     """Lu (2012) combined displacement and velocity ramp (sec. 2.2.2, figure 8) for one
     direction, with the branch frozen for the time step.
@@ -149,7 +150,7 @@ def _dispvel_coef(vk, dk, branch, c_prev, v_prev, Cv, Cd, muN):
     return sgn * floor, 0.0, 0.0
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def seabed_forces(r, v, q, fs, P, S, fric, want_jac, cK, cC, f, Dg):
     """Seabed contact and friction on every node below the seabed level, added into ``f``
     (n, 3) and, with ``want_jac``, their tangent blocks ``cK K + cC C`` into ``Dg``.
@@ -209,7 +210,7 @@ def seabed_forces(r, v, q, fs, P, S, fric, want_jac, cK, cC, f, Dg):
                            cC, f, Dg)
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _friction_node(i, r, v, qx, qy, fs, P, S, fric, N, ks, dg, want_jac, cK, cC, f, Dg):
     """Friction on node ``i`` in contact with the normal force ``N = ks g(pen)`` (``dg`` the
     slope of ``g``), added into ``f`` and (``want_jac``) its tangent into ``Dg``."""
@@ -298,7 +299,7 @@ def _friction_node(i, r, v, qx, qy, fs, P, S, fric, N, ks, dg, want_jac, cK, cC,
             Dg[i, 1, 1] += w * dk_y * dk_y
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def friction_decide(r, v, fric, fs, zc):
     """Start of a time step: freeze the branch of the Lu (2012) model from the predicted
     velocities (stick below 1e-8 m/s, else the sliding direction)."""
@@ -319,7 +320,7 @@ def friction_decide(r, v, fric, fs, zc):
                 fs[i, 6 + k] = 1.0 if vk > 0.0 else -1.0
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def friction_commit(r, v, q, fric, fs, P, S, zc):
     """End of an accepted time step: store the Lu (2012) friction coefficients and the last
     sliding velocities; a reversal of the sliding direction resets the reference position.
