@@ -7,6 +7,7 @@ the trial state (:func:`accept`) and a lane's output channels (:func:`record`).
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from .advance import record_into
@@ -185,6 +186,15 @@ def masked_copy(b, rows, mask, src, dst):
     with ``mask[b, l]`` 1.  One array per call: the arrays of a state tuple are not arguments,
     so not ``noalias``, and the copy of several at once does not vectorise."""
     lw = lanes_in(mask, 1)
+    every = True
+    for l in range(lw):
+        every = every and mask[b, l] != 0
+    if every:
+        # every lane (the usual case): a plain copy of the row (9 % of the flagship's lanes
+        # replay went to the masked loop below, perf 2026-11-28)
+        for i in range(rows * lw):
+            dst[b, np.uintp(i)] = src[b, np.uintp(i)]
+        return
     for i in range(rows):
         for l in range(lw):
             m = mask[b, l] != 0
