@@ -165,3 +165,45 @@ def test_node_tangents_as_the_general_function_also_at_degenerate_elements():
         _tangents_from(el, q1)
         node_tangents(el, q2)
         assert np.array_equal(q1, q2, equal_nan=True), case
+
+
+def test_flat_view_and_contiguity_without_reference_counting():
+    """``flat.flat`` and ``flat.c_contiguous`` in a kernel compiled without reference counting
+    (``layout.KERNEL_JIT``, as the FE kernels are): the 1-D view shares the data of a
+    C-contiguous array; for an array type of layout 'A' the strides are checked at run time:
+    a contiguous one is viewed, a strided one (every other column) is refused with a
+    ValueError as numpy's ``reshape`` would have to copy; ``c_contiguous`` agrees with numpy's
+    flag on both."""
+    from numba import njit
+
+    from floatmoor.mooring.fe.flat import c_contiguous, flat
+    from floatmoor.mooring.fe.layout import KERNEL_JIT
+
+    @njit(**KERNEL_JIT)
+    def _double_first(a):
+        v = flat(a)
+        v[0] *= 2.0
+        return v.shape[0]
+
+    @njit(**KERNEL_JIT)
+    def _contig(a):
+        return c_contiguous(a)
+
+    a = np.arange(12.0).reshape(4, 3)
+    assert _double_first(a) == 12 and a[0, 0] == 0.0
+    a[0, 0] = 1.5
+    assert _double_first(a) == 12 and a[0, 0] == 3.0
+    assert _contig(a)
+    strided = np.arange(24.0).reshape(4, 6)[:, ::2]      # layout 'A', not contiguous
+    assert not strided.flags.c_contiguous and not _contig(strided)
+    with pytest.raises(ValueError, match="not C-contiguous"):
+        _double_first(strided)
+
+    @njit(**KERNEL_JIT)
+    def _all_columns(a):
+        # a slice of every column: an array type of layout 'A' over contiguous data
+        s = a[:, 0:a.shape[1]]
+        return c_contiguous(s), flat(s).shape[0], c_contiguous(a[:, 0:1])
+
+    ok, size, part = _all_columns(np.arange(24.0).reshape(4, 6))
+    assert ok and size == 24 and not part
