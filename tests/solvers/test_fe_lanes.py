@@ -36,11 +36,16 @@ def test_lanes_are_the_default_and_bit_identical(tmp_path, monkeypatch):
 
     def spy(lines, threads):
         m = orig(lines, threads)
-        seen.append(type(m))
+        seen.append(m)
         return m
     monkeypatch.setattr(FC, "_mode", spy)
     (r1, c1), (r2, c2) = _both(monkeypatch, p)
-    assert seen[0] is LaneLines and seen[1] is not LaneLines
+    assert isinstance(seen[0], LaneLines) and not isinstance(seen[1], LaneLines)
+    # the lines fill the lanes by start tension (lane_order), not in line order: the
+    # comparison below covers the permutation
+    order = [int(k) for k in seen[0].line_of[:12]]
+    assert sorted(order) == list(range(12)) and order != list(range(12))
+    assert all(seen[0].slot[k] == p for p, k in enumerate(order))
     _assert_same(r1, r2)
     np.testing.assert_array_equal(c1, c2)
     assert c1[:, 0].min() > 0 and np.ptp(r1.motion[:, 0]) > 0.01   # the lines worked
@@ -57,7 +62,8 @@ def test_lanes_with_a_released_line(tmp_path, monkeypatch):
 
 
 def test_a_failing_lane_raises_the_line_error(tmp_path, monkeypatch):
-    """Lines 5-8 (the second block of lanes) allowed no Newton iteration: the first step fails
+    """Lines 5-8 (a block of lanes of their own: ``lane_order`` groups the lines by iteration
+    limit first) allowed no Newton iteration: the first step fails
     at its smallest sub-step, and the error names line5 with the time and node of the
     line-by-line run."""
     p = _scene(tmp_path, n_elements=8)
