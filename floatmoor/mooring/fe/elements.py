@@ -156,21 +156,29 @@ def node_tangents(r, q):
         _set_unit(q, i, qx, qy, qz)
 
 
+@njit(inline="always")
+def tangent_from(el, q, i):
+    """``q[i]``, the unit tangent at node ``i`` from the element directions and lengths ``el``
+    (n-1, 4) of :func:`element_geometry`: the directions of its elements of non-zero length
+    summed, element ``i - 1`` first (:func:`_set_unit`)."""
+    n = q.shape[0]
+    qx = 0.0
+    qy = 0.0
+    qz = 0.0
+    for j in (i - 1, i):
+        if 0 <= j < n - 1 and el[j, 3] > 0.0:
+            qx += el[j, 0]
+            qy += el[j, 1]
+            qz += el[j, 2]
+    _set_unit(q, i, qx, qy, qz)
+
+
 @njit(**KERNEL_JIT)
 def _tangents_from(el, q):
     """:func:`node_tangents` from the element directions and lengths ``el`` (n-1, 4) of
     :func:`element_geometry` (the same sums in the same order: the same bits)."""
-    n = q.shape[0]
-    for i in range(n):
-        qx = 0.0
-        qy = 0.0
-        qz = 0.0
-        for j in (i - 1, i):
-            if 0 <= j < n - 1 and el[j, 3] > 0.0:
-                qx += el[j, 0]
-                qy += el[j, 1]
-                qz += el[j, 2]
-        _set_unit(q, i, qx, qy, qz)
+    for i in range(q.shape[0]):
+        tangent_from(el, q, i)
 
 
 @njit(**KERNEL_JIT)

@@ -47,7 +47,7 @@ from numba.np.arrayobj import _call_contiguous_check, make_array, populate_array
 from numba.np.numpy_support import is_contiguous
 
 from .bundles import N_EW
-from .elements import E0_STIFF, _set_unit
+from .elements import E0_STIFF, tangent_from
 from .energy import PEN_FLOOR, PEN_WEIGHTS
 from .fibre_law import EL_LAW
 from .fluid import _current, _current_scale
@@ -708,12 +708,4 @@ def node_tangents(el, q):
     for i in range(n):
         if 0 < i < n - 1 and el[i - 1, 3] > 0.0 and el[i, 3] > 0.0 and q[i, 0] == q[i, 0]:
             continue
-        qx = 0.0
-        qy = 0.0
-        qz = 0.0
-        for j in (i - 1, i):
-            if 0 <= j < n - 1 and el[j, 3] > 0.0:
-                qx += el[j, 0]
-                qy += el[j, 1]
-                qz += el[j, 2]
-        _set_unit(q, i, qx, qy, qz)
+        tangent_from(el, q, i)

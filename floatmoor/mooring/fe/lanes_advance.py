@@ -225,6 +225,13 @@ def copy_state(b, n, mask, src, dst, with_fs):
         masked_copy(b, N_FS * n, mask, src.fs, dst.fs)
 
 
+@njit(inline="always")
+def _uses_fs(flags, b):
+    """Block ``b`` keeps a friction state: seabed friction or a fibre law (a block with neither
+    never reads or writes it, so its copies are skipped)."""
+    return flags[b, BF_FRIC] != FR_NONE or flags[b, BF_FIBRE] != 0
+
+
 @njit(**KERNEL_JIT)
 def block_advance(b, n, t1, dt, nsub, max_split, g, on):
     """Trial advance of the lanes of block ``b`` with ``on[b * LW + l]`` from their accepted
@@ -275,10 +282,8 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
             lf[b, ix(LF_PW0, 0, 1, l)] = eo[b, ix(EO_PW, 0, 1, l)]
             lf[b, ix(LF_BUD0, 0, 1, l)] = eo[b, ix(EO_BUD, 0, 1, l)]
             lf[b, ix(LF_EFLOOR, 0, 1, l)] = AUDIT_FLOOR * eo[b, ix(EO_WSUM, 0, 1, l)]
-    # the trial state starts as the accepted one: its friction state is copied (a block
-    # without seabed friction and fibre laws never reads or writes it: no copy)
-    with_fs = fric != FR_NONE or par.flags[b, BF_FIBRE] != 0
-    if with_fs:
+    # the trial state starts as the accepted one: its friction state is copied
+    if _uses_fs(par.flags, b):
         for i in range(n):
             for k in range(N_FS):
                 for l in range(LW):
@@ -475,10 +480,7 @@ def accept(b, n, g, on):
         if on[b * LW + l]:
             for k in range(5):
                 w.eacc[b, ix(k, 0, 1, l)] = w.etr[b, ix(k, 0, 1, l)]
-    # the friction state only where it is used (block_advance)
-    flags = g.par.flags
-    copy_state(b, n, w.mask, g.trial, g.now,
-               flags[b, BF_FRIC] != FR_NONE or flags[b, BF_FIBRE] != 0)
+    copy_state(b, n, w.mask, g.trial, g.now, _uses_fs(g.par.flags, b))
 
 
 @njit(**KERNEL_JIT)
