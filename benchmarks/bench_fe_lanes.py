@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from floatmoor.core.frames import rotation_matrix_into  # noqa: E402
-from floatmoor.mooring.fe.lanes import LW, build_group  # noqa: E402
+from floatmoor.mooring.fe.lanes import LW, accepted, accepted_rows, build_group  # noqa: E402
 from floatmoor.mooring.fe.lanes_advance import accept, block_advance  # noqa: E402
 from floatmoor.mooring.fe.multi import body_accept, body_advance, fairlead_into  # noqa: E402
 
@@ -56,7 +56,7 @@ def _lines_steps(poses, vel, dt, nsub, max_split, body, lines, fair):
 def _lanes_steps(poses, vel, dt, nsub, max_split, body, g, n, on, fair):
     fair_b, R, rf_all, vf_all, arm, Q, forces, _, fail, counters = body
     nl = fair.shape[1]
-    nb = g.now.r.shape[0]
+    nb = g.state0.r.shape[0]
     for s in range(poses.shape[0] - 1):
         pose = poses[s + 1]
         v = vel[s + 1]
@@ -82,7 +82,7 @@ def _lanes_steps(poses, vel, dt, nsub, max_split, body, g, n, on, fair):
             b = p // LW
             lane = p % LW
             for c in range(3):
-                fair[s, p, c] = g.now.f[b, ((n - 1) * 3 + c) * LW + lane]
+                fair[s, p, c] = accepted(g, b).f[b, ((n - 1) * 3 + c) * LW + lane]
     return 0
 
 
@@ -159,8 +159,8 @@ def main() -> None:
         cpu = time.process_time() - c0
         if st:
             raise RuntimeError(f"lane replay failed at step {st}")
-        nb = g.now.r.shape[0]
-        arr = [getattr(g.now, k).reshape(nb, n, 3, LW) for k in ("r", "v", "a", "f")]
+        nb = g.state0.r.shape[0]
+        arr = [accepted_rows(g, k).reshape(nb, n, 3, LW) for k in ("r", "v", "a", "f")]
         states = np.stack([np.concatenate([a[p // LW, :, :, p % LW] for a in arr], axis=1)
                            for p in range(nl)])
         return cpu, fair, states

@@ -36,12 +36,12 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 PASSES = {
     "lanes_forces": ("geometry", "tangents", "mass_blocks", "axial_law", "element_forces",
-                     "fluid_forces", "seabed_contact"),
+                     "fluid_forces", "seabed_contact", "current_lookup"),
     "lanes_step": ("predict", "kinematics", "residual", "correct", "force_scales"),
     "lanes_blocks": ("tridiag_solve", "tridiag_resolve"),
     "lanes_advance": ("energy", "masked_copy"),
 }
-BY_LANE = {"lanes_forces": ("current_speeds", "friction", "fibre_law", "bending")}
+BY_LANE = {"lanes_forces": ("current_fix", "friction", "fibre_law", "bending")}
 
 
 def counts(asm: str) -> tuple[int, int]:

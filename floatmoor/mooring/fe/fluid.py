@@ -28,20 +28,12 @@ def _current_scale(cur_z):
 
 
 @njit(**KERNEL_JIT)
-def _current(z, cur_z, cur_u, sc):
-    """Current speed at the level ``z`` (m/s), linear between the levels ``cur_z``; ``sc`` the
-    levels per metre of :func:`_current_scale`."""
+def _current_interval(z, cur_z, sc):
+    """The level interval ``j`` of ``cur_z[0] < z < cur_z[-1]`` (at least two levels, sorted):
+    ``cur_z[j] < z <= cur_z[j + 1]``, guessed from the mean level spacing ``sc``
+    (:func:`_current_scale`) and walked from there (no step for the uniform profiles the scenes
+    build; the same interval as a bisection)."""
     n = cur_z.shape[0]
-    if n == 0:
-        return 0.0
-    if z <= cur_z[0] or n == 1:
-        return cur_u[0]
-    if z >= cur_z[n - 1]:
-        return cur_u[n - 1]
-    # the level interval j with cur_z[j] < z <= cur_z[j + 1]: guessed from the mean level
-    # spacing and walked from there (no step for the uniform profiles the scenes build; the
-    # same interval as a bisection, so the same bits).  Every node looks the current up at
-    # every force evaluation.
     g = (z - cur_z[0]) * sc
     j = 0
     if g >= 1.0:
@@ -50,6 +42,22 @@ def _current(z, cur_z, cur_u, sc):
         j -= 1
     while cur_z[j + 1] < z:
         j += 1
+    return j
+
+
+@njit(**KERNEL_JIT)
+def _current(z, cur_z, cur_u, sc):
+    """Current speed at the level ``z`` (m/s), linear between the levels ``cur_z``; ``sc`` the
+    levels per metre of :func:`_current_scale`.  Every node looks the current up at every
+    force evaluation (the lanes keep each node's last interval: ``lanes_forces``)."""
+    n = cur_z.shape[0]
+    if n == 0:
+        return 0.0
+    if z <= cur_z[0] or n == 1:
+        return cur_u[0]
+    if z >= cur_z[n - 1]:
+        return cur_u[n - 1]
+    j = _current_interval(z, cur_z, sc)
     w = (z - cur_z[j]) / (cur_z[j + 1] - cur_z[j])
     return (1.0 - w) * cur_u[j] + w * cur_u[j + 1]
 

@@ -55,7 +55,8 @@ from .layout import (
 )
 
 __all__ = ["LW", "NoAliasCompiler", "LANE_JIT", "ix", "LaneParams", "LaneState", "LaneWork",
-           "LaneGroup", "build_group", "N_EC", "EC_E0", "EC_A", "EC_B", "EC_STIFF"]
+           "LaneGroup", "accepted", "trial", "accepted_rows", "build_group", "N_EC", "EC_E0",
+           "EC_A", "EC_B", "EC_STIFF"]
 
 LW = 4
 """Lanes per block: doubles per AVX2 register."""
@@ -146,6 +147,10 @@ class LaneParams(NamedTuple):
     """(nb LW, mz) current speeds."""
     cur_n: np.ndarray
     """(nb LW,) int64 current levels of each lane."""
+    cur_c: np.ndarray
+    """(nb, 4 LW) each lane's current profile ends: lowest and highest level, speed at them
+    (``+inf`` levels for a profile of fewer than two levels: then ``cur_u[0]``, or 0 without
+    levels)."""
     wk: np.ndarray
     """(nb, n 6 LW) wave particle velocity and acceleration at the nodes."""
     coef: np.ndarray
@@ -195,6 +200,11 @@ class LaneWork(NamedTuple):
     dx: np.ndarray
     xr: np.ndarray
     uc: np.ndarray
+    cmemo: np.ndarray
+    """(nb, n 4 LW) each node's last current interval (``cur_z[j]``, ``cur_z[j + 1]``,
+    ``cur_u[j]``, ``cur_u[j + 1]``; NaN until the first look-up)."""
+    cmiss: np.ndarray
+    """(nb, LW) nodes of each lane whose current interval changed in the last look-up."""
     carry: np.ndarray
     lf: np.ndarray
     li: np.ndarray
@@ -211,6 +221,11 @@ class LaneWork(NamedTuple):
     etr: np.ndarray
     """(nb, 5 LW) the energy audit's figures of each lane's trial end state: known (1.0),
     energy, power, budget, floor (``LineWork.energy`` of the line kernel)."""
+    geo: np.ndarray
+    """(nb,) int64: what ``el`` and ``q`` hold for every lane of block ``b`` that is ``on``: 0
+    unknown, 1 the trial state's (the last sub-step of an advance in which every such lane
+    stepped and accepted), 2 the accepted state's (after :func:`~.lanes_advance.accept` of 1).
+    """
     eacc: np.ndarray
     """(nb, 5 LW) the same of the accepted state (copied from ``etr`` on accept): the next
     advance starts from them when every lane of the block has them."""
@@ -220,14 +235,42 @@ class LaneWork(NamedTuple):
 
 
 class LaneGroup(NamedTuple):
-    """A group of lines as lanes: parameters, the accepted, trial and sub-step states, and the
-    work arrays."""
+    """A group of lines as lanes: parameters, two state buffers, the sub-step state and the
+    work arrays.
+
+    The two buffers hold each block's accepted and trial states, and swap roles when the trial
+    is accepted (``cur``; :func:`accepted`, :func:`trial`): accepting a block's trial flips its
+    ``cur`` instead of copying four arrays (the copies of the accept and of the sub-step result
+    into the trial were 7.7 % of the flagship's lanes replay, perf 2026-11-28)."""
 
     par: LaneParams
-    now: LaneState
-    trial: LaneState
+    state0: LaneState
+    state1: LaneState
     step: LaneState
     work: LaneWork
+    cur: np.ndarray
+    """(nb,) int64: the buffer (0: ``state0``, 1: ``state1``) that holds block ``b``'s
+    accepted state; the other holds its trial state."""
+
+
+@njit(inline="always")
+def accepted(g, b):
+    """The state buffer holding the accepted state of block ``b`` of the group ``g``."""
+    return g.state1 if g.cur[b] != 0 else g.state0
+
+
+@njit(inline="always")
+def trial(g, b):
+    """The state buffer holding the trial state of block ``b`` of the group ``g``."""
+    return g.state0 if g.cur[b] != 0 else g.state1
+
+
+def accepted_rows(grp: LaneGroup, name: str) -> np.ndarray:
+    """The field ``name`` (``r``, ``v``, ``a``, ``f``, ``fs``) of every block's accepted state,
+    as one (nb, ...) array (a copy; Python side)."""
+    a0 = getattr(grp.state0, name)
+    a1 = getattr(grp.state1, name)
+    return np.where((grp.cur != 0)[:, None], a1, a0)
 
 
 def _rows(nb, count, k):
@@ -312,6 +355,14 @@ def build_group(params, states, *, waves: bool = False) -> LaneGroup:
         cz[q, :cn[q]] = p.cur_z
         cu[q, :cn[q]] = p.cur_u
         s_nodes[q] = p.s_nodes
+    cc = np.zeros((nb, 4 * LW))
+    for q, s in enumerate(src):
+        p = params[s]
+        m = p.cur_z.shape[0]
+        ends = ((p.cur_z[0], p.cur_z[m - 1], p.cur_u[0], p.cur_u[m - 1]) if m >= 2 else
+                (np.inf, np.inf, p.cur_u[0] if m == 1 else 0.0, 0.0))
+        for k in range(4):
+            cc[q // LW, k * LW + q % LW] = ends[k]
     wk = put(_rows(nb, n, 6), [p.wk for p in params], n, 6)
     coef = put(_rows(nb, 1, 4), [p.coef for p in params], 1, 4)
     tol = np.array([params[s].tol for s in src]).reshape(nb, LW)
@@ -347,7 +398,7 @@ def build_group(params, states, *, waves: bool = False) -> LaneGroup:
             for i in range(1, n - 1):
                 ws += abs(p.P[i, NP_W])
             wsum[b, l] = ws
-    par = LaneParams(P=P, E=E, EC=EC, SC=SC, S=S, cur_z=cz, cur_u=cu, cur_n=cn, wk=wk,
+    par = LaneParams(P=P, E=E, EC=EC, SC=SC, S=S, cur_z=cz, cur_u=cu, cur_n=cn, cur_c=cc, wk=wk,
                      coef=coef, tol=tol, flags=flags, weight=weight, wsum=wsum,
                      s_nodes=s_nodes)
 
@@ -355,7 +406,7 @@ def build_group(params, states, *, waves: bool = False) -> LaneGroup:
         return LaneState(r=_rows(nb, n, 3), v=_rows(nb, n, 3), a=_rows(nb, n, 3),
                          f=_rows(nb, n, 3), fs=_rows(nb, n, N_FS))
 
-    now, trial, step = state(), state(), state()
+    state0, state1, step = state(), state(), state()
     bend = bool(flags[:, BF_BEND].any())
     work = LaneWork(
         q=_rows(nb, n, 3), el=_rows(nb, n - 1, 4), tens=_rows(nb, n - 1, 1),
@@ -364,15 +415,17 @@ def build_group(params, states, *, waves: bool = False) -> LaneGroup:
         OfK=_rows(nb, n - 1, 9),
         BX=np.zeros((nb * LW, 7, n, 3, 3)) if bend else np.zeros((1, 7, 1, 3, 3)),
         R=_rows(nb, n, 3), W=_rows(nb, n, 9), Y=_rows(nb, n, 3), dx=_rows(nb, n, 3),
-        xr=_rows(nb, n, 3), uc=_rows(nb, n, 1), carry=np.zeros((nb, 16 * LW)),
+        xr=_rows(nb, n, 3), uc=_rows(nb, n, 1),
+        cmemo=np.full((nb, n * 4 * LW), np.nan), cmiss=np.zeros((nb, LW)), carry=np.zeros((nb, 16 * LW)),
         lf=np.zeros((nb, N_LF * LW)), li=np.zeros((nb, N_LI * LW), np.int64),
         fair=np.zeros((nb, 16 * LW)), mask=np.zeros((nb, LW), np.int64),
         bad=np.zeros((nb, LW), np.int64), eo=np.zeros((nb, 8 * LW)),
         status=np.zeros(nb * LW, np.int64), audit=np.zeros((nb * LW, 12)),
         info=np.zeros((nb * LW, 3)), stats=np.zeros((nb * LW, 2)),
         T1=np.zeros((nb * LW, 3, 3)), tacc=_rows(nb, n - 1, 1),
-        etr=np.zeros((nb, 5 * LW)), eacc=np.zeros((nb, 5 * LW)))
-    grp = LaneGroup(par=par, now=now, trial=trial, step=step, work=work)
+        etr=np.zeros((nb, 5 * LW)), geo=np.zeros(nb, np.int64), eacc=np.zeros((nb, 5 * LW)))
+    grp = LaneGroup(par=par, state0=state0, state1=state1, step=step, work=work,
+                    cur=np.zeros(nb, np.int64))
     load_states(grp, states, src)
     return grp
 
@@ -381,25 +434,26 @@ def load_states(grp: LaneGroup, states, src=None) -> None:
     """Copy the accepted line states ``states`` (``LineState`` s of the group's lines, in its
     line order) into the group's accepted state (``src``: the line of each lane row; default
     the group's own map, dummy lanes repeating their block's first line)."""
-    nb = grp.now.r.shape[0]
-    n = grp.now.r.shape[1] // (3 * LW)
+    nb = grp.state0.r.shape[0]
+    n = grp.state0.r.shape[1] // (3 * LW)
     if src is None:
         src = lane_lines(len(states))
+    grp.work.geo[:] = 0
     for name, k in (("r", 3), ("v", 3), ("a", 3), ("f", 3), ("fs", N_FS)):
-        v = _block_view(getattr(grp.now, name), nb, n, k)
+        views = [_block_view(getattr(s, name), nb, n, k) for s in (grp.state0, grp.state1)]
         for p, s in enumerate(src):
-            v[p] = getattr(states[s], name)
+            views[int(grp.cur[p // LW] != 0)][p] = getattr(states[s], name)
 
 
 def store_states(grp: LaneGroup, states) -> None:
     """Copy the group's accepted state back into the line states ``states`` (the group's line
     order; dummy lanes are not written)."""
-    nb = grp.now.r.shape[0]
-    n = grp.now.r.shape[1] // (3 * LW)
+    nb = grp.state0.r.shape[0]
+    n = grp.state0.r.shape[1] // (3 * LW)
     for name, k in (("r", 3), ("v", 3), ("a", 3), ("f", 3), ("fs", N_FS)):
-        v = _block_view(getattr(grp.now, name), nb, n, k)
+        views = [_block_view(getattr(s, name), nb, n, k) for s in (grp.state0, grp.state1)]
         for p in range(len(states)):
-            getattr(states[p], name)[:] = v[p]
+            getattr(states[p], name)[:] = views[int(grp.cur[p // LW] != 0)][p]
 
 
 def audit_floor(wsum: float) -> float:

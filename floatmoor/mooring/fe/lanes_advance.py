@@ -53,8 +53,10 @@ from .lanes import (
     LI_SZ,
     LW,
     N_EC,
+    accepted,
     ix,
     lanes_in,
+    trial,
 )
 from .lanes_forces import geometry, lane_rows, tangents
 from .lanes_step import ST_IDLE, ST_RUN, block_step
@@ -241,8 +243,8 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
     code); ``g.work.stats`` += iterations and halvings; ``g.work.audit`` as ``LineWork.audit``.
     """
     par = g.par
-    now = g.now
-    tr = g.trial
+    now = accepted(g, b)
+    tr = trial(g, b)
     w = g.work
     lf = w.lf
     li = w.li
@@ -260,6 +262,10 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
         nlanes += 1 if on[p] else 0
     if nlanes == 0:
         return
+    # the first sub-step from the accepted state need not compute its geometry and tangents
+    # when the last force evaluation of every stepping lane was at that state (w.geo 2)
+    geo_known = w.geo[b] == 2
+    w.geo[b] = 0
     # energy of the accepted state: the start of the first sub-step, as the advance that
     # produced it left it (every lane of the block: w.eacc, the same numbers) or evaluated
     known = True
@@ -276,6 +282,7 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
     else:
         geometry(b, n, now.r, w.el)
         tangents(b, n, w.el, w.q)
+        geo_known = True
         energy(b, n, par.P, par.E, par.EC, par.SC, now.r, now.v, now.f, w.el, w.q, eo)
         for l in range(LW):
             lf[b, ix(LF_EN0, 0, 1, l)] = eo[b, ix(EO_EN, 0, 1, l)]
@@ -298,6 +305,11 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
     for l in range(LW):
         li[b, ix(LI_POS, 0, 1, l)] = 0 if w.mask[b, l] != 0 else total
         li[b, ix(LI_SZ, 0, 1, l)] = full
+    # no sub-step accepted into the trial state yet: a step from the accepted state writes its
+    # result straight into the trial buffer (a lane that fails it starts again from the
+    # accepted state), else into g.step, copied into the trial for the lanes that accept it
+    clean = True
+    last_full = False
     while True:
         running = 0
         at_start = 0
@@ -339,6 +351,7 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
         # sub-step, as a line's after ga_advance)
         # the step starts from the accepted state (first sub-step of every running lane) or
         # from the trial state (a lane at its first sub-step gets the accepted state copied)
+        direct = clean and at_start == running
         if at_start == running:
             src = now
         else:
@@ -348,9 +361,11 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
                         li[b, ix(LI_ST, 0, 1, l)] == ST_RUN else 0
                 copy_state(b, n, w.mask, now, tr, False)
             src = tr
-        block_step(b, n, par, src, tr.fs, g.step, w)
+        res = tr if direct else g.step
+        block_step(b, n, par, src, tr.fs, res, w, geo_known and at_start == nlanes)
+        geo_known = False
         # energy of the sub-step results (el, q of their force evaluation)
-        energy(b, n, par.P, par.E, par.EC, par.SC, g.step.r, g.step.v, g.step.f, w.el, w.q, eo)
+        energy(b, n, par.P, par.E, par.EC, par.SC, res.r, res.v, res.f, w.el, w.q, eo)
         naccept = 0
         for l in range(LW):
             p = b * LW + l
@@ -422,8 +437,11 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
             stats[p, 0] += it
             w.mask[b, l] = 1
             naccept += 1
+        last_full = naccept == nlanes
         if naccept > 0:
-            take_step(b, n, w.mask, g.step, tr)
+            if not direct:
+                take_step(b, n, w.mask, g.step, tr)
+            clean = False
             for l in range(LW):
                 if w.mask[b, l] == 0:
                     continue
@@ -450,6 +468,9 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
                 while sz < full and ps % (2 * sz) == 0:
                     sz *= 2
                 li[b, ix(LI_SZ, 0, 1, l)] = sz
+    # el and q of the last sub-step's force evaluation: the trial state's in every lane, when
+    # every lane stepped and accepted in it (a lane done earlier has them overwritten)
+    w.geo[b] = 1 if last_full else 0
     for l in range(LW):
         if on[b * LW + l] and w.status[b * LW + l] == 0:
             for j in range(n - 1):
@@ -472,15 +493,21 @@ def _has_fibre(E, b, n, l):
 
 @njit(**KERNEL_JIT)
 def accept(b, n, g, on):
-    """Commit the trial state of the lanes of block ``b`` with ``on[b * LW + l]`` (the copies
-    of :func:`~.advance.accept_trial`)."""
+    """Commit the trial state of the lanes of block ``b`` with ``on[b * LW + l]``
+    (:func:`~.advance.accept_trial`): the block's two state buffers swap roles, and a lane not
+    ``on`` first gets its accepted state copied into the trial buffer, so that it keeps it."""
     w = g.work
+    off = 0
     for l in range(LW):
-        w.mask[b, l] = 1 if on[b * LW + l] else 0
+        w.mask[b, l] = 0 if on[b * LW + l] else 1
+        off += 0 if on[b * LW + l] else 1
         if on[b * LW + l]:
             for k in range(5):
                 w.eacc[b, ix(k, 0, 1, l)] = w.etr[b, ix(k, 0, 1, l)]
-    copy_state(b, n, w.mask, g.trial, g.now, _uses_fs(g.par.flags, b))
+    if off > 0:
+        copy_state(b, n, w.mask, accepted(g, b), trial(g, b), _uses_fs(g.par.flags, b))
+    g.cur[b] = 1 - g.cur[b]
+    w.geo[b] = 2 if w.geo[b] == 1 else 0
 
 
 @njit(**KERNEL_JIT)
@@ -489,6 +516,7 @@ def record(g, p, n, out):
     (:func:`~.advance.record_into`; the element tensions of its last force evaluation)."""
     b = p // LW
     l = p % LW
-    record_into(lane_rows(g.now.r, b, n, 3, l), lane_rows(g.now.f, b, n, 3, l),
+    now = accepted(g, b)
+    record_into(lane_rows(now.r, b, n, 3, l), lane_rows(now.f, b, n, 3, l),
                 g.work.tens[b].reshape((n - 1, LW))[:, l], g.par.S[p, S_ZC], g.par.s_nodes[p],
                 out)

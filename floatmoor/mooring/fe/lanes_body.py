@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 from ...core.frames import rotation_matrix_into
-from .lanes import LW, LaneGroup, build_group, store_states
+from .lanes import LW, LaneGroup, build_group, store_states, trial
 from .lanes_advance import accept, block_advance, record
 from .multi import add_line_wrench, fairlead_into
 
@@ -88,7 +88,7 @@ def lanes_mode(lines, recs: np.ndarray) -> LaneLines:
     order = lane_order(lines)
     bl = [lines[k].bundle for k in order]
     g = build_group([b.par for b in bl], [b.now for b in bl])
-    nrows = g.now.r.shape[0] * LW
+    nrows = g.state0.r.shape[0] * LW
     on = np.zeros(nrows, np.bool_)
     on[:len(lines)] = True
     slot = np.zeros(max(len(lines), 1), np.int64)
@@ -120,8 +120,8 @@ def lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     for k in range(6):
         Q[k] = 0.0
     nl = fair_b.shape[0]
-    nb = g.now.r.shape[0]
-    n = g.now.r.shape[1] // (3 * LW)
+    nb = g.state0.r.shape[0]
+    n = g.state0.r.shape[1] // (3 * LW)
     for i in range(nl):
         fairlead_into(i, pose, vel, R, fair_b, arm, rf_all, vf_all)
         on_l[slot[i]] = on[i]
@@ -155,7 +155,7 @@ def lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
         b = p // LW
         lane = p % LW
         for c in range(3):
-            forces[i, c] = g.trial.f[b, ((n - 1) * 3 + c) * LW + lane]
+            forces[i, c] = trial(g, b).f[b, ((n - 1) * 3 + c) * LW + lane]
         add_line_wrench(i, arm, forces, Q)
     for b in range(nb):
         accept(b, n, g, on_l)
@@ -172,7 +172,7 @@ def store_lines(mode: LaneLines, lines) -> None:
     order = [int(mode.line_of[p]) for p in range(len(lines))]
     store_states(g, [lines[k].bundle.now for k in order])
     n = lines[0].n_nodes
-    tens = g.work.tens.reshape(g.now.r.shape[0], n - 1, LW)
+    tens = g.work.tens.reshape(g.state0.r.shape[0], n - 1, LW)
     for k, ln in enumerate(lines):
         p = int(mode.slot[k])
         ln.work.audit[:] = g.work.audit[p]

@@ -18,7 +18,7 @@ from numba import njit
 
 from .elements import bending_forces
 from .fibre_law import EL_FIB, EL_LAW, fibre_tension
-from .fluid import _current, _current_scale
+from .fluid import _current, _current_interval, _current_scale
 from .lanes import (
     BF_BEND,
     BF_CLUMP,
@@ -387,14 +387,42 @@ def element_forces(b, n, v, P, E, EC, el, Tl, Dl, act, lf, want_jac, use_act, da
 # --------------------------------------------------------------------------------------------
 # nodes: fluid loads and seabed
 # --------------------------------------------------------------------------------------------
+@njit(**LANE_JIT)
+def current_lookup(b, n, r, cc, memo, uc, li, miss):
+    """The current speed at every node of block ``b`` (:func:`~.fluid._current`) from each
+    node's last level interval ``memo`` (zero in the lanes not :func:`live`), all lanes at once;
+    ``miss[b, l]``: the nodes of lane ``l`` whose level is in none of the profile's ends or
+    its last interval (:func:`current_fix` looks them up).  The same arithmetic as
+    :func:`~.fluid._current`: a level in the interval ``cur_z[j] < z <= cur_z[j + 1]`` has that
+    interval (the profile is sorted, so it is the only one)."""
+    lw = lanes_in(miss, 1)
+    for l in range(lw):
+        miss[b, l] = 0.0
+    for i in range(n):
+        for l in range(lw):
+            z = r[b, ix(i, 2, 3, l)]
+            lo = memo[b, ix(i, 0, 4, l)]
+            hi = memo[b, ix(i, 1, 4, l)]
+            w = (z - lo) / (hi - lo)
+            u = (1.0 - w) * memo[b, ix(i, 2, 4, l)] + w * memo[b, ix(i, 3, 4, l)]
+            low = z <= cc[b, ix(0, 0, 4, l)]
+            high = z >= cc[b, ix(0, 1, 4, l)]
+            u = cc[b, ix(0, 3, 4, l)] if high else u
+            u = cc[b, ix(0, 2, 4, l)] if low else u
+            lv = live(li, b, l)
+            uc[b, ix(i, 0, 1, l)] = u if lv else 0.0
+            # (bitwise: a short-circuit is a branch, which keeps the loop scalar)
+            ok = low | high | ((lo < z) & (z <= hi)) | (not lv)
+            m = miss[b, l]
+            miss[b, l] = m if ok else m + 1.0
+
+
 @njit(**KERNEL_JIT)
-def current_speeds(b, n, r, cur_z, cur_u, cur_n, uc, li):
-    """The current speed at every node of block ``b`` (:func:`~.fluid._current`, lane by lane:
-    the level lookup does not vectorise; zero in the lanes not :func:`live`)."""
+def current_fix(b, n, r, cur_z, cur_u, cur_n, cc, memo, uc, li, miss):
+    """The nodes :func:`current_lookup` missed: :func:`~.fluid._current` lane by lane, and
+    their level interval into ``memo``."""
     for l in range(LW):
-        if not live(li, b, l):
-            for i in range(n):
-                uc[b, ix(i, 0, 1, l)] = 0.0
+        if miss[b, l] == 0.0 or not live(li, b, l):
             continue
         p = b * LW + l
         m = cur_n[p]
@@ -402,13 +430,25 @@ def current_speeds(b, n, r, cur_z, cur_u, cur_n, uc, li):
         cu = cur_u[p, :m]
         csc = _current_scale(cz)
         for i in range(n):
-            uc[b, ix(i, 0, 1, l)] = _current(r[b, ix(i, 2, 3, l)], cz, cu, csc)
+            z = r[b, ix(i, 2, 3, l)]
+            lo = memo[b, ix(i, 0, 4, l)]
+            hi = memo[b, ix(i, 1, 4, l)]
+            if (z <= cc[b, ix(0, 0, 4, l)] or z >= cc[b, ix(0, 1, 4, l)]
+                    or (lo < z and z <= hi)):
+                continue
+            uc[b, ix(i, 0, 1, l)] = _current(z, cz, cu, csc)
+            if m >= 2 and cz[0] < z < cz[m - 1]:
+                j = _current_interval(z, cz, csc)
+                memo[b, ix(i, 0, 4, l)] = cz[j]
+                memo[b, ix(i, 1, 4, l)] = cz[j + 1]
+                memo[b, ix(i, 2, 4, l)] = cu[j]
+                memo[b, ix(i, 3, 4, l)] = cu[j + 1]
 
 
 @njit(**LANE_JIT)
 def fluid_forces(b, n, v, q, P, SC, uc, wk, lf, want_jac, waves, clump, f, Dg):
     """:func:`~.fluid.fluid_forces` of block ``b`` (current speeds ``uc`` of
-    :func:`current_speeds`; ``waves``: some node has a wave acceleration, ``clump``: some node
+    :func:`current_lookup`; ``waves``: some node has a wave acceleration, ``clump``: some node
     a clump drag)."""
     lw = lanes_in(q, 3 * n)
     for i in range(n):
@@ -659,7 +699,9 @@ def forces_into(b, n, par, r, v, fs, f, w, want_jac, use_act):
         _elements(b, n, v, par, w, False, use_act, flags[b, BF_DAMP] != 0, f)
     if flags[b, BF_BEND]:
         bending(b, n, r, par.P, w.lf, want_jac, f, w.Dg, w.Of, w.BX, w.li)
-    current_speeds(b, n, r, par.cur_z, par.cur_u, par.cur_n, w.uc, w.li)
+    current_lookup(b, n, r, par.cur_c, w.cmemo, w.uc, w.li, w.cmiss)
+    current_fix(b, n, r, par.cur_z, par.cur_u, par.cur_n, par.cur_c, w.cmemo, w.uc, w.li,
+                w.cmiss)
     if want_jac:
         _fluid(b, n, v, par, w, True, flags[b, BF_WAVES] != 0, flags[b, BF_CLUMP] != 0, f)
         seabed_contact(b, n, r, v, par.P, par.SC, w.lf, True, f, w.Dg)

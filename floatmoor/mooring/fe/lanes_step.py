@@ -159,11 +159,26 @@ def residual(b, n, coef, a, a1, fn, f1, Mb, fresh, Dg, R, lf, force):
                                                + abs(R[b, ix(i, 2, 3, l)]))
 
 
+@njit(inline="always")
+def _kin(b, i, k, l, coef, lf, r, v, a, a1k, r1, v1):
+    """:func:`kinematics` of node ``i``, component ``k``, lane ``l`` at the acceleration
+    ``a1k``."""
+    dt = lf[b, ix(LF_DT, 0, 1, l)]
+    beta = coef[b, ix(0, 2, 4, l)]
+    gamma = coef[b, ix(0, 3, 4, l)]
+    aa = a[b, ix(i, k, 3, l)]
+    r1[b, ix(i, k, 3, l)] = (r[b, ix(i, k, 3, l)] + dt * v[b, ix(i, k, 3, l)]
+                             + dt * dt * ((0.5 - beta) * aa + beta * a1k))
+    v1[b, ix(i, k, 3, l)] = v[b, ix(i, k, 3, l)] + dt * ((1.0 - gamma) * aa + gamma * a1k)
+
+
 @njit(**LANE_JIT)
-def correct(b, n, da, a1, solve, lf, li, bad):
+def correct(b, n, da, a1, solve, lf, li, bad, coef, r, v, a, r1, v1):
     """:func:`~.gen_alpha.correct` of the lanes with ``solve[b, l]``: ``a1 += da``, the largest
     correction into ``lf[LF_DMAX]`` and its node into ``li[LI_IMAX]``, the first node of a NaN
-    correction into ``bad[b, l]`` (-1: none)."""
+    correction into ``bad[b, l]`` (-1: none); and the positions and velocities ``r1``, ``v1``
+    of the new accelerations (:func:`kinematics`, in the same pass: the next iteration's force
+    evaluation needs them; a lane not corrected gets the numbers it has)."""
     lw = lanes_in(da, 3 * n)
     for l in range(lw):
         lf[b, ix(LF_DMAX, 0, 1, l)] = 0.0
@@ -182,9 +197,15 @@ def correct(b, n, da, a1, solve, lf, li, bad):
             o0 = a1[b, ix(i, 0, 3, l)]
             o1 = a1[b, ix(i, 1, 3, l)]
             o2 = a1[b, ix(i, 2, 3, l)]
-            a1[b, ix(i, 0, 3, l)] = o0 + d0 if on else o0
-            a1[b, ix(i, 1, 3, l)] = o1 + d1 if on else o1
-            a1[b, ix(i, 2, 3, l)] = o2 + d2 if on else o2
+            n0 = o0 + d0 if on else o0
+            n1 = o1 + d1 if on else o1
+            n2 = o2 + d2 if on else o2
+            a1[b, ix(i, 0, 3, l)] = n0
+            a1[b, ix(i, 1, 3, l)] = n1
+            a1[b, ix(i, 2, 3, l)] = n2
+            _kin(b, i, 0, l, coef, lf, r, v, a, n0, r1, v1)
+            _kin(b, i, 1, l, coef, lf, r, v, a, n1, r1, v1)
+            _kin(b, i, 2, l, coef, lf, r, v, a, n2, r1, v1)
             nan = not (math.isfinite(d0) and math.isfinite(d1) and math.isfinite(d2))
             bl = bad[b, l]
             bad[b, l] = i if (on and nan and bl < 0) else bl
@@ -203,17 +224,19 @@ def correct(b, n, da, a1, solve, lf, li, bad):
 
 
 @njit(**LANE_JIT)
-def back(b, n, da, a1, lf, li):
+def back(b, n, da, a1, lf, li, coef, r, v, a, r1, v1):
     """Take back the part ``lf[LF_ALPHA]`` of the last correction in the lanes with
-    ``li[LI_SOLVE]`` -1 (:func:`~.gen_alpha._back`)."""
+    ``li[LI_SOLVE]`` -1 (:func:`~.gen_alpha._back`), and their positions and velocities as
+    :func:`correct`."""
     lw = lanes_in(da, 3 * n)
     for i in range(1, n - 1):
         for k in range(3):
             for l in range(lw):
                 on = li[b, ix(LI_SOLVE, 0, 1, l)] == -1
                 old = a1[b, ix(i, k, 3, l)]
-                a1[b, ix(i, k, 3, l)] = old - lf[b, ix(LF_ALPHA, 0, 1, l)] * \
-                    da[b, ix(i, k, 3, l)] if on else old
+                new = old - lf[b, ix(LF_ALPHA, 0, 1, l)] * da[b, ix(i, k, 3, l)] if on else old
+                a1[b, ix(i, k, 3, l)] = new
+                _kin(b, i, k, l, coef, lf, r, v, a, new, r1, v1)
 
 
 @njit(**LANE_JIT)
@@ -261,13 +284,16 @@ def force_scales(b, n, r, E, weight, lf):
 
 
 @njit(**KERNEL_JIT)
-def block_step(b, n, par, s0, fs, s1, w):
+def block_step(b, n, par, s0, fs, s1, w, known):
     """One generalised-alpha step of the running lanes of block ``b`` (``w.li[LI_ST]``
     :data:`ST_RUN`; the others :data:`ST_IDLE`) from the states ``s0`` to ``s1``
     (:func:`~.gen_alpha.gen_alpha_step` lane by lane; ``fs`` the friction state of the step).
     The step size of each lane in ``w.lf[LF_DT]``, its fairlead at the end of the step in
     ``w.fair``.  Each lane's result in ``w.li[LI_RET]``: the iterations (> 0) or the failure
-    code (-1 no convergence, -2 singular matrix, -3 NaN; ``w.info`` as the line kernel's)."""
+    code (-1 no convergence, -2 singular matrix, -3 NaN; ``w.info`` as the line kernel's).
+    ``known``: ``w.el`` and ``w.q`` already hold the element geometry and node tangents of
+    ``s0`` in every lane that steps (``w.geo``, :func:`~.lanes_advance.block_advance`): they
+    are not computed again (the same numbers)."""
     P = par.P
     E = par.E
     coef = par.coef
@@ -293,8 +319,9 @@ def block_step(b, n, par, s0, fs, s1, w):
                                           lane_rows(E, b, n - 1, N_EL, l),
                                           w.act[b].reshape((n - 1, LW))[:, l])
         li[b, ix(LI_NSTIFF, 0, 1, l)] = nst
-    geometry(b, n, r, w.el)
-    tangents(b, n, w.el, w.q)
+    if not known:
+        geometry(b, n, r, w.el)
+        tangents(b, n, w.el, w.q)
     mass_blocks(b, n, P, w.q, w.Mb)
     predict(b, n, coef, mode, lf, w.fair, r, v, a, r1, v1, a1)
     for l in range(LW):
@@ -302,8 +329,10 @@ def block_step(b, n, par, s0, fs, s1, w):
         af = coef[b, ix(0, 1, 4, l)]
         lf[b, ix(LF_CK, 0, 1, l)] = (1.0 - af) * coef[b, ix(0, 2, 4, l)] * dt * dt
         lf[b, ix(LF_CC, 0, 1, l)] = (1.0 - af) * coef[b, ix(0, 3, 4, l)] * dt
+    # the predictor's positions and velocities; from then on correct and back keep r1, v1
+    # those of a1
+    kinematics(b, n, coef, lf, r, v, a, a1, r1, v1)
     if fric == FR_DISPVEL:
-        kinematics(b, n, coef, lf, r, v, a, a1, r1, v1)
         for l in range(LW):
             if li[b, ix(LI_ST, 0, 1, l)] == ST_RUN:
                 friction_decide(lane_rows(r1, b, n, 3, l), lane_rows(v1, b, n, 3, l), fric,
@@ -328,7 +357,6 @@ def block_step(b, n, par, s0, fs, s1, w):
             if li[b, ix(LI_ST, 0, 1, l)] == ST_RUN:
                 li[b, ix(LI_IT, 0, 1, l)] += 1
                 fresh_any = fresh_any or li[b, ix(LI_FRESH, 0, 1, l)] != 0
-        kinematics(b, n, coef, lf, r, v, a, a1, r1, v1)
         forces_into(b, n, par, r1, v1, fs, f1, w, fresh_any, stiff)
         residual(b, n, coef, a, a1, fn, f1, w.Mb, fresh_any, w.Dg, w.R, lf, by_force)
         nsolve = 0
@@ -385,7 +413,7 @@ def block_step(b, n, par, s0, fs, s1, w):
                 w.mask[b, l] = 1
                 nfresh += 1
         if nback > 0:
-            back(b, n, w.dx, a1, lf, li)
+            back(b, n, w.dx, a1, lf, li, coef, r, v, a, r1, v1)
         if nsolve > 0:
             if nfresh > 0:
                 if bend:
@@ -423,7 +451,7 @@ def block_step(b, n, par, s0, fs, s1, w):
                         w.Of[b].reshape((n - 1, 3, 3, LW))[:, :, :, l],
                         w.tens[b].reshape((n - 1, LW))[:, l],
                         w.act[b].reshape((n - 1, LW))[:, l])
-            correct(b, n, w.dx, a1, w.mask, lf, li, w.bad)
+            correct(b, n, w.dx, a1, w.mask, lf, li, w.bad, coef, r, v, a, r1, v1)
             for l in range(LW):
                 if w.mask[b, l] == 0:
                     continue
@@ -474,7 +502,6 @@ def block_step(b, n, par, s0, fs, s1, w):
     for l in range(LW):
         final = final or li[b, ix(LI_ST, 0, 1, l)] == ST_DONE
     if final:
-        kinematics(b, n, coef, lf, r, v, a, a1, r1, v1)
         forces_into(b, n, par, r1, v1, fs, f1, w, False, stiff)
     for l in range(LW):
         st = li[b, ix(LI_ST, 0, 1, l)]

@@ -20,7 +20,7 @@ import pytest
 
 from floatmoor.mooring.fe import FELine, Friction
 from floatmoor.mooring.fe import kernels as K
-from floatmoor.mooring.fe.lanes import LW, build_group
+from floatmoor.mooring.fe.lanes import LW, accepted_rows, build_group
 from floatmoor.mooring.fe.lanes_advance import accept, block_advance
 
 from .conftest import oc3_spec
@@ -74,7 +74,7 @@ def _run_lanes(lines, motions, dt, steps):
     g = build_group([b.par for b in bl], [b.now for b in bl])
     nl = len(lines)
     n = lines[0].n_nodes
-    nb = g.now.r.shape[0]
+    nb = g.state0.r.shape[0]
     on = np.zeros(nb * LW, dtype=np.bool_)
     on[:nl] = True
     r0 = [ln.r[-1].copy() for ln in lines]
@@ -94,7 +94,7 @@ def _run_lanes(lines, motions, dt, steps):
         assert not (g.work.status[:nl] < 0).any(), (k, g.work.status)
         for b in range(nb):
             accept(b, n, g, on)
-        f = g.now.f.reshape(nb, n, 3, LW)
+        f = accepted_rows(g, "f").reshape(nb, n, 3, LW)
         tens = g.work.tens.reshape(nb, n - 1, LW)
         for p in range(nl):
             F[k - 1, p] = f[p // LW, n - 1, :, p % LW]
@@ -103,7 +103,7 @@ def _run_lanes(lines, motions, dt, steps):
     assert (g.work.eacc.reshape(nb, 5, LW)[:, 0, :].ravel()[:nl] == 1.0).all()
     states = {}
     for name, kk in (("r", 3), ("v", 3), ("a", 3), ("f", 3), ("fs", K.N_FS)):
-        x = getattr(g.now, name).reshape(nb, n, kk, LW)
+        x = accepted_rows(g, name).reshape(nb, n, kk, LW)
         states[name] = [x[p // LW, :, :, p % LW] for p in range(nl)]
     return F, T, g.work.stats[:nl].copy(), states, g.work.audit[:nl].copy()
 
@@ -170,3 +170,64 @@ def test_current_and_newton_modes(newton):
         return [_started(FELine(spec), newton=newton) for _ in range(5)]   # two blocks
     motions = [_harmonic((-3.0 + i, 1.0 * i, 0.5), 10.0 + i) for i in range(5)]
     _compare(make, motions, 0.1, 200)
+
+
+# a current profile of uneven levels that the suspended nodes cross as the fairlead heaves
+LEVELS = (-320.0, -300.0, -262.0, -200.0, -151.0, -110.0, -86.0, -71.5, -69.0, -40.0, 0.0)
+SPEEDS = (0.1, 0.15, 0.3, 0.28, 0.5, 0.61, 0.7, 0.9, 0.95, 1.1, 1.3)
+
+
+def test_current_of_many_levels():
+    """Lanes against lines with a current of eleven uneven levels: the lanes' look-up from each
+    node's last interval (lanes_forces.current_lookup) gives the line kernel's numbers."""
+    spec = oc3_spec(n=20, current_z=LEVELS, current_speed=SPEEDS, current_heading=0.3)
+
+    def make():
+        return [_started(FELine(spec)) for _ in range(3)]
+    motions = [_harmonic((1.0 + i, 0.5 * i, 2.5 + i), 8.0 + i) for i in range(3)]
+    _compare(make, motions, 0.1, 150)
+
+
+def test_current_lookup_against_the_scalar_lookup():
+    """lanes_forces.current_lookup + current_fix against fluid._current (the line kernel's
+    look-up) lane by lane, bit for bit: profiles of eleven, two, one and no levels; levels on
+    the profile's levels, outside it, NaN; the second call from the first call's intervals
+    (nodes moved a little: most found in their last interval, the memo path) and the third
+    after a jump (every node misses)."""
+    from floatmoor.mooring.fe.fluid import _current, _current_scale
+    from floatmoor.mooring.fe.lanes_forces import current_fix, current_lookup
+
+    profiles = [(LEVELS, SPEEDS), ((-320.0, 0.0), (0.3, 1.2)), ((-50.0,), (0.4,)), ((), ())]
+    lines = [_started(FELine(oc3_spec(n=20, current_z=z, current_speed=u))) for z, u in profiles]
+    g = build_group([ln.bundle.par for ln in lines], [ln.bundle.now for ln in lines])
+    n = lines[0].n_nodes
+    rng = np.random.default_rng(7)
+    z = rng.uniform(-335.0, 5.0, (n, LW))
+    z[:11, 0] = LEVELS                       # exactly on the levels
+    z[11, :] = np.nan
+    z[12, :] = -320.0
+    r = np.zeros((1, n * 3 * LW))
+    rv = r.reshape(1, n, 3, LW)
+    w = g.work
+    li = np.zeros_like(w.li)                 # every lane running (live)
+    misses = []
+    for step in (None, 1e-3, 60.0):
+        if step is not None:
+            z = z + rng.uniform(-step, step, z.shape)
+        rv[0, :, 2, :] = z
+        current_lookup(0, n, r, g.par.cur_c, w.cmemo, w.uc, li, w.cmiss)
+        misses.append(w.cmiss[0].copy())
+        current_fix(0, n, r, g.par.cur_z, g.par.cur_u, g.par.cur_n, g.par.cur_c, w.cmemo, w.uc,
+                    li, w.cmiss)
+        uc = w.uc.reshape(1, n, LW)[0]
+        for l, (cz, cu) in enumerate(profiles):
+            cz = np.asarray(cz, float)
+            cu = np.asarray(cu, float)
+            sc = _current_scale(cz)
+            want = np.array([_current(z[i, l], cz, cu, sc) for i in range(n)])
+            np.testing.assert_array_equal(uc[:, l], want)
+    # first call: every node inside the eleven- and two-level profiles misses (NaN memo), a
+    # NaN level misses in every lane; second: only few of them (the memo path ran)
+    assert misses[0][0] > 10 and misses[0][1] > 10
+    assert misses[1][0] < misses[0][0] / 2 and misses[1][1] <= 2
+    assert misses[2][0] > misses[1][0]
