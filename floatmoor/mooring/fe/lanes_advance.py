@@ -395,7 +395,6 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
             efloor = lf[b, ix(LF_EFLOOR, 0, 1, l)]
             created = en1 - en0 - 0.5 * sz * hmin * (pw0 + pw1)
             budget = max(bud0, bud1)
-            tens = w.tens[b].reshape((n - 1, LW))[:, l]
             if created > max(AUDIT_REL * budget, efloor):
                 if sz > 1:
                     li[b, ix(LI_SZ, 0, 1, l)] = sz // 2
@@ -405,7 +404,7 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
                 ratio = created / max(budget, efloor)
                 au[p, AU_NBAD] += 1
                 au[p, AU_EBAD] += created
-                jw = _largest(tens)
+                jw = _largest(w.tens[b].reshape((n - 1, LW))[:, l])
                 if ratio > au[p, AU_WORST]:
                     au[p, AU_WORST] = ratio
                     au[p, AU_TWORST] = tk
@@ -426,9 +425,11 @@ def block_advance(b, n, t1, dt, nsub, max_split, g, on):
                     info[p, 2] = -5
                     w.status[p] = -5
                     continue
+            # (indexed, not through a lane view: a view is a call into numba's reshape helper)
             for j in range(n - 1):
-                if tens[j] < au[p, AU_TMIN]:
-                    au[p, AU_TMIN] = tens[j]
+                tj = w.tens[b, ix(j, 0, 1, l)]
+                if tj < au[p, AU_TMIN]:
+                    au[p, AU_TMIN] = tj
                     au[p, AU_TTMIN] = tk
                     au[p, AU_ETMIN] = j
             lf[b, ix(LF_EN0, 0, 1, l)] = en1
