@@ -94,6 +94,7 @@ from ..core.errors import NumericalError, SceneError
 from ..core.frames import rotation_matrix_into
 from ..mooring.fe.body import FEMooring, scene_line_inputs
 from ..mooring.fe.lanes_body import LaneLines, lanes_fit, lanes_mode, store_lines
+from ..mooring.fe.layout import KERNEL_JIT
 from ..mooring.fe.line import FELine
 from ..mooring.fe.multi import (
     FEBody,
@@ -246,14 +247,12 @@ def start_equilibrium(c: FECoupling, system, *, x0, hydrostatic_stiffness, exter
                                 "on the lines; a line far from its catenary shape")
 
 
-@njit(cache=True)
-def _record_fe(n, fe, on, t_fair, t_anchor):
-    """Row ``n`` of the outputs of the FE lines from the channels of their accepted states,
+@njit(**KERNEL_JIT)
+def _record_fe(n, fe_index, fe_out, recs, on, t_fair, t_anchor):
+    """Row ``n`` of the outputs of the FE lines (``fe.records``, the tensions ``t_fair``,
+    ``t_anchor``; ``fe.index`` their rows) from the channels of their accepted states,
     ``fe.mode.recs`` (:func:`~floatmoor.mooring.fe.multi.record_lines`, written where each
     line was accepted)."""
-    fe_index = fe.index
-    fe_out = fe.records
-    recs = fe.mode.recs
     for i in range(fe_index.shape[0]):
         j = fe_index[i]
         if not on[i]:  # released line: zero tensions, grounded length not modelled
@@ -271,7 +270,7 @@ def _record_fe(n, fe, on, t_fair, t_anchor):
         fe_out[2, n, j] = rec[8]
 
 
-@njit(cache=True)
+@njit(**KERNEL_JIT)
 def _release_failed(t, fe, fail_time, body):
     """Release the FE lines whose failure time is reached at ``t`` (``t >= fail_time``, the
     test of the quasi-static kernel): ``body.on`` and ``fe.active`` False, and ``body.Q``
@@ -369,26 +368,40 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
     vel = np.zeros(6)
     fq = np.zeros(6)
     linear = fe.linear
+    # the fields read at every step taken out of their bundles once: in this kernel (with
+    # reference counting, for the typed list) each read of a bundle's field counts the
+    # references of all its arrays (3 % of the coupled flagship, perf 2026-11-28)
+    mode = fe.mode
+    recs = mode.recs
+    fe_out = fe.records
+    cat = lines.cat
+    kfe = fe.kfe
+    nsub = fe.nsub
+    max_split = fe.max_split
+    on_fe = fe_body.on
+    swork = state.work
+    srot = state.rot
+    sline = state.line_out
+    mlin = state.mlin
+    mref = state.mref
     if n0 == 0:
-        record_lines(fe_body.on, fe_lines, fe.mode.recs)
+        record_lines(on_fe, fe_lines, recs)
     for n in range(n0, n1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
         _release_failed(n * dt, fe, fail_time, fe_body)
         # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
-        cat = lines.cat
         bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
                                   cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
-                                  active_fe, warm_fe, linear, state.work, state.rot,
-                                  state.line_out, fq, fe.kfe)
+                                  active_fe, warm_fe, linear, swork, srot, sline, fq, kfe)
         if bad >= 0:
             set_status(status, STATUS_CATENARY, n, bad)
             return
         if linear:
             # stages: F_QS,others(x_s) + F_FE(t_n) + dF_QS,FE/dx (x_s - x_n)
-            pose_stiffness_into(fe.kfe, x, state.mlin)
+            pose_stiffness_into(kfe, x, mlin)
             for k in range(6):
                 mcorr[k] = Q[k]
-                state.mref[k] = x[k]
+                mref[k] = x[k]
         else:
             for k in range(6):
                 mcorr[k] = Q[k] - fq[k]
@@ -396,7 +409,7 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
         if status[0] != STATUS_OK:
             return
         # row n: the FE tensions at t_n replace the catenary's for the FE lines
-        _record_fe(n, fe, fe_body.on, t_fair, t_anchor)
+        _record_fe(n, fe_index, fe_out, recs, on_fe, t_fair, t_anchor)
         for i in range(n_fe):
             j = fe_index[i]
             if t_fair[n, j] > tension_guard * mbs[j]:
@@ -416,7 +429,7 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
         vel[3] = prate[3] * cps * cph - prate[4] * sps
         vel[4] = prate[3] * sps * cph + prate[4] * cps
         vel[5] = prate[5] - prate[3] * sph
-        st = advance_lines(fe.mode, (n + 1) * dt, dt, fe.nsub, fe.max_split, x, vel, fe_body,
+        st = advance_lines(mode, (n + 1) * dt, dt, nsub, max_split, x, vel, fe_body,
                            fe_lines)
         if st < 0:
             status[0] = STATUS_FE
