@@ -20,7 +20,7 @@ import pytest
 
 from floatmoor.mooring.fe import FELine, Friction
 from floatmoor.mooring.fe import kernels as K
-from floatmoor.mooring.fe.lanes import LW, accepted_rows, build_group
+from floatmoor.mooring.fe.lanes import LW, accepted_rows, build_group, store_states
 from floatmoor.mooring.fe.lanes_advance import accept, block_advance
 
 from .conftest import oc3_spec
@@ -105,6 +105,14 @@ def _run_lanes(lines, motions, dt, steps):
     for name, kk in (("r", 3), ("v", 3), ("a", 3), ("f", 3), ("fs", K.N_FS)):
         x = accepted_rows(g, name).reshape(nb, n, kk, LW)
         states[name] = [x[p // LW, :, :, p % LW] for p in range(nl)]
+    # the accepted states as store_states copies them out (each block's accepted buffer:
+    # after an odd number of steps the second one)
+    assert set(g.cur.tolist()) == {steps % 2}
+    out = [type(ln.bundle.now)(*[np.full_like(a, np.nan) for a in ln.bundle.now]) for ln in lines]
+    store_states(g, out)
+    for name in ("r", "v", "a", "f", "fs"):
+        for i in range(nl):
+            np.testing.assert_array_equal(getattr(out[i], name), states[name][i])
     return F, T, g.work.stats[:nl].copy(), states, g.work.audit[:nl].copy()
 
 
