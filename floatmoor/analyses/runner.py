@@ -144,7 +144,8 @@ def _worker_context():
 # the kernels ("lead"); the others wait until its time loop is compiled and cached, then load
 # it from numba's cache instead of compiling the same kernels at the same time.
 _TIME_LOOPS = (("floatmoor.solvers.td_kernel", "td_steps"),
-               ("floatmoor.solvers.fe_coupling", "td_fe_kernel"))
+               ("floatmoor.solvers.fe_coupling", "td_fe_kernel"),
+               ("floatmoor.solvers.fe_coupling", "td_fe_kernel_lanes"))
 _WAIT_MAX = 600.0  # s; a waiting worker compiles for itself after that
 _compile_once = None  # in a worker: (ready Event, lead Lock), or None
 

@@ -152,6 +152,8 @@ class FERun(NamedTuple):
     their stage variation linearised at the step start (module docstring)."""
     kfe: np.ndarray
     """(6, 6) scratch: the catenary stiffness of the FE lines at the step start."""
+    w6: np.ndarray
+    """(3, 6) scratch: the pose rate, the body's velocity in earth axes, F_QS,FE."""
 
 
 @dataclass(kw_only=True)
@@ -327,7 +329,8 @@ def pose_stiffness_into(K, x, out):
 
 @njit(cache=True)
 def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
-    """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring),
+    """:func:`floatmoor.solvers.td_kernel.td_kernel` with FE lines (scheme: module docstring;
+    :func:`run` records the started state, row 0, before the first call),
     body steps ``n0`` to ``n1 - 1`` (the whole run: 0 to ``body.n_steps + 1``; :func:`run`
     calls it in pieces to report progress, each piece continuing from the state the last
     one left: the same arithmetic as one call).
@@ -364,9 +367,9 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
     warm_fe = fe.warm
     Q = fe_body.Q
     n_fe = fe_index.shape[0]
-    prate = np.zeros(6)
-    vel = np.zeros(6)
-    fq = np.zeros(6)
+    prate = fe.w6[0]
+    vel = fe.w6[1]
+    fq = fe.w6[2]
     linear = fe.linear
     # the fields read at every step taken out of their bundles once: in this kernel (with
     # reference counting, for the typed list) each read of a bundle's field counts the
@@ -384,8 +387,6 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
     sline = state.line_out
     mlin = state.mlin
     mref = state.mref
-    if n0 == 0:
-        record_lines(on_fe, fe_lines, recs)
     for n in range(n0, n1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
         _release_failed(n * dt, fe, fail_time, fe_body)
@@ -437,6 +438,14 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
             status[2] = fe_body.fail[0]
             status[3] = st
             return
+
+
+td_fe_kernel_lanes = njit(**KERNEL_JIT)(td_fe_kernel.py_func)
+""":func:`td_fe_kernel` for lines as SIMD lanes (``fe.mode`` a
+:class:`~floatmoor.mooring.fe.lanes_body.LaneLines`), without the typed list (``fe_lines``
+None) and so without reference counting: the lanes hold the lines' states, a failing lane's
+information reaches its line through ``store_lines`` after the run (the counts were 3 % of the
+coupled flagship, perf 2026-11-28)."""
 
 
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1,
@@ -501,15 +510,20 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan),
                mode=_mode(lines, auto_threads(lines, threads) if auto else threads),
-               linear=linear, kfe=np.zeros((6, 6)))
+               linear=linear, kfe=np.zeros((6, 6)), w6=np.zeros((3, 6)))
     fl = line_list(lines)
+    # the started state's channels (row 0)
+    record_lines(on, fl, fe.mode.recs)
+    lanes = isinstance(fe.mode, LaneLines)
     n_total = n_steps + 1
     pieces = PROGRESS_PIECES if progress is not None else 1
     with numba_threads(fe.mode.threads):
         for p in range(pieces):
             n0 = n_total * p // pieces
             n1 = n_total * (p + 1) // pieces
-            if n1 > n0:
+            if n1 > n0 and lanes:
+                td_fe_kernel_lanes(body, terms, moor, st, out, fe, fe_body, None, n0, n1)
+            elif n1 > n0:
                 td_fe_kernel(body, terms, moor, st, out, fe, fe_body, fl, n0, n1)
             if status[0] != 0:
                 break

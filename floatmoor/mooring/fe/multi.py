@@ -23,6 +23,7 @@ from typing import NamedTuple
 
 import numpy as np
 from numba import njit, prange
+from numba.core import types
 from numba.extending import overload
 from numba.typed import List
 
@@ -345,8 +346,15 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
 
 @overload(advance_lines)
 def _advance_lines_typed(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-    from .lanes_body import LaneLines, lanes_advance_lines
+    from .lanes_body import LaneLines, lanes_advance_lines, lanes_body_step
     if getattr(mode, "instance_class", None) is LaneLines:
+        if isinstance(lines, types.NoneType):
+            # no typed list (a kernel without reference counting): a failing lane's
+            # information stays in the lanes (store_lines copies it to the lines)
+            def lanes_only(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+                return lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
+            return lanes_only
+
         def lanes(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
             return lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines)
         return lanes
