@@ -107,6 +107,20 @@ def predict(b, n, coef, mode, lf, fair, r, v, a, r1, v1, a1):
             v1[b, ix(n - 1, k, 3, l)] = fair[b, ix(3 + k, 0, 1, l)]
 
 
+@njit(inline="always")
+def _kin(b, i, k, l, coef, lf, r, v, a, a1k, r1, v1):
+    """The generalised-alpha positions and velocities (:func:`~.gen_alpha.kinematics`) of node
+    ``i``, component ``k``, lane ``l`` at the acceleration ``a1k`` (:func:`kinematics`,
+    :func:`correct`, :func:`back`)."""
+    dt = lf[b, ix(LF_DT, 0, 1, l)]
+    beta = coef[b, ix(0, 2, 4, l)]
+    gamma = coef[b, ix(0, 3, 4, l)]
+    aa = a[b, ix(i, k, 3, l)]
+    r1[b, ix(i, k, 3, l)] = (r[b, ix(i, k, 3, l)] + dt * v[b, ix(i, k, 3, l)]
+                             + dt * dt * ((0.5 - beta) * aa + beta * a1k))
+    v1[b, ix(i, k, 3, l)] = v[b, ix(i, k, 3, l)] + dt * ((1.0 - gamma) * aa + gamma * a1k)
+
+
 @njit(**LANE_JIT)
 def kinematics(b, n, coef, lf, r, v, a, a1, r1, v1):
     """:func:`~.gen_alpha.kinematics` of block ``b``."""
@@ -114,15 +128,7 @@ def kinematics(b, n, coef, lf, r, v, a, a1, r1, v1):
     for i in range(1, n - 1):
         for k in range(3):
             for l in range(lw):
-                dt = lf[b, ix(LF_DT, 0, 1, l)]
-                beta = coef[b, ix(0, 2, 4, l)]
-                gamma = coef[b, ix(0, 3, 4, l)]
-                aa = a[b, ix(i, k, 3, l)]
-                a1k = a1[b, ix(i, k, 3, l)]
-                r1[b, ix(i, k, 3, l)] = (r[b, ix(i, k, 3, l)] + dt * v[b, ix(i, k, 3, l)]
-                                         + dt * dt * ((0.5 - beta) * aa + beta * a1k))
-                v1[b, ix(i, k, 3, l)] = v[b, ix(i, k, 3, l)] + dt * ((1.0 - gamma) * aa
-                                                                     + gamma * a1k)
+                _kin(b, i, k, l, coef, lf, r, v, a, a1[b, ix(i, k, 3, l)], r1, v1)
 
 
 @njit(**LANE_JIT)
@@ -157,19 +163,6 @@ def residual(b, n, coef, a, a1, fn, f1, Mb, fresh, Dg, R, lf, force):
                 lf[b, ix(LF_IMB, 0, 1, l)] += (abs(R[b, ix(i, 0, 3, l)])
                                                + abs(R[b, ix(i, 1, 3, l)])
                                                + abs(R[b, ix(i, 2, 3, l)]))
-
-
-@njit(inline="always")
-def _kin(b, i, k, l, coef, lf, r, v, a, a1k, r1, v1):
-    """:func:`kinematics` of node ``i``, component ``k``, lane ``l`` at the acceleration
-    ``a1k``."""
-    dt = lf[b, ix(LF_DT, 0, 1, l)]
-    beta = coef[b, ix(0, 2, 4, l)]
-    gamma = coef[b, ix(0, 3, 4, l)]
-    aa = a[b, ix(i, k, 3, l)]
-    r1[b, ix(i, k, 3, l)] = (r[b, ix(i, k, 3, l)] + dt * v[b, ix(i, k, 3, l)]
-                             + dt * dt * ((0.5 - beta) * aa + beta * a1k))
-    v1[b, ix(i, k, 3, l)] = v[b, ix(i, k, 3, l)] + dt * ((1.0 - gamma) * aa + gamma * a1k)
 
 
 @njit(**LANE_JIT)

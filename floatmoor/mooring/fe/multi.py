@@ -331,8 +331,10 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     one).  A failing advance returns its status with the lines not (all) accepted.  Compiled, the choice is made on
     the type of ``mode`` (:func:`_advance_lines_typed`): a kernel compiled for serial lines
     neither contains nor compiles the parallel one."""
-    from .lanes_body import LaneLines, lanes_advance_lines
+    from .lanes_body import LaneLines, lanes_advance_lines, lanes_body_step
     if isinstance(mode, LaneLines):
+        if lines is None:       # as the compiled version: no typed list, no failure copy
+            return lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
         return lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines)
     if isinstance(mode, ParallelLines):
         return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
