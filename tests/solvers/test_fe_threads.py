@@ -300,7 +300,7 @@ print(json.dumps([compiled[:n1], compiled[n1:]]))
     names1 = [c[0] for c in first]
     names2 = [c[0] for c in second]
     multi = "floatmoor.mooring.fe.multi."
-    assert "floatmoor.mooring.fe.lanes_body.lanes_advance_lines" in names1
+    assert "floatmoor.mooring.fe.lanes_body.lanes_body_step" in names1
     assert multi + "body_advance_parallel" not in names1
     assert names2.count(multi + "body_advance_parallel") == 1
     assert multi + "body_advance" not in names2

@@ -1,13 +1,13 @@
 """The FE lines of a body advanced as SIMD lanes (:mod:`.lanes`) in the coupled run: the mode
 bundle :class:`LaneLines` of :func:`.multi.advance_lines` and its kernel
-:func:`lanes_advance_lines`, which does what :func:`.multi.body_advance`,
+:func:`lanes_body_step`, which does what :func:`.multi.body_advance`,
 :func:`.multi.body_accept` and :func:`.multi.record_lines` do for lines one by one, with the
 same numbers (every lane is bit for bit its line alone: tests/mooring/fe/test_lanes.py).
 
 The lanes hold their own copy of the lines' states (a :class:`~.lanes.LaneGroup`); the line
 bundles keep the started state until :func:`store_lines` copies the lanes' accepted states,
-audits and element tensions back after the run (``fe_coupling.run``), so every
-:class:`~.line.FELine` method sees the state the run ended in.
+audits, element tensions and failure information back after the run
+(``fe_coupling.run``), so every :class:`~.line.FELine` method sees the state the run ended in.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from .lanes_advance import accept, block_advance, record
 from .layout import KERNEL_JIT
 from .multi import add_line_wrench, fairlead_into
 
-__all__ = ["LaneLines", "lane_order", "lanes_mode", "lanes_advance_lines", "store_lines", "lanes_fit"]
+__all__ = ["LaneLines", "lane_order", "lanes_mode", "lanes_body_step", "store_lines", "lanes_fit"]
 
 
 class LaneLines(NamedTuple):
@@ -102,31 +102,16 @@ def lanes_mode(lines, recs: np.ndarray) -> LaneLines:
                      group=g, on=on, slot=slot, line_of=line_of)
 
 
-@njit(cache=True)  # with reference counting: it reads the typed list of the line bundles
-def lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
+@njit(**KERNEL_JIT)
+def lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body):
     """Advance the lanes of ``mode`` (:class:`LaneLines`) to ``t1`` with the body at ``pose``
     moving with ``vel``, and on success accept them and record their channels into
     ``mode.recs``: :func:`.multi.body_advance` (``body`` the :class:`~.multi.FEBody`: fairleads,
     end forces, wrench ``Q``, counters), :func:`.multi.body_accept` and
-    :func:`.multi.record_lines` with the lines as lanes (:func:`lanes_body_step`).  A failing
-    lane returns its status with ``body.fail[0]`` the line and its ``work.info`` (time, node,
-    code) copied into the line's bundle (``lines``, the typed list of the lines' bundles)."""
-    st = lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
-    if st < 0:
-        i = body[8][0]
-        p = mode.slot[i]
-        info = lines[i].work.info
-        for k in range(3):
-            info[k] = mode.group.work.info[p, k]
-    return st
-
-
-@njit(**KERNEL_JIT)
-def lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body):
-    """The body step of :func:`lanes_advance_lines` without the typed list, so without
-    reference counting (numba's atomic counts on every field of the group it reads were 3 % of
-    the coupled flagship, perf 2026-11-28): the status (0, or a failing lane's, with
-    ``body.fail[0]`` its line)."""
+    :func:`.multi.record_lines` with the lines as lanes.  Returns the status (0, or a failing
+    lane's, with ``body.fail[0]`` its line; the lane's ``work.info`` reaches the line through
+    :func:`store_lines`).  No typed list, so no reference counting (numba's atomic counts on
+    every field of the group it reads were 3 % of the coupled flagship, perf 2026-11-28)."""
     g = mode.group
     on_l = mode.on
     slot = mode.slot

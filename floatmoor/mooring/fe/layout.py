@@ -43,5 +43,4 @@ array's reference count for every array argument and every array taken out of a 
 10 % of the flagship's lanes replay in a ``perf`` profile (2026-11-28).  These kernels
 allocate nothing and return no array (their arrays are the bundles', made in Python), and numba
 refuses to compile an allocation under ``_nrt=False``, so one added later fails loudly.  A
-kernel that reads a typed list (``multi``, ``lanes_body.lanes_advance_lines``) keeps the
-reference counts."""
+kernel that reads a typed list (``multi``) keeps the reference counts."""

@@ -23,7 +23,6 @@ from typing import NamedTuple
 
 import numpy as np
 from numba import njit, prange
-from numba.core import types
 from numba.extending import overload
 from numba.typed import List
 
@@ -331,11 +330,11 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
     one).  A failing advance returns its status with the lines not (all) accepted.  Compiled, the choice is made on
     the type of ``mode`` (:func:`_advance_lines_typed`): a kernel compiled for serial lines
     neither contains nor compiles the parallel one."""
-    from .lanes_body import LaneLines, lanes_advance_lines, lanes_body_step
+    from .lanes_body import LaneLines, lanes_body_step
     if isinstance(mode, LaneLines):
-        if lines is None:       # as the compiled version: no typed list, no failure copy
-            return lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
-        return lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines)
+        # the lanes hold the lines' states: ``lines`` is not read (a failing lane's
+        # information reaches its line through store_lines after the run)
+        return lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
     if isinstance(mode, ParallelLines):
         return body_advance_parallel(t1, dt, nsub, max_split, pose, vel, body, lines,
                                      mode.status, mode.threads, mode.recs)
@@ -348,17 +347,10 @@ def advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
 
 @overload(advance_lines)
 def _advance_lines_typed(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-    from .lanes_body import LaneLines, lanes_advance_lines, lanes_body_step
+    from .lanes_body import LaneLines, lanes_body_step
     if getattr(mode, "instance_class", None) is LaneLines:
-        if isinstance(lines, types.NoneType):
-            # no typed list (a kernel without reference counting): a failing lane's
-            # information stays in the lanes (store_lines copies it to the lines)
-            def lanes_only(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-                return lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
-            return lanes_only
-
         def lanes(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
-            return lanes_advance_lines(mode, t1, dt, nsub, max_split, pose, vel, body, lines)
+            return lanes_body_step(mode, t1, dt, nsub, max_split, pose, vel, body)
         return lanes
     if getattr(mode, "instance_class", None) is ParallelLines:
         def parallel(mode, t1, dt, nsub, max_split, pose, vel, body, lines):
