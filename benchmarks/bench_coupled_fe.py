@@ -1,5 +1,6 @@
 """Coupled FE mooring benchmark: the 3-hour storm of the Floatel-like semi with 12 FE
-lines (scenes/floatel_100yr_fe.yaml, 50 elements per line) coupled to the body.
+lines (scenes/floatel_100yr_fe.yaml, 12 / 26 / 12 elements on its three segments) coupled to
+the body.
 
 Prints, per body time step (default 0.1 and 0.2 s): setup time (scene build, FE statics and
 start equilibrium included), the time loop (wall and CPU of this process), simulated seconds
@@ -26,6 +27,10 @@ with the other options (the first one is the reference of the comparison lines).
 ``--lanes on off``: one thread, the FE lines as SIMD lanes (``fe_coupling.LANES``, the
 default) or line by line, interleaved with the other options; each run is checked bit for bit
 against the first setting's run of the same mode (``identical``).
+
+``--elements scene 50 12,26,12``: the FE mesh, interleaved with the other options: the scene's
+(``scene``, the default), an element count per line shared among the segments by length, or
+counts per segment (anchor to fairlead); scene option ``finite_element: {n_elements: ...}``.
 
 ``--threads 1 2``: the FE lines advanced in that many threads (scene option ``solver:
 {threads: N}``), the runs interleaved with the Newton modes; the time loop is printed as wall
@@ -67,6 +72,8 @@ def main() -> None:
     ap.add_argument("--no-qs", action="store_true")
     ap.add_argument("--threads", type=int, nargs="+", default=[1])
     ap.add_argument("--lanes", nargs="+", default=["on"], choices=("on", "off"))
+    ap.add_argument("--elements", nargs="+", default=["scene"],
+                    help="FE mesh: scene, N (per line) or a,b,c (per segment)")
     ap.add_argument("--fe-stages", nargs="+", default=["linear"],
                     choices=("catenary", "linear"),
                     help="solver: {fe_stages: ...}: the FE lines' stiffness at the step start "
@@ -104,7 +111,7 @@ def main() -> None:
 
     FELine.start = start
 
-    def fe_scene(mode):
+    def fe_scene(mode, elements="scene"):
         import dataclasses
 
         newton, *extra = mode.split(":")
@@ -114,7 +121,12 @@ def main() -> None:
             perturb[key] = float(value)
         built = build(load_scene(FE))
         lm = built.mooring.line_models
-        object.__setattr__(lm, "options", dataclasses.replace(lm.options, newton=newton))
+        opts = dataclasses.replace(lm.options, newton=newton)
+        if elements != "scene":
+            counts = tuple(int(v) for v in elements.split(","))
+            opts = dataclasses.replace(opts, n_elements=counts[0] if len(counts) == 1
+                                       else counts)
+        object.__setattr__(lm, "options", opts)
         return built
 
     print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
@@ -139,13 +151,13 @@ def main() -> None:
     single = {}
     from floatmoor.solvers import fe_coupling
 
-    runs = [(dt, nw, fes, th, ln) for dt in args.dt for _ in range(args.repeat)
+    runs = [(dt, nw, fes, th, ln, el) for dt in args.dt for _ in range(args.repeat)
             for nw in args.newton for fes in args.fe_stages for th in args.threads
-            for ln in args.lanes]
+            for ln in args.lanes for el in args.elements]
     by_lanes = {}
-    for dt, nw, fes, th, ln in runs:
+    for dt, nw, fes, th, ln, el in runs:
         fe_coupling.LANES = ln == "on"
-        built = fe_scene(nw)
+        built = fe_scene(nw, el)
         w0 = time.perf_counter()
         c0 = time.process_time()
         ds = simulate(built, seed=args.seed, duration=args.duration, dt=dt,
@@ -180,7 +192,7 @@ def main() -> None:
         newton = ds.attrs["fe_newton_iterations"] / (12 * n_steps * ds.attrs["fe_substeps"])
         i = int(np.argmax(tfe))
         print(f"FE  dt {dt:g} newton {nw} catenary {args.catenary} fe_stages {fes} threads "
-              f"{ds.attrs.get('fe_threads', 1)} lanes {ln}: "
+              f"{ds.attrs.get('fe_threads', 1)} lanes {ln} elements {el}: "
               f"loop {loop:.1f} s, setup {ds.attrs['setup_time_s']:.1f} s, "
               f"total {wall:.1f} s (CPU {cpu:.1f} s), {args.duration / loop:.1f} simulated s "
               f"per wall s; {newton:.2f} Newton iterations per line step, "

@@ -2,7 +2,7 @@
 line tension (notebooks/fd_line_dynamics.ipynb reads what this writes).
 
 Per seed: ``floatmoor.simulate`` of scenes/floatel_100yr_fe.yaml (12 FE lines coupled to the
-body, "fe") or of scenes/floatel_100yr.yaml (quasi-static catenary lines, "qs"), then
+body, "fe"; 50 elements per line shared by length, the mesh of the stored rows) or of scenes/floatel_100yr.yaml (quasi-static catenary lines, "qs"), then
 ``floatmoor.post.timeseries.statistics`` after the transient (the post-processing's LF/WF
 separation: zero-phase Butterworth low-pass at 1/30 Hz, WF = signal - LF).  One CSV row per
 (model, seed): the WF, LF and total std, mean and maximum tension of every line (kN), and the
@@ -30,6 +30,30 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENES = {"fe": ROOT / "scenes" / "floatel_100yr_fe.yaml",
           "qs": ROOT / "scenes" / "floatel_100yr.yaml"}
 OUT = ROOT / "notebooks" / "data" / "fd_line_dynamics" / "coupled_storms.csv"
+
+
+STORMS_N_ELEMENTS = 50
+"""Elements per line of the "fe" rows (shared among the segments by length), the mesh of the
+stored rows of 2026-11-24; the scene gives its elements per segment since 2026-11-28
+([12, 26, 12], benchmarks/RESULTS.md "A mesh by segment"), so a rerun keeps the rows' mesh."""
+
+
+def _scene(model: str):
+    """The scene of ``model``; for "fe" with :data:`STORMS_N_ELEMENTS` per line."""
+    import dataclasses
+
+    import yaml
+
+    import floatmoor
+    scene = floatmoor.load_scene(SCENES[model])
+    if model != "fe":
+        return scene
+    mooring = scene.mooring
+    if not isinstance(mooring, dict):
+        mooring = yaml.safe_load(Path(mooring).read_text())
+    mooring = {**mooring, "finite_element": {**mooring.get("finite_element", {}),
+                                             "n_elements": STORMS_N_ELEMENTS}}
+    return dataclasses.replace(scene, mooring=mooring)
 
 
 def summary_row(ds, model: str) -> dict:
@@ -64,7 +88,7 @@ def main() -> None:
         if len(df) and ((df["model"] == args.model) & (df["seed"] == seed)).any():
             continue
         t0, c0 = time.perf_counter(), time.process_time()
-        ds = floatmoor.simulate(SCENES[args.model], seed=seed, duration=args.duration,
+        ds = floatmoor.simulate(_scene(args.model), seed=seed, duration=args.duration,
                                 transient=args.transient)
         row = summary_row(ds, args.model)
         row["wall_s"] = time.perf_counter() - t0

@@ -467,7 +467,10 @@ def read(path, **kw):
 def _share(lengths, n_line, element_length):
     """Segments per MoorDyn line: ``n_line`` for the whole floatmoor line shared in proportion
     to the lengths (largest remainder, at least one each, as the FE lines do), else one per
-    ``element_length``."""
+    ``element_length``; ``n_line`` a sequence: the segments of each floatmoor segment
+    (``finite_element.n_elements`` given per segment)."""
+    if n_line is not None and not isinstance(n_line, (int, float)):
+        return [int(v) for v in n_line]
     if n_line is None:
         return [max(1, round(L / element_length)) for L in lengths]
     total = sum(lengths)

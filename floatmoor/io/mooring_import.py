@@ -17,6 +17,7 @@ from pathlib import Path
 from ..core.config import Node, parse_yaml_text
 from ..core.constants import GRAVITY, RHO_WATER
 from ..core.errors import FloatmoorWarning, SceneError
+from ..mooring.fe.from_system import split_elements
 from ..mooring.line_types import MBS_UNKNOWN
 
 __all__ = ["MBS_UNKNOWN", "ImpLine", "ImpPoint", "ImpType", "ImportedMooring", "MooringImport",
@@ -277,8 +278,17 @@ def to_yaml(m: ImportedMooring, *, water_depth=None, water_density=None, gravity
     seq_counts = {sum(ln.n_segments or 0 for ln, _ in seq) for _, seq, _ in chains}
     L.append(f"model: {model}   # quasi-static catenary lines; finite-element uses the options "
              f"below")
+    seq_tuples = {tuple(ln.n_segments or 0 for ln, _ in seq) for _, seq, _ in chains}
     fe = []
-    if len(seq_counts) == 1 and nseg:
+    per_segment = (len(seq_tuples) == 1 and nseg and len(next(iter(seq_tuples))) > 1
+                   and any(split_elements([ln.length for ln, _ in seq], sum(counts))
+                           != list(counts) for _, seq, _ in chains
+                           for counts in [tuple(ln.n_segments for ln, _ in seq)]))
+    if per_segment:
+        counts = list(next(iter(seq_tuples)))
+        fe.append(f"  n_elements: {counts}   # MoorDyn NumSegs of each segment, anchor to "
+                  f"fairlead")
+    elif len(seq_counts) == 1 and nseg:
         fe.append(f"  n_elements: {seq_counts.pop()}   # MoorDyn NumSegs (segments per line)")
     elif nseg:
         Ltot = sum(ln.length for ln in m.lines)

@@ -202,6 +202,7 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
                       if defaults is not None else cb_default, ge=0.0)
         lines.append(LineDef(name=name, anchor=anchor, fairlead=fairlead, segments=tuple(segs),
                              cb=cb, anchor_on_seabed=on_seabed))
+    _check_segment_elements(node, line_models, lines)
     failed = node.list("failed_lines", [])
     for i, f in enumerate(failed):
         if f not in names:
@@ -218,6 +219,21 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
     if check:
         _check_at_zero_pose(ms, node, lines_nodes)
     return ms
+
+
+def _check_segment_elements(node: Node, line_models, lines) -> None:
+    """``finite_element.n_elements`` given per segment: every FE line has that many
+    segments (SceneError naming the file, the key and the first line that has not)."""
+    counts = line_models.options.n_elements
+    if counts is None or isinstance(counts, int):
+        return
+    for ld in lines:
+        if line_models.model_of(ld.name) == "finite-element" and len(ld.segments) != len(counts):
+            raise node.child("finite_element").error(
+                "n_elements", f"one element count per segment of every FE line, anchor to "
+                f"fairlead (line {ld.name!r} has {len(ld.segments)} segments)", list(counts),
+                "a list of counts applies to every FE line; give one integer per line "
+                "(shared among its segments by length) when the lines differ")
 
 
 def _fibre_time_constant(node: Node) -> float:

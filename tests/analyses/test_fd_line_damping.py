@@ -26,6 +26,7 @@ from floatmoor.analyses.frequency_domain import FDOptions, frequency_domain_resu
 from floatmoor.core.errors import SceneError
 from floatmoor.io.build import build
 from floatmoor.mooring.fe.frequency_damping import fairlead_impedance, harmonic_band
+from tests.fe_flagship import flagship_fe_as_stored
 
 ROOT = Path(__file__).resolve().parents[2]
 FLAGSHIP = ROOT / "scenes" / "floatel_100yr.yaml"
@@ -70,7 +71,7 @@ def test_static_limit_is_the_catenary_stiffness():
     arms (``J^T Z J``, plus in yaw the static fairlead force turning with its arm,
     ``-[F]x [arm]x``, which no velocity term has) is the catenary mooring's stiffness at the mean
     pose (surge, sway, yaw within 1.5 %: 50-element FE lines against the elastic catenary)."""
-    sc = floatmoor.load_scene(FLAGSHIP_FE)
+    sc = flagship_fe_as_stored()                    # 50 elements per line
     sc = dataclasses.replace(sc, environment=dataclasses.replace(sc.environment, current=None))
     built = build(sc)
     r = _fd(built)
@@ -101,8 +102,9 @@ def test_floatel_lf_surge_against_coupled_fe_storms():
     df = pd.read_csv(STORMS)
     fe = df[df["model"] == "fe"]
     storms = float(np.sqrt(np.mean(fe["surge_lf_std"] ** 2)))
-    r0 = _fd(FLAGSHIP_FE, line_current_drag=True)
-    r = _fd(FLAGSHIP_FE, line_current_drag=True, line_damping="fe")
+    scene = flagship_fe_as_stored()                 # the storms' 50 elements per line
+    r0 = _fd(scene, line_current_drag=True)
+    r = _fd(scene, line_current_drag=True, line_damping="fe")
     assert r0.lf_damping_mooring is None and r0.model.lf_impedance is None
     assert r0.lf_std[0] / storms - 1.0 > 0.3
     assert abs(r.lf_std[0] / storms - 1.0) < 0.08

@@ -40,9 +40,11 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
         Body pose for the initial fairlead position (default zero).
     element_length : float
         Target element length, m: each segment gets ``max(1, round(L / element_length))``.
-    n_elements : int, optional
+    n_elements : int or sequence of int, optional
         Elements of the whole line instead (overrides ``element_length``): shared among the
-        segments in proportion to their lengths (largest remainder, at least one each).
+        segments in proportion to their lengths (largest remainder, at least one each); a
+        sequence gives the elements of each segment, anchor to fairlead (a mesh refined where
+        the line bends: the flagship's top chain, benchmarks/RESULTS.md "A mesh by segment").
     line_types : mapping, optional
         Line types by name for the hydrodynamic coefficients (``cdn, cdt, can, cat``); a
         segment whose type is missing keeps the ``LineType`` defaults.  Mass, diameter, EA,
@@ -70,8 +72,18 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
     segs = []
     bodies = []
     node = 0
-    counts = (_split_elements([s.length for s in line.segments], n_elements)
-              if n_elements is not None else None)
+    if n_elements is not None and not np.isscalar(n_elements):
+        counts = [int(v) for v in n_elements]
+        if len(counts) != len(line.segments):
+            from ...core.errors import SceneError
+            raise SceneError(None, "finite_element.n_elements",
+                             f"one element count per segment ({len(line.segments)} for line "
+                             f"{line.name!r}, anchor to fairlead)", list(counts),
+                             "a list of counts applies to every FE line; give one integer "
+                             "per line for lines of different segment counts")
+    else:
+        counts = (split_elements([s.length for s in line.segments], n_elements)
+                  if n_elements is not None else None)
     n_line = (sum(counts) if counts is not None
               else sum(max(1, int(round(s.length / element_length))) for s in line.segments))
     if n_line > MAX_ELEMENTS:
@@ -80,7 +92,8 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
                          else "finite_element.n_elements",
                          f"at most {MAX_ELEMENTS:,} elements per line (a line of "
                          f"{sum(s.length for s in line.segments):g} m)",
-                         element_length if counts is None else n_elements,
+                         element_length if counts is None else
+                         (n_elements if np.isscalar(n_elements) else list(n_elements)),
                          f"{n_line:,} elements for line {line.name!r}")
     for k, s in enumerate(line.segments):
         base = (line_types or {}).get(s.line_type)
@@ -115,7 +128,7 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
                       **current)
 
 
-def _split_elements(lengths, n_total: int) -> list[int]:
+def split_elements(lengths, n_total: int) -> list[int]:
     """``n_total`` elements shared among segments of ``lengths`` in proportion (largest
     remainder), at least one per segment."""
     lengths = np.asarray(lengths, float)

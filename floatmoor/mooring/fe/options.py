@@ -7,7 +7,8 @@ The ``mooring:`` section selects the model for all lines or per line; the FE opt
     mooring:
       model: finite-element            # or quasi-static (default); per line: lines[i].model
       finite_element:
-        element_length: 20.0           # m, target element length (or n_elements: per line)
+        element_length: 20.0           # m, target element length (or n_elements: per line,
+                                       #   or [n1, n2, ...]: per segment, anchor to fairlead)
         integrator: generalized_alpha  # or explicit (for comparison)
         dt: 0.1                        # s, longest line step (or substeps: per body step)
         internal_damping: -0.8         # N s, or -zeta (fraction of critical per element)
@@ -67,7 +68,10 @@ class FEOptions:
     values are filled in by :meth:`seabed_for`)."""
 
     element_length: float = 20.0
-    n_elements: int | None = None
+    n_elements: int | tuple[int, ...] | None = None
+    """Elements of each FE line, shared among its segments in proportion to their lengths, or
+    a tuple: the elements of each segment, anchor to fairlead (every FE line then has that
+    many segments; checked by :func:`floatmoor.io.mooring_section.parse_mooring`)."""
     internal_damping: float = 0.0
     rho_inf: float = 0.7
     substeps: int = 1
@@ -125,7 +129,7 @@ def parse_fe_options(node: Node | None) -> FEOptions:
     if "element_length" in node:
         kw["element_length"] = node.float("element_length", gt=0.0, unit="m")
     if "n_elements" in node:
-        kw["n_elements"] = node.int("n_elements", ge=1)
+        kw["n_elements"] = _n_elements(node)
     if "dt" in node:
         kw["dt"] = node.float("dt", gt=0.0, unit="s")
     if "integrator" in node:
@@ -173,6 +177,18 @@ def parse_fe_options(node: Node | None) -> FEOptions:
                 d[k] = fr.float(k, gt=0.0, unit=unit)
         kw["friction"] = Friction(**d)
     return FEOptions(**kw)
+
+
+def _n_elements(node: Node) -> int | tuple[int, ...]:
+    """``n_elements``: an integer >= 1 (per line) or a list of them (per segment)."""
+    raw = node.raw("n_elements")
+    if not isinstance(raw, list):
+        return node.int("n_elements", ge=1)
+    expected = ("an integer >= 1 (elements per line) or a non-empty list of integers >= 1 "
+                "(elements per segment, anchor to fairlead)")
+    if not raw or any(isinstance(v, bool) or not isinstance(v, int) or v < 1 for v in raw):
+        raise node.error("n_elements", expected, raw)
+    return tuple(int(v) for v in raw)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -106,7 +106,8 @@ def test_floatel_like_dynamic_wf_tension_against_coupled_fe_storms():
     with open(root / "notebooks" / "data" / "fd_line_dynamics" / "coupled_storms.csv") as f:
         fe = [row for row in csv.DictReader(f) if row["model"] == "fe"]
     assert len(fe) >= 12
-    built = build(root / "scenes" / "floatel_100yr_fe.yaml")
+    from tests.fe_flagship import flagship_fe_as_stored
+    built = build(flagship_fe_as_stored())      # the storms' 50 elements per line
     dyn = frequency_domain_result(built, tension_model="dynamic")
     qs = frequency_domain_result(built)
     for i, name in enumerate(built.mooring.names):

@@ -102,10 +102,59 @@ def test_bad_line_model_names_file_and_key(top, line2, key):
 
 def test_element_count_of_the_whole_line_is_shared_by_length():
     from floatmoor.io.mooring_section import parse_mooring
-    from floatmoor.mooring.fe.from_system import _split_elements, spec_from_linedef
+    from floatmoor.mooring.fe.from_system import spec_from_linedef, split_elements
 
-    assert _split_elements([762.0, 1828.8, 76.2], 50) == [14, 34, 2]   # 50 x L_i / 2667
-    assert sum(_split_elements([1.0, 5.0, 300.0], 7)) == 7
-    assert _split_elements([1.0, 1.0, 1.0], 2) == [1, 1, 1]            # at least one each
+    assert split_elements([762.0, 1828.8, 76.2], 50) == [14, 34, 2]   # 50 x L_i / 2667
+    assert sum(split_elements([1.0, 5.0, 300.0], 7)) == 7
+    assert split_elements([1.0, 1.0, 1.0], 2) == [1, 1, 1]            # at least one each
     ms = parse_mooring(_mooring(), water_depth=320.0)
     assert spec_from_linedef(ms.lines[0], water_depth=320.0, n_elements=37).n_elements == 37
+
+
+def test_element_counts_given_per_segment():
+    """``n_elements: [n1, n2, ...]``: the elements of each segment, anchor to fairlead (the
+    flagship's [12, 26, 12], vessels/floatel_like/mooring_fe.yaml): each segment gets its count
+    and elements of its own length; the FELine's node arc lengths follow."""
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe.from_system import spec_from_linedef
+    from floatmoor.mooring.fe.line import FELine
+
+    seg = [{"type": "chain_studless_R3", "diameter": 0.09, "length": 300.0},
+           {"type": "chain_studless_R3", "diameter": 0.09, "length": 602.2}]
+    node = _mooring({"model": "finite-element", "finite_element": {"n_elements": [3, 14]}},
+                    {"segments": seg})
+    node.data["lines"][0]["segments"] = seg
+    ms = parse_mooring(node, water_depth=320.0)
+    assert ms.line_models.options.n_elements == (3, 14)
+    spec = spec_from_linedef(ms.lines[0], water_depth=320.0,
+                             **ms.line_models.options.spec_kw(320.0))
+    assert [s.n_elements for s in spec.segments] == [3, 14] and spec.n_elements == 17
+    line = FELine(spec)
+    ds = line.s_nodes[1:] - line.s_nodes[:-1]
+    assert ds[:3] == pytest.approx([100.0] * 3, rel=1e-12)
+    assert ds[3:] == pytest.approx([602.2 / 14] * 14, rel=1e-12)
+
+
+@pytest.mark.parametrize("value", [[], [3, 0], [3, 2.5], [True, 3], "3, 14"])
+def test_bad_element_counts_per_segment_name_the_key(value):
+    with pytest.raises(SceneError, match=r"scene.yaml: mooring.finite_element.n_elements"):
+        parse_fe_options(_node({"n_elements": value}))
+
+
+def test_element_counts_per_segment_must_match_every_fe_line():
+    """A list of counts whose length is not every FE line's segment count is refused when the
+    mooring is read (file, key, the line), and by spec_from_linedef given in Python."""
+    from floatmoor.io.mooring_section import parse_mooring
+    from floatmoor.mooring.fe.from_system import spec_from_linedef
+
+    with pytest.raises(SceneError, match=r"scene.yaml: mooring.finite_element.n_elements.*"
+                                         r"line 'l1' has 1 segments") as e:
+        parse_mooring(_mooring({"model": "finite-element",
+                                "finite_element": {"n_elements": [3, 14]}}), water_depth=320.0)
+    assert "[3, 14]" in str(e.value)
+    # a quasi-static line of another segment count is not concerned
+    ms = parse_mooring(_mooring({"finite_element": {"n_elements": [3, 14]}},
+                                {"model": "quasi-static"}), water_depth=320.0)
+    with pytest.raises(SceneError, match=r"finite_element.n_elements.*one element count per "
+                                         r"segment \(1 for line 'l1'"):
+        spec_from_linedef(ms.lines[0], water_depth=320.0, n_elements=(3, 14))
