@@ -22,6 +22,9 @@ Cases (all from the shipped scenes, seed 1):
   machine only, so an x86-64-v4 machine skips it with the table's note);
 * ``fe_linear``: the same scene as the shipped file runs it (``newton: exact``, the default
   ``fe_stages: linear`` since 2026-11-28; written on an x86-64-v3 machine only, like ``fe``);
+* ``fe_linear`` solves the FE lines' stiffness at every step (``solver:
+  {fe_stiffness_interval: 0}``), as the code did when its digest was written (the default
+  since 2026-11-28 is every 1.0 s, compared with every step in tests/solvers/test_fe_stages.py);
 * the three ``fe`` cases run the mesh their digests were written with, 50 elements per line
   shared by length (23 / 22 / 5), given as ``n_elements: 50``: the shipped file gives the
   elements per segment since 2026-11-28 ([12, 26, 12], a mesh study, benchmarks/RESULTS.md),
@@ -69,7 +72,8 @@ CASES = {
                  {"duration": 1500.0, "fe": {"newton": "force", "n_elements": 50},
                   "solver": {"fe_stages": "catenary"}}),
     "fe_linear": ("scenes/floatel_100yr_fe.yaml", {"duration": 1500.0,
-                                                   "fe": {"n_elements": 50}}),
+                                                   "fe": {"n_elements": 50},
+                                                   "solver": {"fe_stiffness_interval": 0.0}}),
     "fd": ("scenes/floatel_100yr.yaml", None),
 }
 

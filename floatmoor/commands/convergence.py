@@ -29,13 +29,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", default=None, metavar="FILE", help="save a plot (png/pdf/svg)")
     p.add_argument("--solver", default=None, metavar="KEY=VALUE[,KEY=VALUE]",
                    help="also run with these solver options, e.g. "
-                        "catenary=predictor,memory=state_space or fe_stages=catenary")
+                        "catenary=predictor,memory=state_space, fe_stages=catenary or "
+                        "fe_stiffness_interval=0")
 
 
 def parse_solver_option(text: str):
     """``catenary=predictor,memory=state_space`` -> SolverSpec (UsageError when malformed)."""
     from ..cli import UsageError
-    from ..io.solver_section import CATENARY_MODES, FE_STAGE_MODES, MEMORY_MODES, SolverSpec
+    from ..io.solver_section import (
+        CATENARY_MODES,
+        FE_STAGE_MODES,
+        FE_STIFFNESS_INTERVAL_MAX,
+        MEMORY_MODES,
+        SolverSpec,
+    )
     choices = {"catenary": CATENARY_MODES, "memory": MEMORY_MODES, "fe_stages": FE_STAGE_MODES}
     kw = {}
     for item in text.split(","):
@@ -50,10 +57,21 @@ def parse_solver_option(text: str):
             if not 0.0 < kw[key] < 1.0:
                 raise UsageError(f"--solver: memory_fit_tol between 0 and 1, found {value}")
             continue
+        if key == "fe_stiffness_interval":
+            try:
+                kw[key] = float(value)
+            except ValueError:
+                raise UsageError(f"--solver: fe_stiffness_interval is a number (s), found "
+                                 f"{value!r}") from None
+            if not 0.0 <= kw[key] <= FE_STIFFNESS_INTERVAL_MAX:
+                raise UsageError(f"--solver: fe_stiffness_interval from 0 to "
+                                 f"{FE_STIFFNESS_INTERVAL_MAX:g} s, found {value}")
+            continue
         if key not in choices or value not in choices[key]:
             raise UsageError("--solver: expected KEY=VALUE with " + "; ".join(
                 f"{k} one of {', '.join(v)}" for k, v in choices.items())
-                + f"; memory_fit_tol a number, found {item!r}")
+                + "; memory_fit_tol a number; fe_stiffness_interval a number (s), found "
+                + repr(item))
         kw[key] = value
     return SolverSpec(**kw)
 

@@ -8,6 +8,8 @@ solver:
   memory_fit_tol: 0.01     # relative L2 error of the state-space fits (default 0.01)
   threads: 2               # threads for the finite-element lines: 1 (default) | N | auto
   fe_stages: catenary      # coupled FE lines in the RK4 stages: linear (default) | catenary
+  fe_stiffness_interval: 1.0  # s between the FE lines' catenary stiffness solves (linear
+                              #   stages; default 1.0, 0: every body step)
 ```
 
 ``catenary``: ``exact`` solves every quasi-static line at every RK4 stage by Newton's method to
@@ -41,6 +43,17 @@ as lanes: 7.6 / 7.9 s against 9.0 / 9.9 s, each line's maximum within 0.0006 % (
 "``fe_stages: linear`` the default").  In 240 s test storms the tensions stay within 1 % of
 the time step's own error (``tests/solvers/test_fe_stages.py``).  Without FE lines the option changes nothing.
 
+``fe_stiffness_interval`` (s, with ``fe_stages: linear``): the FE lines' catenary stiffness of
+the linear stages is solved every ``round(interval / dt)`` body steps (at least every step;
+``0``: every step, as before 2026-11-28) and at any step where a line is released (a line
+failure leaves the stiffness at once); in between the last one is kept, turned into pose
+coordinates at each step's pose.  The stiffness only scales the stage-to-stage change of the
+force (a fraction of a metre of motion), so a stiffness up to a second old moves that change by
+a few percent of itself.  On the 3-hour flagship FE storm (3 seeds, 12 x 50 elements, dt 0.1 s)
+the default 1.0 s moved each line's mean maximum by at most 0.004 % and its std by 0.003 %
+(the time step's own error 0.04 %) and took 0.8-0.9 of the CPU (benchmarks/RESULTS.md, "A mesh
+by segment").  Ignored with ``fe_stages: catenary``, which solves the catenaries at every stage.
+
 ``threads``: the finite-element lines of the body are advanced in that many threads
 (:func:`floatmoor.mooring.fe.multi.body_advance_parallel`); the results are bit for bit those of
 one thread (the lines are independent within a body step; their sum stays in the line order),
@@ -56,7 +69,7 @@ with 1.  One thread (the default) runs the serial kernel, which neither contains
 the parallel one.
 
 Every key is optional; the defaults are the exact catenaries and memory, one thread and the
-linearised FE stages (:attr:`SolverSpec.is_default`).
+linearised FE stages with their stiffness solved every 1.0 s (:attr:`SolverSpec.is_default`).
 """
 
 from __future__ import annotations
@@ -67,12 +80,19 @@ from dataclasses import dataclass, field
 from ..core.config import Node
 from ..core.errors import SceneError
 
-__all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES",
-           "MEMORY_MODES", "FE_STAGE_MODES", "fe_stages", "catenary_tol", "THREADS_AUTO",
+__all__ = ["SolverSpec", "parse_solver", "describe_solver", "SOLVER_KEYS", "CATENARY_MODES", "FE_STIFFNESS_INTERVAL_MAX",
+           "MEMORY_MODES", "FE_STAGE_MODES", "fe_stages", "fe_stiffness_interval",
+           "FE_STIFFNESS_INTERVAL", "catenary_tol", "THREADS_AUTO",
            "parse_threads", "available_threads", "run_threads", "with_thread_cap", "is_auto",
            "worker_thread_cap"]
 
-SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads", "fe_stages")
+SOLVER_KEYS = ("catenary", "memory", "memory_fit_tol", "threads", "fe_stages",
+               "fe_stiffness_interval")
+FE_STIFFNESS_INTERVAL = 1.0
+"""Default ``fe_stiffness_interval``, s (module docstring)."""
+FE_STIFFNESS_INTERVAL_MAX = 10.0
+"""Largest ``fe_stiffness_interval``, s: a stiffness older than that is no longer the
+lines' at the pose (the flagship's surge moves metres in 10 s)."""
 THREADS_AUTO = "auto"
 THREADS_EXPECTED = "a positive integer or auto"
 CATENARY_MODES = ("exact", "predictor")
@@ -91,6 +111,9 @@ class SolverSpec:
     """Threads for the FE lines: a positive integer or ``"auto"`` (:func:`run_threads`)."""
     fe_stages: str = "linear"
     """The coupled FE lines' force over the RK4 stages: ``linear`` (default) or ``catenary``."""
+    fe_stiffness_interval: float = FE_STIFFNESS_INTERVAL
+    """s between the FE lines' catenary stiffness solves of the linear stages (0: every
+    step)."""
     file: object = field(default=None, compare=False)
     threads_auto: bool = field(default=False, compare=False)
     """``threads`` is ``auto`` resolved to a number by :func:`with_thread_cap`: the FE run
@@ -101,11 +124,14 @@ class SolverSpec:
         """True when every option is its default (the reference path of ``floatmoor
         convergence --solver``; the thread count changes no number and is not looked at)."""
         return (self.catenary == "exact" and self.memory == "convolution"
-                and self.fe_stages == "linear")
+                and self.fe_stages == "linear"
+                and self.fe_stiffness_interval == FE_STIFFNESS_INTERVAL)
 
     def describe(self) -> str:
         fit = (f" (fit {self.memory_fit_tol:g})" if self.memory == "state_space" else "")
         fe = ", FE stages catenary" if self.fe_stages == "catenary" else ""
+        if self.fe_stages == "linear" and self.fe_stiffness_interval != FE_STIFFNESS_INTERVAL:
+            fe += f", FE stiffness every {self.fe_stiffness_interval:g} s"
         return f"catenary {self.catenary}, memory {self.memory}{fit}{fe}"
 
     def describe_threads(self) -> str:
@@ -124,6 +150,9 @@ def parse_solver(node: Node) -> SolverSpec:
                       threads=parse_threads(node.raw("threads", d.threads), file=node.file,
                                             key=node.key("threads")),
                       fe_stages=node.str("fe_stages", d.fe_stages, choices=FE_STAGE_MODES),
+                      fe_stiffness_interval=node.float(
+                          "fe_stiffness_interval", d.fe_stiffness_interval, ge=0.0,
+                          le=FE_STIFFNESS_INTERVAL_MAX, unit="s"),
                       file=node.file)
 
 
@@ -189,6 +218,11 @@ def is_auto(spec: SolverSpec | None) -> bool:
 def fe_stages(spec: SolverSpec | None) -> str:
     """The coupled FE lines' stage model of ``spec`` (``linear`` without a spec)."""
     return spec.fe_stages if spec is not None else "linear"
+
+
+def fe_stiffness_interval(spec: SolverSpec | None) -> float:
+    """s between the FE lines' stiffness solves of ``spec`` (the default without a spec)."""
+    return spec.fe_stiffness_interval if spec is not None else FE_STIFFNESS_INTERVAL
 
 
 def catenary_tol(spec: SolverSpec | None) -> float:

@@ -41,6 +41,10 @@ order in the stage displacement (a fraction of a metre).  Stage 1 (x_s = x_n) ge
 force up to round-off.  Both are models of the lines' variation within the step (the FE lines'
 own is held, D); their difference on the flagship storm, 0.0003-0.0006 % of the maximum
 tension, is far below the time step's own error (0.018 % at dt 0.1 s, benchmarks/RESULTS.md).
+The stiffness is solved every ``round(fe_stiffness_interval / dt)`` body steps (``solver:
+{fe_stiffness_interval: 1.0}`` s by default; 0: every step) and at a step where a line is
+released, and kept in between (:class:`FERun` ``kfe_every``): on the flagship storm each
+line's maximum moved by at most 0.004 % (benchmarks/RESULTS.md, "A mesh by segment").
 
 Start: the body at the static equilibrium of the quasi-static model (as for quasi-static
 lines), the FE lines in their own static equilibrium with friction at that pose
@@ -151,7 +155,10 @@ class FERun(NamedTuple):
     """``solver: {fe_stages: linear}``: the FE lines' catenaries left out of the RK4 stages,
     their stage variation linearised at the step start (module docstring)."""
     kfe: np.ndarray
-    """(6, 6) scratch: the catenary stiffness of the FE lines at the step start."""
+    """(6, 6) the catenary stiffness of the FE lines at the step start, solved every
+    ``kfe_every`` th step (``solver: {fe_stiffness_interval}``) and kept in between."""
+    kfe_every: int
+    """Body steps between the solves of ``kfe`` (1: every step)."""
     w6: np.ndarray
     """(3, 6) scratch: the pose rate, the body's velocity in earth axes, F_QS,FE."""
 
@@ -387,16 +394,19 @@ def td_fe_kernel(body, terms, lines, state, out, fe, fe_body, fe_lines, n0, n1):
     sline = state.line_out
     mlin = state.mlin
     mref = state.mref
+    kfe_every = fe.kfe_every
     for n in range(n0, n1):
         # line failures (ALS): released from t_n on, as the quasi-static kernel does
-        _release_failed(n * dt, fe, fail_time, fe_body)
-        # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step
-        bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
-                                  cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
-                                  active_fe, warm_fe, linear, swork, srot, sline, fq, kfe)
-        if bad >= 0:
-            set_status(status, STATUS_CATENARY, n, bad)
-            return
+        released = _release_failed(n * dt, fe, fail_time, fe_body)
+        # dynamic part of the FE lines at t_n: D = F_FE(t_n) - F_QS,FE(x_n), held over the step;
+        # linear stages: the catenaries' stiffness every kfe_every th step and at a release
+        if not linear or released or n % kfe_every == 0:
+            bad = system_force_kernel(x, cat.anchors, cat.fairleads, cat.seg_L, cat.seg_EA,
+                                      cat.seg_w, cat.seg_P, cat.line_start, cat.cb, cat.seabed,
+                                      active_fe, warm_fe, linear, swork, srot, sline, fq, kfe)
+            if bad >= 0:
+                set_status(status, STATUS_CATENARY, n, bad)
+                return
         if linear:
             # stages: F_QS,others(x_s) + F_FE(t_n) + dF_QS,FE/dx (x_s - x_n)
             pose_stiffness_into(kfe, x, mlin)
@@ -449,7 +459,8 @@ coupled flagship, perf 2026-11-28)."""
 
 
 def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int = 1,
-        fe_stages: str = "linear", progress=None, auto: bool = False):
+        fe_stages: str = "linear", stiffness_interval: float = 0.0, progress=None,
+        auto: bool = False):
     """Start the FE lines at ``x0`` and run :func:`td_fe_kernel` with the bundles of
     ``td_kernel`` (``body``, ``terms``, ``moor`` the :class:`~.td_bundles.Lines`, ``out``;
     the outputs are filled, their status left alone).  Returns ``(status (4,), fe_out (3,
@@ -459,7 +470,11 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
     1: the serial kernel; ``auto`` (``solver: {threads: auto}``): ``threads`` is the most
     allowed, :func:`auto_threads` chooses.  ``fe_stages`` ``"linear"`` (default): the FE lines' catenaries left out
     of the RK4 stages, their stage variation linearised at the step start (module docstring);
-    ``"catenary"`` (``solver: {fe_stages: catenary}``): their catenaries solved at every stage.  ``progress``: called with the
+    ``"catenary"`` (``solver: {fe_stages: catenary}``): their catenaries solved at every stage.
+    ``stiffness_interval`` (s, linear stages): the catenaries' stiffness solved every
+    ``round(stiffness_interval / dt)`` body steps (at least every step) and when a line is
+    released, kept in between (``solver: {fe_stiffness_interval}``, 1.0 s by default there; 0
+    here: every step).  ``progress``: called with the
     simulated time (s) and the run's end time after every :data:`PROGRESS_PIECES` th of the
     run (the kernel runs in that many pieces; the same numbers as one piece).
 
@@ -510,7 +525,9 @@ def run(c: FECoupling, body, terms, moor, out, *, x0, n_lines: int, threads: int
                max_split=int(FELine.MAX_SPLIT),
                records=np.full((3, n_steps + 1, n_lines), np.nan),
                mode=_mode(lines, auto_threads(lines, threads) if auto else threads),
-               linear=linear, kfe=np.zeros((6, 6)), w6=np.zeros((3, 6)))
+               linear=linear, kfe=np.zeros((6, 6)),
+               kfe_every=max(1, int(round(stiffness_interval / body.dt))) if linear else 1,
+               w6=np.zeros((3, 6)))
     fl = line_list(lines)
     # the started state's channels (row 0)
     record_lines(on, fl, fe.mode.recs)

@@ -376,13 +376,14 @@ def integrate(a: Assembly, *, record_forces: bool = False, v0=None, tension_guar
     if a.fe is None:
         td_kernel(body, terms, lines, out)
     else:
-        from ..io.solver_section import fe_stages, is_auto, run_threads
+        from ..io.solver_section import fe_stages, fe_stiffness_interval, is_auto, run_threads
         from .fe_coupling import FE_RECORDS, auto_threads, raise_fe_status
         from .fe_coupling import run as fe_run
         threads = run_threads(a.solver)
         auto = is_auto(a.solver)
         fe_status, fe_out = fe_run(a.fe, body, terms, lines, out, x0=x0, n_lines=n_lines,
                                    threads=threads, fe_stages=fe_stages(a.solver),
+                                   stiffness_interval=fe_stiffness_interval(a.solver),
                                    progress=progress, auto=auto)
         if auto:    # the threads the run took (the lines are started: auto_threads can tell)
             threads = auto_threads(a.fe.mooring.lines, threads)
