@@ -8,9 +8,11 @@ the reference setting (the issue's accuracy criterion: within 1 % of a converged
 and twice the elements).
 
 Run: ``python benchmarks/bench_coupled_fe_accuracy.py --seeds 1 2 3 --dt 0.1 --elements 50
---newton force --tag fast --out DIR`` (one setting; runs already in ``DIR`` are skipped), and
+--newton force --tag fast --out DIR`` (``--elements``: ``scene`` the scene's mesh, the default,
+an element count per line shared by length, or counts per segment ``12,26,12``) (one setting; runs already in ``DIR`` are skipped), and
 ``python benchmarks/bench_coupled_fe_accuracy.py --out DIR --compare REF TAG [TAG ...]``.
-Options as in the scene: ``--fe-stages catenary|linear``, ``--threads N``.  CPU times are
+Options as in the scene: ``--fe-stages catenary|linear``, ``--fe-stiffness-interval S``,
+``--threads N``.  CPU times are
 ``time.process_time`` of the whole ``simulate`` (setup included); the load average is printed
 with them (the machine may be shared).
 """
@@ -50,9 +52,16 @@ def run(args):
             continue
         built = build(load_scene(FE))
         lm = built.mooring.line_models
-        object.__setattr__(lm, "options", dataclasses.replace(
-            lm.options, newton=args.newton, n_elements=args.elements))
-        solver = SolverSpec(threads=args.threads, fe_stages=args.fe_stages)
+        opts = dataclasses.replace(lm.options, newton=args.newton)
+        if args.elements != "scene":
+            counts = tuple(int(v) for v in args.elements.split(","))
+            if min(counts) < 1:
+                raise SystemExit(f"--elements: counts >= 1, found {args.elements}")
+            opts = dataclasses.replace(opts, n_elements=counts[0] if len(counts) == 1
+                                       else counts)
+        object.__setattr__(lm, "options", opts)
+        solver = SolverSpec(threads=args.threads, fe_stages=args.fe_stages,
+                            fe_stiffness_interval=args.fe_stiffness_interval)
         simulate(built, seed=seed, duration=20.0, dt=args.dt, solver=solver)   # cache load
         load0 = _load()
         c0 = time.process_time()
@@ -68,8 +77,11 @@ def run(args):
                  loop=ds.attrs["run_time_s"], iterations=its,
                  halvings=ds.attrs["fe_step_halvings"], lines=ds.line.values.astype(str),
                  max_along=ds.max_tension_along_line.values[sel].max(axis=0))
-        print(f"{args.tag} seed {seed}: dt {args.dt:g} s, {args.elements} elements, newton "
-              f"{args.newton}, fe_stages {args.fe_stages}, threads {args.threads}: CPU "
+        mesh = "x".join(str(n) for n in np.atleast_1d(opts.n_elements)) if \
+            opts.n_elements is not None else f"{opts.element_length:g} m"
+        print(f"{args.tag} seed {seed}: dt {args.dt:g} s, elements {mesh}, newton "
+              f"{args.newton}, fe_stages {args.fe_stages} (stiffness every "
+              f"{args.fe_stiffness_interval:g} s), threads {args.threads}: CPU "
               f"{cpu:.1f} s, wall {wall:.1f} s (loop {ds.attrs['run_time_s']:.1f} s), "
               f"{its:.3f} Newton iterations per line step, {ds.attrs['fe_step_halvings']} "
               f"halvings; load {load0} -> {_load()}", flush=True)
@@ -114,9 +126,11 @@ def main() -> None:
     ap.add_argument("--out", required=True)
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--dt", type=float, default=0.1)
-    ap.add_argument("--elements", type=int, default=50)
+    ap.add_argument("--elements", default="scene",
+                    help="scene (the scene's mesh), N per line or a,b,c per segment")
     ap.add_argument("--newton", default="force")
     ap.add_argument("--fe-stages", default="linear", choices=("catenary", "linear"))
+    ap.add_argument("--fe-stiffness-interval", type=float, default=1.0)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--duration", type=float, default=12000.0)
     ap.add_argument("--tag", default=None)
@@ -127,8 +141,8 @@ def main() -> None:
         compare(args)
         return
     if args.tag is None:
-        args.tag = (f"dt{args.dt:g}_n{args.elements}_{args.newton}_{args.fe_stages}"
-                    f"_t{args.threads}")
+        args.tag = (f"dt{args.dt:g}_n{args.elements.replace(',', '-')}_{args.newton}_"
+                    f"{args.fe_stages}_t{args.threads}")
     run(args)
 
 
