@@ -11,6 +11,7 @@ Run: ``python benchmarks/bench_coupled_fe_accuracy.py --seeds 1 2 3 --dt 0.1 --e
 --newton force --tag fast --out DIR`` (``--elements``: ``scene`` the scene's mesh, the default,
 an element count per line shared by length, or counts per segment ``12,26,12``) (one setting; runs already in ``DIR`` are skipped), and
 ``python benchmarks/bench_coupled_fe_accuracy.py --out DIR --compare REF TAG [TAG ...]``.
+``--scene PATH`` another FE scene (e.g. scenes/floatel_100yr_fe_fibre.yaml).
 Options as in the scene: ``--fe-stages catenary|linear``, ``--fe-stiffness-interval S``,
 ``--threads N``.  CPU times are
 ``time.process_time`` of the whole ``simulate`` (setup included); the load average is printed
@@ -50,7 +51,7 @@ def run(args):
         if path.exists():
             print(f"{path.name}: exists, skipped")
             continue
-        built = build(load_scene(FE))
+        built = build(load_scene(args.scene))
         lm = built.mooring.line_models
         opts = dataclasses.replace(lm.options, newton=args.newton)
         if args.elements != "scene":
@@ -124,6 +125,8 @@ def compare(args):
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", required=True)
+    ap.add_argument("--scene", default=str(FE),
+                    help="the scene (default scenes/floatel_100yr_fe.yaml; its lines FE)")
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--elements", default="scene",
