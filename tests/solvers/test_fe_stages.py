@@ -108,7 +108,10 @@ def test_held_stiffness_across_a_line_release(tmp_path):
     0.1 s: the release solves it again at once): the run with the kept stiffness stays as
     close to the every-step run after the release as before it (motion within 10 % of the
     time step's error above, 9.5e-3 m; measured 2.3e-4 m before, 2.6e-4 m in the 1.2 s after
-    and 3.5e-4 m to the end), line6 is zero from the release in both."""
+    and 3.5e-4 m to the end; within twice the difference before), line6 is zero from the
+    release in both.  Without the solve at the release (the stiffness of the released line kept
+    until the next regular solve) the difference after it was 7.4e-4 m: this test failed
+    (checked 2026-11-28 on a copy of the kernel)."""
     env = {"name": "sea", "waves": {"spectrum": "jonswap", "hs": 10.0, "tp": 14.0,
                                    "heading_deg": 0.0}}
     b = _built(_scene(tmp_path, environment=env, n_elements=10,
@@ -118,7 +121,7 @@ def test_held_stiffness_across_a_line_release(tmp_path):
     t = every.time.values
     d = np.abs(held.motion.values[:, :3] - every.motion.values[:, :3]).max(axis=1)
     before, after = (t >= 20.0) & (t < 30.0), t >= 30.05
-    assert 0.0 < d[before].max() and d[after].max() < 3.0 * d[before].max()
+    assert 0.0 < d[before].max() and d[after].max() < 2.0 * d[before].max()
     assert d.max() < 1e-3
     for r in (every, held):
         T6 = r.line_tension.sel(line="line6").values
