@@ -222,18 +222,35 @@ def parse_mooring(node: Node, *, water_depth: float, water_density: float = RHO_
 
 
 def _check_segment_elements(node: Node, line_models, lines) -> None:
-    """``finite_element.n_elements`` given per segment: every FE line has that many
-    segments (SceneError naming the file, the key and the first line that has not)."""
-    counts = line_models.options.n_elements
-    if counts is None or isinstance(counts, int):
-        return
+    """The FE lines' element counts, checked before any array is allocated (SceneError naming
+    the file, the key and the first line concerned): ``finite_element.n_elements`` given per
+    segment needs every FE line to have that many segments, and no FE line may have more than
+    :data:`~floatmoor.mooring.fe.from_system.MAX_ELEMENTS` elements (``n_elements``, its
+    list's sum, or ``element_length``'s count)."""
+    from ..mooring.fe.from_system import MAX_ELEMENTS
+    opts = line_models.options
+    counts = opts.n_elements
     for ld in lines:
-        if line_models.model_of(ld.name) == "finite-element" and len(ld.segments) != len(counts):
+        if line_models.model_of(ld.name) != "finite-element":
+            continue
+        if counts is not None and not isinstance(counts, int) and \
+                len(ld.segments) != len(counts):
             raise node.child("finite_element").error(
                 "n_elements", f"one element count per segment of every FE line, anchor to "
                 f"fairlead (line {ld.name!r} has {len(ld.segments)} segments)", list(counts),
                 "a list of counts applies to every FE line; give one integer per line "
                 "(shared among its segments by length) when the lines differ")
+        if counts is None:
+            n = sum(max(1, int(round(sg.length / opts.element_length))) for sg in ld.segments)
+            key, found = "element_length", opts.element_length
+        else:
+            n = counts if isinstance(counts, int) else sum(counts)
+            key, found = "n_elements", counts if isinstance(counts, int) else list(counts)
+        if n > MAX_ELEMENTS and "finite_element" in node:
+            raise node.child("finite_element").error(
+                key, f"at most {MAX_ELEMENTS:,} elements per line (a line of "
+                f"{sum(sg.length for sg in ld.segments):g} m)", found,
+                f"{n:,} elements for line {ld.name!r}")
 
 
 def _fibre_time_constant(node: Node) -> float:

@@ -158,3 +158,22 @@ def test_element_counts_per_segment_must_match_every_fe_line():
     with pytest.raises(SceneError, match=r"finite_element.n_elements.*one element count per "
                                          r"segment \(1 for line 'l1'"):
         spec_from_linedef(ms.lines[0], water_depth=320.0, n_elements=(3, 14))
+
+
+@pytest.mark.parametrize("fe,key,found", [
+    ({"n_elements": 100000}, "n_elements", "100000"),
+    ({"n_elements": [25000]}, "n_elements", r"\[25000\]"),
+    ({"element_length": 0.01}, "element_length", "0.01"),
+])
+def test_too_many_elements_name_the_file_when_the_mooring_is_read(fe, key, found):
+    """More than MAX_ELEMENTS (20,000) elements on a FE line: refused when the mooring file is
+    read, naming the file, the key, the value and the line (the 902.2 m line at 0.01 m is
+    90,220 elements), before any array is allocated; quasi-static lines are not concerned."""
+    from floatmoor.io.mooring_section import parse_mooring
+
+    with pytest.raises(SceneError, match=rf"scene.yaml: mooring.finite_element.{key}: expected "
+                                         rf"at most 20,000 elements per line.*found {found}.*"
+                                         r"line 'l1'"):
+        parse_mooring(_mooring({"model": "finite-element", "finite_element": fe}),
+                      water_depth=320.0)
+    parse_mooring(_mooring({"finite_element": fe}), water_depth=320.0)
