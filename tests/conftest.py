@@ -16,12 +16,17 @@ with ``--no-loadscope-reorder``).
 
 The list was found by recording which tests call ``fe_coupling.run`` (a scratch plugin over
 the whole default run).  A file missing from it still passes; its process then compiles the
-kernels again.  ``-n 0`` runs everything in one process in file order.
+kernels again.  :func:`pytest_configure` keeps the list honest: a test of a file not in it
+that runs the coupled FE time domain gets a :class:`FECoupledFileWarning` naming the file (in
+the warnings summary; :class:`_FECouplingWatch` wraps the module's ``run`` when it is
+imported).  ``-n 0`` runs everything in one process in file order.
 """
 
 from __future__ import annotations
 
 import collections
+import sys
+import warnings
 
 FE_COUPLED = "fe-coupled"
 FE_COUPLED_FILES = (
@@ -66,3 +71,61 @@ def pytest_collection_modifyitems(config, items):
         groups[_scope(item.nodeid)].append(item)
     order = sorted(groups, key=lambda g: (g != FE_COUPLED, -len(groups[g])))
     items[:] = [item for g in order for item in groups[g]]
+
+
+class FECoupledFileWarning(UserWarning):
+    """A test file that runs the coupled FE time domain is missing from FE_COUPLED_FILES."""
+
+
+def _wrap_run(mod) -> None:
+    """Replace ``mod.run`` (``fe_coupling``) by a wrapper that warns when the running test's
+    file is not in :data:`FE_COUPLED_FILES`.  ``time_domain`` imports ``run`` from the module
+    at each call, so the wrapper is what it gets."""
+    plain = mod.run
+
+    def run(*args, **kwargs):
+        import os
+        current = os.environ.get("PYTEST_CURRENT_TEST", "")
+        path = current.split("::", 1)[0]
+        if path and path not in FE_COUPLED_FILES:
+            warnings.warn(f"{path} runs the coupled FE time domain (fe_coupling.run) but is "
+                          "not in tests/conftest.py FE_COUPLED_FILES: from an empty numba "
+                          "cache its process compiles the FE kernels again",
+                          FECoupledFileWarning, stacklevel=2)
+        return plain(*args, **kwargs)
+
+    mod.run = run
+
+
+class _FECouplingWatch:
+    """A meta-path finder that wraps ``fe_coupling.run`` (:func:`_wrap_run`) when the module is
+    first imported, whichever test imports it."""
+
+    NAME = "floatmoor.solvers.fe_coupling"
+
+    def find_spec(self, name, path=None, target=None):
+        if name != self.NAME:
+            return None
+        import importlib.util
+        sys.meta_path.remove(self)
+        try:
+            spec = importlib.util.find_spec(name)
+        finally:
+            sys.meta_path.insert(0, self)
+        if spec is None or spec.loader is None:
+            return spec
+        plain_exec = spec.loader.exec_module
+
+        def exec_module(module):
+            plain_exec(module)
+            _wrap_run(module)
+
+        spec.loader.exec_module = exec_module
+        return spec
+
+
+def pytest_configure(config):
+    if "floatmoor.solvers.fe_coupling" in sys.modules:
+        _wrap_run(sys.modules["floatmoor.solvers.fe_coupling"])
+    else:
+        sys.meta_path.insert(0, _FECouplingWatch())
