@@ -278,15 +278,15 @@ def to_yaml(m: ImportedMooring, *, water_depth=None, water_density=None, gravity
     seq_counts = {sum(ln.n_segments or 0 for ln, _ in seq) for _, seq, _ in chains}
     L.append(f"model: {model}   # quasi-static catenary lines; finite-element uses the options "
              f"below")
-    seq_tuples = {tuple(ln.n_segments or 0 for ln, _ in seq) for _, seq, _ in chains}
+    # NumSegs of each chain's segments: one list for all the chains that the share by length
+    # of their sum would not give is written as it is
+    per_seg = [[ln.n_segments or 0 for ln, _ in seq] for _, seq, _ in chains]
+    by_length = all(split_elements([ln.length for ln, _ in seq], sum(c)) == c
+                    for (_, seq, _), c in zip(chains, per_seg))
     fe = []
-    per_segment = (len(seq_tuples) == 1 and nseg and len(next(iter(seq_tuples))) > 1
-                   and any(split_elements([ln.length for ln, _ in seq], sum(counts))
-                           != list(counts) for _, seq, _ in chains
-                           for counts in [tuple(ln.n_segments for ln, _ in seq)]))
-    if per_segment:
-        counts = list(next(iter(seq_tuples)))
-        fe.append(f"  n_elements: {counts}   # MoorDyn NumSegs of each segment, anchor to "
+    if (nseg and not by_length and len(per_seg[0]) > 1 and min(per_seg[0]) >= 1
+            and all(c == per_seg[0] for c in per_seg)):
+        fe.append(f"  n_elements: {per_seg[0]}   # MoorDyn NumSegs of each segment, anchor to "
                   f"fairlead")
     elif len(seq_counts) == 1 and nseg:
         fe.append(f"  n_elements: {seq_counts.pop()}   # MoorDyn NumSegs (segments per line)")

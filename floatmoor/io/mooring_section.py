@@ -227,25 +227,25 @@ def _check_segment_elements(node: Node, line_models, lines) -> None:
     segment needs every FE line to have that many segments, and no FE line may have more than
     :data:`~floatmoor.mooring.fe.from_system.MAX_ELEMENTS` elements (``n_elements``, its
     list's sum, or ``element_length``'s count)."""
-    from ..mooring.fe.from_system import MAX_ELEMENTS
+    from ..mooring.fe.from_system import MAX_ELEMENTS, element_counts
     opts = line_models.options
-    counts = opts.n_elements
+    per_line = opts.n_elements is None or isinstance(opts.n_elements, int)
+    key = "element_length" if opts.n_elements is None else "n_elements"
+    found = (opts.element_length if opts.n_elements is None
+             else opts.n_elements if per_line else list(opts.n_elements))
     for ld in lines:
         if line_models.model_of(ld.name) != "finite-element":
             continue
-        if counts is not None and not isinstance(counts, int) and \
-                len(ld.segments) != len(counts):
+        try:
+            n = sum(element_counts([sg.length for sg in ld.segments],
+                                   element_length=opts.element_length,
+                                   n_elements=opts.n_elements))
+        except ValueError:
             raise node.child("finite_element").error(
                 "n_elements", f"one element count per segment of every FE line, anchor to "
-                f"fairlead (line {ld.name!r} has {len(ld.segments)} segments)", list(counts),
+                f"fairlead (line {ld.name!r} has {len(ld.segments)} segments)", found,
                 "a list of counts applies to every FE line; give one integer per line "
-                "(shared among its segments by length) when the lines differ")
-        if counts is None:
-            n = sum(max(1, int(round(sg.length / opts.element_length))) for sg in ld.segments)
-            key, found = "element_length", opts.element_length
-        else:
-            n = counts if isinstance(counts, int) else sum(counts)
-            key, found = "n_elements", counts if isinstance(counts, int) else list(counts)
+                "(shared among its segments by length) when the lines differ") from None
         if n > MAX_ELEMENTS and "finite_element" in node:
             raise node.child("finite_element").error(
                 key, f"at most {MAX_ELEMENTS:,} elements per line (a line of "

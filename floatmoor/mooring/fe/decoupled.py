@@ -251,8 +251,9 @@ def run_decoupled(system, t, poses, *, options: FEOptions | None = None, lines=N
                "statistics_window_start_s": float(t[window][0]),
                "integrator": options.integrator, "rho_inf": options.rho_inf,
                "element_length_m": options.element_length,
-               "n_elements_option": (-1 if options.n_elements is None else
-                                     np.atleast_1d(options.n_elements).astype(np.int64)),
+               "n_elements_option": (-1 if options.n_elements is None else options.n_elements
+                                     if isinstance(options.n_elements, int)
+                                     else list(options.n_elements)),
                "friction": "scene default (seabed_friction)" if options.friction is None
                else repr(options.friction),
                "fe_start": "static equilibrium at the first pose, zero velocity",

@@ -5,7 +5,7 @@ scene can switch lines to ``model: finite-element`` without a second description
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -72,27 +72,24 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
     segs = []
     bodies = []
     node = 0
-    if n_elements is not None and not np.isscalar(n_elements):
-        counts = [int(v) for v in n_elements]
-        if len(counts) != len(line.segments):
-            from ...core.errors import SceneError
-            raise SceneError(None, "finite_element.n_elements",
-                             f"one element count per segment ({len(line.segments)} for line "
-                             f"{line.name!r}, anchor to fairlead)", list(counts),
-                             "a list of counts applies to every FE line; give one integer "
-                             "per line for lines of different segment counts")
-    else:
-        counts = (split_elements([s.length for s in line.segments], n_elements)
-                  if n_elements is not None else None)
-    n_line = (sum(counts) if counts is not None
-              else sum(max(1, int(round(s.length / element_length))) for s in line.segments))
+    try:
+        counts = element_counts([s.length for s in line.segments],
+                                element_length=element_length, n_elements=n_elements)
+    except ValueError:
+        from ...core.errors import SceneError
+        raise SceneError(None, "finite_element.n_elements",
+                         f"one element count per segment ({len(line.segments)} for line "
+                         f"{line.name!r}, anchor to fairlead)", list(n_elements),
+                         "a list of counts applies to every FE line; give one integer "
+                         "per line for lines of different segment counts") from None
+    n_line = sum(counts)
     if n_line > MAX_ELEMENTS:
         from ...core.errors import SceneError
-        raise SceneError(None, "finite_element.element_length" if counts is None
+        raise SceneError(None, "finite_element.element_length" if n_elements is None
                          else "finite_element.n_elements",
                          f"at most {MAX_ELEMENTS:,} elements per line (a line of "
                          f"{sum(s.length for s in line.segments):g} m)",
-                         element_length if counts is None else
+                         element_length if n_elements is None else
                          (n_elements if np.isscalar(n_elements) else list(n_elements)),
                          f"{n_line:,} elements for line {line.name!r}")
     for k, s in enumerate(line.segments):
@@ -107,7 +104,7 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
                   ea_dynamic=s.ea_dynamic if s.ea_dynamic else s.ea, mbs=s.mbs,
                   fibre=getattr(s, "fibre", None))
         lt = replace(base, **kw) if base is not None else LineType(**kw)
-        n = counts[k] if counts is not None else max(1, int(round(s.length / element_length)))
+        n = counts[k]
         segs.append(FESegment(line_type=lt, length=s.length, n_elements=n,
                               internal_damping=internal_damping))
         node += n
@@ -126,6 +123,22 @@ def spec_from_linedef(line: LineDef, *, water_depth: float, pose=None,
                       seabed=seabed or Seabed(depth=water_depth), friction=friction,
                       point_bodies=tuple(bodies), water_density=water_density, gravity=gravity,
                       **current)
+
+
+def element_counts(lengths, *, element_length: float = 20.0,
+                   n_elements: int | Sequence[int] | None = None) -> list[int]:
+    """Elements of each segment of ``lengths`` (m, anchor to fairlead): ``n_elements`` per
+    segment when it is a sequence (ValueError when its length is not the segments'),
+    :func:`split_elements` of it when it is an integer, else ``max(1, round(L /
+    element_length))`` each (the rules of :func:`spec_from_linedef`)."""
+    if n_elements is None:
+        return [max(1, int(round(L / element_length))) for L in lengths]
+    if np.isscalar(n_elements):
+        return split_elements(lengths, n_elements)
+    counts = [int(v) for v in n_elements]
+    if len(counts) != len(lengths):
+        raise ValueError(f"{len(counts)} element counts for {len(lengths)} segments")
+    return counts
 
 
 def split_elements(lengths, n_total: int) -> list[int]:
