@@ -25,7 +25,11 @@ file written by ``floatmoor.io.moordyn.export``; the OC3 line as written below):
   every coupling step; with axial damping the jumps showed as tension spikes.)
 * OC3 line: the same internal damping in N s at every discretisation in both codes (0.8 of the
   critical damping of a 5.6 m element, i.e. of 160 elements), so that refining converges to
-  one physical line; MoorDyn's time scheme RK2, its default.
+  one physical line; the seabed as MoorDyn models it (linear spring from the first contact,
+  damping both ways: ``contact_smoothing 0``, ``lift_off_damping``) in both (until 2026-11-28
+  floatmoor kept its own contact law here: the same converged line to 0.03 %, but up to 10 %
+  more Newton iterations at dt 0.1 s); MoorDyn's schemes RK2 (its default), Euler and
+  Midpoint2, the cheapest of a scan of all its schemes (``OC3_MD_DTM`` below).
 * Floatel-like line: no internal damping (the flagship scene has none), the seabed as MoorDyn
   models it (linear spring and damping both ways) in both; MoorDyn's RK2 is unstable for an
   undamped line (its amplification factor exceeds 1 on an undamped oscillation at any step),
@@ -44,8 +48,11 @@ smaller and next larger element count of the grid all meet the criterion (a luck
 at one count does not qualify).  The ratio is MoorDyn's CPU time at its cheapest qualifying
 setting over floatmoor's at its cheapest qualifying setting.
 
-Timing: CPU time of the time stepping only (``time.process_time``; MoorDyn's initial-condition
-solve and floatmoor's statics excluded), the best of ``--repeat`` interleaved runs.
+Timing: CPU time of the time stepping only (``time.process_time``), the best of ``--repeat``
+interleaved runs: MoorDyn's loop of ``Step`` calls (its inputs made Python lists before the
+clock; its initial-condition solve excluded), floatmoor's steps (``run_prescribed(...,
+stats=...)["cpu_steps"]``: its fairlead track evaluated before and its Dataset built after,
+about 2 ms per run, excluded (until 2026-11-28 they were counted); its statics excluded).
 
 Run: ``python benchmarks/bench_fe_moordyn.py [--cases oc3-harmonic oc3-irregular floatel-slack]
 [--seeds 1 2 3] [--duration 12000] [--repeat 2]``; ``--quick`` shortens the storms to 1800 s
@@ -68,7 +75,7 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from floatmoor.core.errors import NumericalError  # noqa: E402
-from floatmoor.mooring.fe import FELine  # noqa: E402
+from floatmoor.mooring.fe import FELine, Seabed  # noqa: E402
 from floatmoor.mooring.fe.prescribed import HarmonicMotion, TimeSeriesMotion, run_prescribed  # noqa: E402
 from floatmoor.post.fatigue.rainflow import rainflow  # noqa: E402
 from tests.mooring.fe import moordyn_floatel as FL  # noqa: E402
@@ -77,6 +84,10 @@ from tests.mooring.fe.conftest import OC3, oc3_spec  # noqa: E402
 DT_C = 0.1                  # coupling step (s)
 BA_OC3 = 0.8 * 2.0 * math.sqrt(384.243e6 * 77.7066) * 902.2 / 160   # N s, every discretisation
 TOL = {"max": 0.005, "std": 0.005, "damage": 0.02, "min": 0.01}
+# MoorDyn's seabed (kBot 3e6 N/m^3, cBot 3e5 N s/m^3 below, times the diameter 0.09 m: per metre
+# of line), its contact law too: a linear spring from the first contact and the damping both ways
+OC3_SEABED = Seabed(depth=OC3["depth"], stiffness=3.0e6 * 0.09, damping=3.0e5 * 0.09,
+                    contact_smoothing=0.0, lift_off_damping=True)
 
 OC3_TEMPLATE = """--------------------- MoorDyn Input File ------------------------------------
 One OC3-Hywind line (floatmoor FE benchmark)
@@ -184,14 +195,14 @@ def run_floatmoor(case, tr: Track, n, nsub=1, newton="exact"):
     """Fairlead tension at the coupling times and the CPU time of the steps."""
     motion = TimeSeriesMotion(t=tr.t, xyz=tr.xyz)
     if case.startswith("oc3"):
-        line = FELine(oc3_spec(n=n, damping=BA_OC3))
+        line = FELine(oc3_spec(n=n, damping=BA_OC3, seabed=OC3_SEABED))
         line.solve_static()
     else:
         line = FL.fe_line(tr.case, n_elements=n, pose0=tr.pose0)
     line.start(newton=newton)
-    c0 = time.process_time()
-    ds = run_prescribed(line, motion, float(tr.t[-1]), DT_C, substeps=nsub)
-    return ds.fairlead_tension.values, time.process_time() - c0
+    stats = {}
+    ds = run_prescribed(line, motion, float(tr.t[-1]), DT_C, substeps=nsub, stats=stats)
+    return ds.fairlead_tension.values, stats["cpu_steps"]
 
 
 def run_moordyn(case, tr: Track, nseg, dtm, scheme):
@@ -318,18 +329,23 @@ def qualifying(results, tol, counts, rest=lambda k: k[1:]):
     return good
 
 
+# MoorDyn's schemes on the OC3 line (a scan of its explicit and implicit schemes, 40 segments,
+# irregular case, each at its largest stable and accurate dtM of 0.25-100 ms, 2026-11-28: RK2
+# at 6 ms 0.266 s, Euler at 3 ms 0.273 s, local Euler 0.287 s, Midpoint2 at 7 ms 0.244 /
+# 0.274 s, BEuler2 at 5 ms 0.360 s, Midpoint5 at 12.5 ms 0.366 s, RK4 at 8 ms 0.47-0.51 s,
+# Heun at 1 ms 0.905 s, Wilson5 / Wilson10 2.1-2.8 s, AB3 / AB4 unstable): the three
+# cheapest enter the grid
+OC3_MD_DTM = [2.5e-4, 1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 7e-3, 8e-3, 1e-2]
 CASES = {
     "oc3-harmonic": dict(elements=[20, 30, 40, 60, 80], ref=(160, 8),
-                         md_segments=[20, 30, 40, 60, 80],
-                         md_dtm=[2.5e-4, 1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 8e-3],
-                         md_ref=(160, 2.5e-4), schemes=["RK2"]),
+                         md_segments=[20, 30, 40, 60, 80], md_dtm=OC3_MD_DTM,
+                         md_ref=(160, 2.5e-4, "RK2"), schemes=["RK2", "Euler", "Midpoint2"]),
     "oc3-irregular": dict(elements=[20, 30, 40, 60, 80], ref=(160, 8),
-                          md_segments=[20, 30, 40, 60, 80],
-                          md_dtm=[2.5e-4, 1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 8e-3],
-                          md_ref=(160, 2.5e-4), schemes=["RK2"]),
+                          md_segments=[20, 30, 40, 60, 80], md_dtm=OC3_MD_DTM,
+                          md_ref=(160, 2.5e-4, "RK2"), schemes=["RK2", "Euler", "Midpoint2"]),
     "floatel-slack": dict(elements=[66, 88, 132, 176], ref=(264, 4),
                           md_segments=[66, 88, 132, 176], md_dtm=[5e-4, 1e-3, 2e-3, 3e-3, 4e-3, 6e-3],
-                          md_ref=(264, 1e-3), schemes=["RK4"]),
+                          md_ref=(264, 1e-3, "RK4"), schemes=["RK4"]),
 }
 
 
@@ -355,9 +371,9 @@ def bench(case, args, tol):
           f"{ref['max'] / 1e3:.1f} kN, std {ref['std'] / 1e3:.2f} kN, min {ref['min'] / 1e3:.1f} kN",
           flush=True)
     if not args.no_md_ref:
-        nseg, dtm = spec["md_ref"]
+        nseg, dtm, scheme = spec["md_ref"]
         tr0 = tracks[0]
-        md_ref = run_moordyn(case, tr0, nseg, dtm, spec["schemes"][-1])[0]
+        md_ref = run_moordyn(case, tr0, nseg, dtm, scheme)[0]
         e = errors(quantities(md_ref, tr0.window), quantities(ref_runs[0], tr0.window))
         print(f"MoorDyn {nseg} seg. at dtM {dtm * 1e3:g} ms against it, first track (max / std / "
               f"min / damage %): {fmt_e(e)}  (the two converged codes)", flush=True)

@@ -2,6 +2,7 @@
 normal and tangential added mass of the node mass blocks, and a buoy at a node."""
 
 import math
+import time
 
 import numpy as np
 import pytest
@@ -36,6 +37,26 @@ def test_profile_snapshots_match_the_state_and_the_tension_channels():
         assert ds.profile_tension.values[k].max() == pytest.approx(
             float(ds.max_tension.values[j]), rel=1e-12)
 
+
+
+@pytest.mark.parametrize("integrator", ["generalized_alpha", "explicit"])
+def test_stats_time_the_steps_alone_and_leave_the_answer(integrator):
+    """``run_prescribed(..., stats=d)`` gives the CPU time of the steps alone (the benchmark
+    against MoorDyn times that) and the step count, and changes no number of the run."""
+    m = HarmonicMotion(amplitude=(-3.0, 0.0, 0.0), period=15.0, ramp=15.0)
+    dt = 0.1 if integrator == "generalized_alpha" else 0.002
+    runs = []
+    for stats in (None, {}):
+        line = FELine(oc3_spec(n=20))
+        line.solve_static()
+        line.start(integrator=integrator)
+        c0 = time.process_time()
+        ds = run_prescribed(line, m, 3.0, dt, stats=stats)
+        total = time.process_time() - c0
+        runs.append(ds.fairlead_tension.values)
+    assert stats["steps"] == round(3.0 / dt)
+    assert 0.0 < stats["cpu_steps"] <= total
+    assert np.array_equal(runs[0], runs[1])
 
 def test_node_mass_blocks_have_normal_and_tangential_added_mass():
     """Straight horizontal line along x (3 elements of 10 m): interior node blocks
