@@ -262,10 +262,13 @@ def md_stable_dtm(case, tr: Track, nseg, scheme, dtms, probe=300.0, rtol=1e-3):
     largest whose run over ``probe`` s of the track (from 1000 s into a storm, where the
     motion is under way) gives the maximum and the standard deviation of the fairlead tension
     within ``rtol`` of the run at the smallest step of ``dtms`` (a step that blows up or drifts
-    fails).  At such a step MoorDyn's error is that of its segments, so only that step of each
+    fails; from the start, the window's maximum can be a start-up transient that a step change
+    moves: on the damped Floatel-like line the first 300 s gave 0.6 % between 0.25 and 0.5 ms
+    while 0.5, 1 and 2 ms agreed to 5 digits, so a track of 1300 s or more is probed from
+    1000 s, the ``--quick`` run's too).  At such a step MoorDyn's error is that of its segments, so only that step of each
     count enters the grid (the old benchmark's scan: dtM 1-6 ms within 0.1 % of 0.1 ms on the
     OC3 line)."""
-    t0 = 1000.0 if tr.t[-1] > 2000.0 else 0.0
+    t0 = 1000.0 if tr.t[-1] >= 1000.0 + probe else 0.0
     sel = (tr.t >= t0) & (tr.t <= t0 + probe)
     short = Track(t=tr.t[sel] - tr.t[sel][0], xyz=tr.xyz[sel], r0=tr.r0,
                   window=np.ones(int(sel.sum()), bool), case=tr.case, pose0=tr.pose0)
