@@ -265,9 +265,9 @@ def md_stable_dtm(case, tr: Track, nseg, scheme, dtms, probe=300.0, rtol=1e-3):
     fails; from the start, the window's maximum can be a start-up transient that a step change
     moves: on the damped Floatel-like line the first 300 s gave 0.6 % between 0.25 and 0.5 ms
     while 0.5, 1 and 2 ms agreed to 5 digits, so a track of 1300 s or more is probed from
-    1000 s, the ``--quick`` run's too).  At such a step MoorDyn's error is that of its segments, so only that step of each
-    count enters the grid (the old benchmark's scan: dtM 1-6 ms within 0.1 % of 0.1 ms on the
-    OC3 line)."""
+    1000 s, the ``--quick`` run's too).  At such a step MoorDyn's error is that of its
+    segments, so only that step of each count enters the grid (the old benchmark's scan: dtM
+    1-6 ms within 0.1 % of 0.1 ms on the OC3 line)."""
     t0 = 1000.0 if tr.t[-1] >= 1000.0 + probe else 0.0
     sel = (tr.t >= t0) & (tr.t <= t0 + probe)
     short = Track(t=tr.t[sel] - tr.t[sel][0], xyz=tr.xyz[sel], r0=tr.r0,

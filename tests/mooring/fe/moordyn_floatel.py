@@ -131,12 +131,11 @@ def run_floatmoor(c: Case, t, xyz, *, n_elements=None, element_length=20.0, subs
                    internal_damping=internal_damping)
     line.start(rho_inf=rho_inf)
     dt = float(t[1] - t[0])
-    c0 = time.process_time()
+    stats = {}
     ds = run_prescribed(line, TimeSeriesMotion(t=t, xyz=xyz), float(t[-1] - t[0]), dt,
-                        substeps=substeps)
-    cpu = time.process_time() - c0
-    return (ds.fairlead_tension.values, ds.anchor_tension.values, ds.max_tension.values, cpu,
-            line)
+                        substeps=substeps, stats=stats)
+    return (ds.fairlead_tension.values, ds.anchor_tension.values, ds.max_tension.values,
+            stats["cpu_steps"], line)
 
 
 def moordyn_text(c: Case, *, n_segments=None, dtm=1e-3, friction=0.0, internal_damping=0.0,
