@@ -72,6 +72,9 @@ and 1 seed (a smoke run, not the recorded figures).
 from __future__ import annotations
 
 import argparse
+import glob
+import hashlib
+import inspect
 import math
 import os
 import platform
@@ -376,59 +379,275 @@ def tracks_of(case, args):
     return floatel_tracks(args.seeds, args.duration)
 
 
+# ---- the runs: one task per (setting, track), in worker processes, each kept in a store ----
+
+_TRACKS: dict = {}          # case -> tracks (set before the worker processes fork)
+
+
+def _digest(*parts) -> str:
+    h = hashlib.sha256()
+    for p in parts:
+        h.update(p if isinstance(p, bytes) else repr(p).encode())
+        h.update(b"\0")
+    return h.hexdigest()
+
+
+def _track_digest(tr: Track) -> str:
+    return _digest(np.ascontiguousarray(tr.t).tobytes(), np.ascontiguousarray(tr.xyz).tobytes(),
+                   np.ascontiguousarray(tr.r0).tobytes(), np.asarray(tr.window).tobytes())
+
+
+_SOURCES = None
+
+
+def _floatmoor_sources() -> str:
+    """Digest of everything of ours a floatmoor run depends on: the package's sources, the
+    test helpers that build the lines, the flagship scene, :func:`run_floatmoor`."""
+    global _SOURCES
+    if _SOURCES is None:
+        root = os.path.join(os.path.dirname(__file__), "..")
+        files = sorted(glob.glob(os.path.join(root, "floatmoor", "**", "*.py"), recursive=True))
+        files += [os.path.join(root, "tests", "mooring", "fe", f)
+                  for f in ("moordyn_floatel.py", "conftest.py")]
+        files += [str(FL.SCENE)]
+        _SOURCES = _digest(*[open(f, "rb").read() for f in files],
+                           inspect.getsource(run_floatmoor))
+    return _SOURCES
+
+
+def _moordyn_input(case, tr: Track, nseg, dtm, scheme) -> str:
+    """The text MoorDyn is given (its input file and current profile)."""
+    if case.startswith("floatel"):
+        text = FL.moordyn_text(tr.case, n_segments=nseg, dtm=dtm, scheme=scheme,
+                               internal_damping=BA_FLOATEL)
+        return text + (FL.current_profile_text(tr.case) if tr.case.current else "")
+    return OC3_TEMPLATE.format(ba=BA_OC3, nseg=nseg, dtm=dtm, scheme=scheme)
+
+
+def _task_key(case, i, task) -> str:
+    """A result's identity: the task, the track and everything that produced it (a floatmoor
+    run: our sources; a MoorDyn run: its input text and version), so that an edit to any of
+    them makes a stored result stale (never reused)."""
+    tr = _TRACKS[case][i]
+    kind = task[0]
+    if kind == "fm":
+        what = (_floatmoor_sources(), BA_OC3, BA_FLOATEL, OC3_SEABED, DT_C)
+    else:
+        nseg, scheme = task[1], task[-1]
+        dtms = [task[2]] if kind == "md" else list(task[2])
+        what = (_md_version(), DT_C, md_stable_dtm.__defaults__ if kind == "probe" else (),
+                inspect.getsource(md_stable_dtm) if kind == "probe" else "",
+                [_moordyn_input(case, tr, nseg, d, scheme) for d in dtms])
+    return _digest(case, task, _track_digest(tr), what)
+
+
+def _run_task(case, i, task):
+    """One run: ``("fm", n, nsub, newton)`` / ``("md", nseg, dtm, scheme)`` -> (tension, CPU
+    s) or ``("probe", nseg, dtms, scheme)`` -> MoorDyn's largest stable step (on track ``i``);
+    a numerical failure -> its message."""
+    tr = _TRACKS[case][i]
+    try:
+        if task[0] == "fm":
+            return run_floatmoor(case, tr, task[1], task[2], task[3])
+        if task[0] == "md":
+            T, cpu = run_moordyn(case, tr, task[1], task[2], task[3])
+            if not (np.all(np.isfinite(T)) and T.max() < 1e9):
+                return "unstable"
+            return T, cpu
+        return (md_stable_dtm(case, tr, task[1], task[3], task[2]),)
+    except (NumericalError, RuntimeError) as exc:
+        return str(exc)
+
+
+def _load(path):
+    with np.load(path, allow_pickle=False) as z:
+        if "error" in z.files:
+            return str(z["error"])
+        if "dtm" in z.files:
+            d = float(z["dtm"])
+            return (None if math.isnan(d) else d,)
+        return z["T"].copy(), float(z["cpu"])
+
+
+def _save(path, r, label):
+    meta = dict(label=label, date=time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
+                load=np.array(os.getloadavg()), machine=platform.processor() or platform.machine())
+    tmp = path + ".tmp.npz"
+    if isinstance(r, str):
+        np.savez(tmp, error=r, **meta)
+    elif len(r) == 1:
+        np.savez(tmp, dtm=np.nan if r[0] is None else r[0], **meta)
+    else:
+        np.savez(tmp, T=r[0], cpu=r[1], **meta)
+    os.replace(tmp, path)        # a run is stored whole or not at all
+
+
+def _label(case, i, task):
+    k = task[0]
+    if k == "fm":
+        return f"floatmoor {task[1]} el. dt {DT_C / task[2]:g} s {task[3]}, track {i + 1}"
+    if k == "md":
+        return f"MoorDyn {task[1]} seg. {task[3]} dtM {task[2] * 1e3:g} ms, track {i + 1}"
+    return f"MoorDyn {task[1]} seg. {task[3]}: largest stable dtM (probe on track {i + 1})"
+
+
+class Runner:
+    """Runs tasks ``(track index, task)`` of a case, ``jobs`` at a time in worker processes
+    (each run's CPU time is its own process's; with 2 jobs on 2 cores the load is about 2, as
+    printed), dearest first; with a ``store`` directory every finished run is kept there under
+    its key (:func:`_task_key`) and a later invocation reuses it, so an interrupted grid loses
+    no finished run.  Timing repeats are always run afresh."""
+
+    def __init__(self, case, jobs=1, store=None):
+        self.case, self.jobs, self.store = case, max(1, int(jobs)), store
+        if store:
+            os.makedirs(store, exist_ok=True)
+        self.pool = None
+        if self.jobs > 1:
+            import multiprocessing as mp
+            from concurrent.futures import ProcessPoolExecutor
+            self.pool = ProcessPoolExecutor(self.jobs, mp_context=mp.get_context("fork"))
+
+    def close(self):
+        if self.pool is not None:
+            self.pool.shutdown()
+
+    def run(self, tasks, cost=lambda task: 0.0, fresh=False):
+        """Results of ``tasks`` (a list of (i, task)) in their order; progress printed."""
+        out = [None] * len(tasks)
+        todo = []
+        for j, (i, task) in enumerate(tasks):
+            path = None
+            if self.store and not fresh:
+                path = os.path.join(self.store, _task_key(self.case, i, task) + ".npz")
+                if os.path.exists(path):
+                    out[j] = _load(path)
+                    continue
+            todo.append((j, i, task, path))
+        n_done, n = 0, len(todo)
+        if n < len(tasks):
+            print(f"  ({len(tasks) - n} of {len(tasks)} runs from the store {self.store})",
+                  flush=True)
+        todo.sort(key=lambda x: -cost(x[2]))
+
+        def finish(j, i, task, path, r):
+            nonlocal n_done
+            n_done += 1
+            out[j] = r
+            if path:
+                _save(path, r, _label(self.case, i, task))
+            what = (f"CPU {r[1]:.2f} s" if isinstance(r, tuple) and len(r) == 2
+                    else f"dtM {r[0]}" if isinstance(r, tuple) else r)
+            print(f"  [{n_done}/{n}] {_label(self.case, i, task)}: {what} (load "
+                  f"{os.getloadavg()[0]:.2f})", flush=True)
+
+        if self.pool is None:
+            for j, i, task, path in todo:
+                finish(j, i, task, path, _run_task(self.case, i, task))
+        else:
+            from concurrent.futures import as_completed
+            futs = {self.pool.submit(_run_task, self.case, i, task): (j, i, task, path)
+                    for j, i, task, path in todo}
+            for f in as_completed(futs):
+                finish(*futs[f], f.result())
+        return out
+
+
+def _md_cost(task):
+    """Rough relative cost, to start the dearest runs first."""
+    if task[0] == "md":
+        return task[1] / task[2]
+    if task[0] == "probe":
+        return 300.0 * sum(task[1] / d for d in task[2]) / 12000.0
+    return task[1] * task[2] / 1000.0
+
+
 def bench(case, args, tol):
     spec = CASES[case]
     tracks = tracks_of(case, args)
-    print(f"\n## {case}: {len(tracks)} track(s) of {tracks[0].t[-1]:g} s, evaluated over "
+    _TRACKS[case] = tracks
+    nt = len(tracks)
+    print(f"\n## {case}: {nt} track(s) of {tracks[0].t[-1]:g} s, evaluated over "
           f"{tracks[0].window.sum() * DT_C:g} s each", flush=True)
-    # the common reference and the MoorDyn one beside it
+    md_counts = args.md_segments or spec["md_segments"]
+    omitted = [c for c in spec["md_segments"] if c not in md_counts]
+    if omitted and min(omitted) < max(md_counts):
+        raise SystemExit(f"--md-segments may leave out only the finest counts of "
+                         f"{spec['md_segments']}")
+    runner = Runner(case, args.jobs, args.store)
+    try:
+        return _bench(case, spec, tracks, args, tol, runner, md_counts, omitted)
+    finally:
+        runner.close()
+
+
+def _bench(case, spec, tracks, args, tol, runner, md_counts, omitted):
+    nt = len(tracks)
     n_ref, nsub_ref = spec["ref"]
-    ref_runs = [run_floatmoor(case, tr, n_ref, nsub_ref)[0] for tr in tracks]
+    fm_keys = [(n, nsub, newton) for n in spec["elements"]
+               for nsub in spec.get("substeps", (1, 2)) for newton in args.newton]
+    probes = [(n, scheme) for n in md_counts for scheme in spec["schemes"]]
+    # the common reference, floatmoor's grid and MoorDyn's step probes, together
+    tasks = [(i, ("fm", n_ref, nsub_ref, "exact")) for i in range(nt)]
+    tasks += [(i, ("fm",) + k) for k in fm_keys for i in range(nt)]
+    tasks += [(0, ("probe", n, tuple(spec["md_dtm"]), scheme)) for n, scheme in probes]
+    if not args.no_md_ref:
+        tasks.append((0, ("md",) + tuple(spec["md_ref"])))
+    res = runner.run(tasks, cost=_md_cost)
+    ref_runs = [r[0] for r in res[:nt]]
     ref = mean_quantities(ref_runs, tracks)
     print(f"reference: floatmoor {n_ref} el. at dt {DT_C / nsub_ref:g} s: max "
           f"{ref['max'] / 1e3:.1f} kN, std {ref['std'] / 1e3:.2f} kN, min {ref['min'] / 1e3:.1f} kN",
           flush=True)
     if not args.no_md_ref:
         nseg, dtm, scheme = spec["md_ref"]
-        tr0 = tracks[0]
-        md_ref = run_moordyn(case, tr0, nseg, dtm, scheme)[0]
-        e = errors(quantities(md_ref, tr0.window), quantities(ref_runs[0], tr0.window))
-        print(f"MoorDyn {nseg} seg. at dtM {dtm * 1e3:g} ms against it, first track (max / std / "
-              f"min / damage %): {fmt_e(e)}  (the two converged codes)", flush=True)
+        r = res[-1]
+        if isinstance(r, str):
+            print(f"MoorDyn {nseg} seg. at dtM {dtm * 1e3:g} ms: {r}")
+        else:
+            tr0 = tracks[0]
+            e = errors(quantities(r[0], tr0.window), quantities(ref_runs[0], tr0.window))
+            print(f"MoorDyn {nseg} seg. at dtM {dtm * 1e3:g} ms against it, first track (max / "
+                  f"std / min / damage %): {fmt_e(e)}  (the two converged codes)", flush=True)
     fm, md = {}, {}
-    for n in spec["elements"]:
-        for nsub in spec.get("substeps", (1, 2)):
-            for newton in args.newton:
-                try:
-                    runs = [run_floatmoor(case, tr, n, nsub, newton) for tr in tracks]
-                except NumericalError as exc:
-                    print(f"  floatmoor {n} el. dt {DT_C / nsub:g} {newton}: {exc}")
-                    continue
-                q = mean_quantities([r[0] for r in runs], tracks)
-                fm[(n, nsub, newton)] = (errors(q, ref), sum(r[1] for r in runs))
-                print(f"  floatmoor {n} el. dt {DT_C / nsub:g} s {newton}: {fmt_e(fm[(n, nsub, newton)][0])} "
-                      f"CPU {fm[(n, nsub, newton)][1]:.3f} s", flush=True)
-    for n in spec["md_segments"]:
-        for scheme in spec["schemes"]:
-            dtm = md_stable_dtm(case, tracks[0], n, scheme, spec["md_dtm"])
-            if dtm is None:
-                print(f"  MoorDyn {n} seg. {scheme}: unstable at every dtM of {spec['md_dtm']}")
-                continue
-            try:
-                runs = [run_moordyn(case, tr, n, dtm, scheme) for tr in tracks]
-            except RuntimeError as exc:
-                print(f"  MoorDyn {n} seg. {scheme} dtM {dtm * 1e3:g} ms: fails ({exc})")
-                continue
-            if not all(np.all(np.isfinite(r[0])) and r[0].max() < 1e9 for r in runs):
-                print(f"  MoorDyn {n} seg. {scheme} dtM {dtm * 1e3:g} ms: unstable")
-                continue
-            q = mean_quantities([r[0] for r in runs], tracks)
-            md[(n, dtm, scheme)] = (errors(q, ref), sum(r[1] for r in runs))
-            print(f"  MoorDyn {n} seg. {scheme} dtM {dtm * 1e3:g} ms (its largest stable): "
-                  f"{fmt_e(md[(n, dtm, scheme)][0])} CPU {md[(n, dtm, scheme)][1]:.3f} s",
-                  flush=True)
+    for j, k in enumerate(fm_keys):
+        runs = res[nt + j * nt: nt + (j + 1) * nt]
+        label = f"floatmoor {k[0]} el. dt {DT_C / k[1]:g} s {k[2]}"
+        bad = [r for r in runs if isinstance(r, str)]
+        if bad:
+            print(f"  {label}: {bad[0]}")
+            continue
+        q = mean_quantities([r[0] for r in runs], tracks)
+        fm[k] = (errors(q, ref), sum(r[1] for r in runs))
+        print(f"  {label}: {fmt_e(fm[k][0])} CPU {fm[k][1]:.3f} s", flush=True)
+    steps = {}
+    for (n, scheme), r in zip(probes, res[nt + len(fm_keys) * nt:]):
+        if isinstance(r, str) or r[0] is None:
+            print(f"  MoorDyn {n} seg. {scheme}: unstable at every dtM of {spec['md_dtm']}")
+        else:
+            steps[(n, scheme)] = r[0]
+    md_keys = [(n, steps[(n, s)], s) for n, s in probes if (n, s) in steps]
+    res = runner.run([(i, ("md",) + k) for k in md_keys for i in range(nt)], cost=_md_cost)
+    for j, k in enumerate(md_keys):
+        runs = res[j * nt:(j + 1) * nt]
+        label = f"MoorDyn {k[0]} seg. {k[2]} dtM {k[1] * 1e3:g} ms (its largest stable)"
+        bad = [r for r in runs if isinstance(r, str)]
+        if bad:
+            print(f"  {label}: {bad[0]}")
+            continue
+        q = mean_quantities([r[0] for r in runs], tracks)
+        md[k] = (errors(q, ref), sum(r[1] for r in runs))
+        print(f"  {label}: {fmt_e(md[k][0])} CPU {md[k][1]:.3f} s", flush=True)
     fq = qualifying(fm, tol, spec["elements"])
+    # MoorDyn's qualifying settings against the whole grid's counts: a count whose neighbour
+    # was left out (--md-segments) cannot qualify
     mq = qualifying(md, tol, spec["md_segments"], rest=lambda k: k[2:])
+    bound = False
+    if omitted and not mq:
+        # every setting that qualifies meets the criterion, and the counts left out are finer,
+        # hence dearer at their (smaller) stable steps: MoorDyn's cheapest qualifying setting
+        # costs at least its cheapest setting that meets the criterion
+        mq, bound = [k for k, (e, _) in md.items() if meets(e, tol)], True
     if not fq or not mq:
         print(f"no qualifying setting: floatmoor {bool(fq)}, MoorDyn {bool(mq)} (criterion "
               f"{tol})")
@@ -437,17 +656,32 @@ def bench(case, args, tol):
     bm = min(mq, key=lambda k: md[k][1])
     # interleaved repeats of the two cheapest qualifying settings
     c_f, c_m = [fm[bf][1]], [md[bm][1]]
-    for _ in range(args.repeat - 1):
-        c_m.append(sum(run_moordyn(case, tr, bm[0], bm[1], bm[2])[1] for tr in tracks))
-        c_f.append(sum(run_floatmoor(case, tr, bf[0], bf[1], bf[2])[1] for tr in tracks))
+    for rep in range(max(args.repeat, args.md_repeat) - 1):
+        if rep < args.md_repeat - 1:
+            c_m.append(sum(r[1] for r in runner.run([(i, ("md",) + bm) for i in range(nt)],
+                                                    fresh=True)))
+        if rep < args.repeat - 1:
+            c_f.append(sum(r[1] for r in runner.run([(i, ("fm",) + bf) for i in range(nt)],
+                                                    fresh=True)))
     ratio = min(c_m) / min(c_f)
+    how = (f"best of {len(c_f)} / {len(c_m)}; criterion max/std/damage "
+           f"{100 * tol['max']:g}/{100 * tol['std']:g}/{100 * tol['damage']:g} %, min "
+           f"{100 * tol['min']:g} % of the maximum, neighbouring counts included")
+    if bound:
+        how += (f"; MoorDyn's {omitted} seg. not run: a lower bound, MoorDyn at its cheapest "
+                "setting that meets the criterion")
+    elif omitted:
+        how += f"; MoorDyn's {omitted} seg. (finer, dearer) not run"
     print(f"cheapest qualifying: floatmoor {bf[0]} el., dt {DT_C / bf[1]:g} s, Newton {bf[2]} "
           f"(errors {fmt_e(fm[bf][0])} %): CPU {min(c_f):.3f} s; MoorDyn {bm[0]} seg., {bm[2]}, "
           f"dtM {bm[1] * 1e3:g} ms (errors {fmt_e(md[bm][0])} %): CPU {min(c_m):.3f} s -> "
-          f"{ratio:.1f}x (best of {len(c_f)}; criterion max/std/damage "
-          f"{100 * tol['max']:g}/{100 * tol['std']:g}/{100 * tol['damage']:g} %, min "
-          f"{100 * tol['min']:g} % of the maximum, neighbouring counts included)", flush=True)
+          f"{'at least ' if bound else ''}{ratio:.1f}x ({how})", flush=True)
     return ratio
+
+
+def _md_version():
+    import importlib.metadata as md
+    return md.version("moordyn")
 
 
 def main():
@@ -462,15 +696,27 @@ def main():
     ap.add_argument("--no-md-ref", action="store_true",
                     help="skip MoorDyn's converged run (its agreement with the reference)")
     ap.add_argument("--quick", action="store_true", help="1 seed of 1800 s (smoke run)")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="runs at a time in worker processes (CPU times are per process)")
+    ap.add_argument("--store", default=None, metavar="DIR",
+                    help="keep every finished run in DIR and reuse it when nothing that "
+                         "produced it has changed (an interrupted grid loses no finished run)")
+    ap.add_argument("--md-segments", nargs="+", type=int, default=None,
+                    help="MoorDyn's counts to run (only the finest may be left out: the "
+                         "ratio is then a lower bound unless a run count qualifies)")
+    ap.add_argument("--md-repeat", type=int, default=None,
+                    help="timing runs of MoorDyn's cheapest setting (default --repeat)")
     args = ap.parse_args()
     if args.quick:
         args.seeds, args.duration = args.seeds[:1], 1800.0
+    if args.md_repeat is None:
+        args.md_repeat = args.repeat
     tol = dict(TOL) if args.tol is None else dict(zip(("max", "std", "damage", "min"), args.tol))
     import moordyn  # noqa: F401
     import numba
 
     print(f"# {platform.machine()}, Python {platform.python_version()}, numba "
-          f"{numba.__version__}, moordyn {getattr(moordyn, '__version__', '?')}; load "
+          f"{numba.__version__}, moordyn {_md_version()}; load "
           f"{' / '.join(f'{v:.2f}' for v in os.getloadavg())}")
     print(f"# coupling step {DT_C} s, both codes fed the start-of-step position and the chord "
           "velocity of the same piecewise-linear fairlead track; errors against floatmoor's "
