@@ -66,7 +66,16 @@ about 2 ms per run, excluded (until 2026-11-28 they were counted); its statics e
 
 Run: ``python benchmarks/bench_fe_moordyn.py [--cases oc3-harmonic oc3-irregular floatel-slack]
 [--seeds 1 2 3] [--duration 12000] [--repeat 2]``; ``--quick`` shortens the storms to 1800 s
-and 1 seed (a smoke run, not the recorded figures).
+and 1 seed (a smoke run, not the recorded figures).  The Floatel-like grid is long (MoorDyn's
+runs of 3 seeds x 12000 s take 20 min to 2.5 h of CPU per setting): ``--jobs 2`` runs the
+grid's runs in two worker processes (each run's CPU time is still its own process's; the load
+is printed with every run), ``--store DIR`` keeps every finished run and a later invocation
+reuses it when nothing that produced it changed (the task, the track, for floatmoor our
+sources, for MoorDyn the text it is given and its version; `tests/mooring/fe/test_bench_store.py`),
+so an interrupted grid loses nothing; timing repeats always run afresh.  ``--md-segments``
+leaves out MoorDyn's finest counts: the ratio is then exact when a count that was run
+qualifies, else a lower bound (MoorDyn at its cheapest setting that meets the criterion; the
+counts left out are finer and run at smaller steps, so dearer).
 """
 
 from __future__ import annotations
