@@ -243,7 +243,7 @@ def run_moordyn(case, tr: Track, nseg, dtm, scheme):
     with tempfile.TemporaryDirectory() as d, FL.quiet_stdout():
         path = os.path.join(d, "oc3_line.dat")
         with open(path, "w") as fh:
-            fh.write(OC3_TEMPLATE.format(ba=BA_OC3, nseg=nseg, dtm=dtm, scheme=scheme))
+            fh.write(_moordyn_input(case, tr, nseg, dtm, scheme))
         cwd = os.getcwd()
         os.chdir(d)
         try:
@@ -432,7 +432,9 @@ def _floatmoor_sources() -> str:
 
 
 def _moordyn_input(case, tr: Track, nseg, dtm, scheme) -> str:
-    """The text MoorDyn is given (its input file and current profile)."""
+    """The text MoorDyn is given (its input file and current profile): what
+    :func:`run_moordyn` writes for the OC3 line and ``FL.run_moordyn`` for the Floatel-like
+    line, and what the store keys a MoorDyn run by."""
     if case.startswith("floatel"):
         text = FL.moordyn_text(tr.case, n_segments=nseg, dtm=dtm, scheme=scheme,
                                internal_damping=BA_FLOATEL)
@@ -442,7 +444,8 @@ def _moordyn_input(case, tr: Track, nseg, dtm, scheme) -> str:
 
 def _task_key(case, i, task) -> str:
     """A result's identity: the task, the track and everything that produced it (a floatmoor
-    run: our sources; a MoorDyn run: its input text and version), so that an edit to any of
+    run: our sources; a MoorDyn run: its input text and version and the code that steps it),
+    so that an edit to any of
     them makes a stored result stale (never reused)."""
     tr = _TRACKS[case][i]
     kind = task[0]
@@ -453,7 +456,9 @@ def _task_key(case, i, task) -> str:
         dtms = [task[2]] if kind == "md" else list(task[2])
         what = (_md_version(), DT_C, md_stable_dtm.__defaults__ if kind == "probe" else (),
                 inspect.getsource(md_stable_dtm) if kind == "probe" else "",
-                [_moordyn_input(case, tr, nseg, d, scheme) for d in dtms])
+                [_moordyn_input(case, tr, nseg, d, scheme) for d in dtms],
+                # how the kinematics reach MoorDyn's Step (start-of-step state, chord velocity)
+                inspect.getsource(run_moordyn), inspect.getsource(FL.run_moordyn))
     return _digest(case, task, _track_digest(tr), what)
 
 
@@ -625,17 +630,21 @@ def _bench(case, spec, tracks, args, tol, runner, md_counts, omitted):
             e = errors(quantities(r[0], tr0.window), quantities(ref_runs[0], tr0.window))
             print(f"MoorDyn {nseg} seg. at dtM {dtm * 1e3:g} ms against it, first track (max / "
                   f"std / min / damage %): {fmt_e(e)}  (the two converged codes)", flush=True)
-    fm, md = {}, {}
-    for j, k in enumerate(fm_keys):
-        runs = res[nt + j * nt: nt + (j + 1) * nt]
-        label = f"floatmoor {k[0]} el. dt {DT_C / k[1]:g} s {k[2]}"
+    def summary(label, runs, into, k):
+        """A setting's errors against the reference and CPU over the tracks, printed and kept
+        in ``into[k]`` (a failed run printed instead)."""
         bad = [r for r in runs if isinstance(r, str)]
         if bad:
             print(f"  {label}: {bad[0]}")
-            continue
+            return
         q = mean_quantities([r[0] for r in runs], tracks)
-        fm[k] = (errors(q, ref), sum(r[1] for r in runs))
-        print(f"  {label}: {fmt_e(fm[k][0])} CPU {fm[k][1]:.3f} s", flush=True)
+        into[k] = (errors(q, ref), sum(r[1] for r in runs))
+        print(f"  {label}: {fmt_e(into[k][0])} CPU {into[k][1]:.3f} s", flush=True)
+
+    fm, md = {}, {}
+    for j, k in enumerate(fm_keys):
+        summary(f"floatmoor {k[0]} el. dt {DT_C / k[1]:g} s {k[2]}",
+                res[nt + j * nt: nt + (j + 1) * nt], fm, k)
     steps = {}
     for (n, scheme), r in zip(probes, res[nt + len(fm_keys) * nt:]):
         if isinstance(r, str) or r[0] is None:
@@ -645,15 +654,8 @@ def _bench(case, spec, tracks, args, tol, runner, md_counts, omitted):
     md_keys = [(n, steps[(n, s)], s) for n, s in probes if (n, s) in steps]
     res = runner.run([(i, ("md",) + k) for k in md_keys for i in range(nt)], cost=_md_cost)
     for j, k in enumerate(md_keys):
-        runs = res[j * nt:(j + 1) * nt]
-        label = f"MoorDyn {k[0]} seg. {k[2]} dtM {k[1] * 1e3:g} ms (its largest stable)"
-        bad = [r for r in runs if isinstance(r, str)]
-        if bad:
-            print(f"  {label}: {bad[0]}")
-            continue
-        q = mean_quantities([r[0] for r in runs], tracks)
-        md[k] = (errors(q, ref), sum(r[1] for r in runs))
-        print(f"  {label}: {fmt_e(md[k][0])} CPU {md[k][1]:.3f} s", flush=True)
+        summary(f"MoorDyn {k[0]} seg. {k[2]} dtM {k[1] * 1e3:g} ms (its largest stable)",
+                res[j * nt:(j + 1) * nt], md, k)
     fq = qualifying(fm, tol, spec["elements"])
     # MoorDyn's qualifying settings against the whole grid's counts: a count whose neighbour
     # was left out (--md-segments) cannot qualify

@@ -66,3 +66,18 @@ def test_moordyn_runs_are_keyed_by_the_text_moordyn_is_given(bench, monkeypatch)
     assert k != bench._task_key(case, 0, ("md", 20, 1e-3, "RK2"))
     monkeypatch.setattr(bench, "BA_OC3", bench.BA_OC3 * 1.01)     # in MoorDyn's input file
     assert k != bench._task_key(case, 0, ("md", 20, 2e-3, "RK2"))
+
+
+def test_moordyn_runs_are_keyed_by_the_code_that_steps_them(bench, monkeypatch):
+    """The 2026-11-27 bug (MoorDyn fed the end-of-step state) lived in the stepping loop, not in
+    MoorDyn's input: a run stored before such a fix must not be reused after it."""
+    case = "oc3-harmonic"
+    monkeypatch.setitem(bench._TRACKS, case, [_track(bench)])
+    k = bench._task_key(case, 0, ("md", 20, 2e-3, "RK2"))
+    real = bench.inspect.getsource
+
+    def edited(obj):
+        return real(obj) + ("# edited" if obj is bench.run_moordyn else "")
+
+    monkeypatch.setattr(bench.inspect, "getsource", edited)
+    assert k != bench._task_key(case, 0, ("md", 20, 2e-3, "RK2"))
